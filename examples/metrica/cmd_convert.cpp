@@ -1,0 +1,67 @@
+#include "cli.hpp"
+
+#include <metrica/error.hpp>
+#include <metrica/io/file_format.hpp>
+#include <metrica/io/meshb.hpp>
+#include <metrica/log.hpp>
+#include <metrica/mesh_build.hpp>
+#include <metrica/timer.hpp>
+#include <metrica/validate.hpp>
+
+#include <fmt/core.h>
+
+namespace metrica::cli {
+
+int run_convert(const std::vector<std::string>& args) {
+  Options o("convert", "[-i] INPUT [-o] OUTPUT",
+            "Converts a mesh between .mesh / .meshb (any libMeshb version) and .vtu / .su2, or a solution\n"
+            "between .sol and .solb. Every keyword Metrica knows is carried over unchanged. A mesh is\n"
+            "checked first (as `metrica check`) unless --no-check; an invalid one is not written.\n\n"
+            "Examples: metrica convert cube.mesh cube.meshb\n"
+            "          metrica convert cube.meshb cube.vtu\n"
+            "          metrica convert metric.solb metric.sol --format-version 2");
+  o.add()("input,i", po::value<std::string>()->value_name("FILE"), "input file")(
+      "output,o", po::value<std::string>()->value_name("FILE"), "output file; its extension picks the format")(
+      "format-version", po::value<int>()->value_name("V"), "libMeshb version to write (default: the input's)")(
+      "no-check", "write even if the mesh fails its checks");
+  o.positional("input", 1);
+  o.positional("output", 1);
+  if (!o.parse(args)) return kOk;
+  const auto input = o.required("input", "the input file (-i)");
+  const auto output = o.required("output", "the output file (-o)");
+  const int version = o.has("format-version") ? o.get<int>("format-version") : 0;
+
+  Stopwatch clock;
+  const auto in_format = io::format_of(input), out_format = io::format_of(output);
+  const bool in_sol = in_format == io::FileFormat::sol || in_format == io::FileFormat::solb;
+  const bool out_sol = out_format == io::FileFormat::sol || out_format == io::FileFormat::solb;
+  if (in_sol != out_sol)
+    throw UsageError(fmt::format("convert: cannot convert {} to {} (a solution converts to a solution, a mesh to a mesh)",
+                                 io::to_string(in_format), io::to_string(out_format)));
+  if (in_sol) {
+    const auto sol = io::read_sol(input);
+    io::write_sol(output, sol, version);
+    if (log::level() >= log::Level::normal)
+      fmt::print("wrote {}: {} vertices x {} fields ({:.2f} s)\n", output, count_text(sol.count), sol.types.size(),
+                 clock.seconds());
+    return kOk;
+  }
+
+  const auto data = io::read_mesh_file(input);
+  if (!o.has("no-check")) {
+    BuildOptions bo;
+    bo.source = input;
+    const auto report = build_mesh(data, bo).validate();
+    if (!report.ok()) {
+      fmt::print(stderr, "{}: {}\n", input, report.to_string());
+      throw InputError(fmt::format("{}: invalid mesh, not converted (use --no-check to convert anyway)", input));
+    }
+  }
+  io::write_mesh_file(output, data, version);
+  if (log::level() >= log::Level::normal)
+    fmt::print("wrote {}: {} vertices, {} tets, {} triangles ({:.2f} s)\n", output, count_text(data.vertices.size()),
+               count_text(data.tets.size()), count_text(data.triangles.size()), clock.seconds());
+  return kOk;
+}
+
+}  // namespace metrica::cli

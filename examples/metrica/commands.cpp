@@ -1,0 +1,20 @@
+#include "cli.hpp"
+
+namespace metrica::cli {
+
+int run_cube(const std::vector<std::string>& args);
+int run_info(const std::vector<std::string>& args);
+int run_check(const std::vector<std::string>& args);
+int run_convert(const std::vector<std::string>& args);
+
+const std::vector<Command>& commands() {
+  static const std::vector<Command> list{
+      {"cube", "write a box mesh of n x m x k hexes split into 6 tets each", run_cube},
+      {"info", "print counts, extent, surfaces, ridges, corners and volume of a mesh", run_info},
+      {"check", "read a mesh and check every invariant (exit 1 with a report if invalid)", run_check},
+      {"convert", "convert between .mesh, .meshb, .vtu, .su2 (and .sol <-> .solb)", run_convert},
+  };
+  return list;
+}
+
+}  // namespace metrica::cli

@@ -1,0 +1,102 @@
+#include <metrica/classification.hpp>
+
+#include <algorithm>
+#include <numeric>
+
+namespace metrica {
+namespace {
+
+struct EdgeSide {
+  std::uint64_t key;
+  SurfaceId surface;
+  bool operator<(const EdgeSide& o) const { return key < o.key || (key == o.key && surface < o.surface); }
+};
+
+}  // namespace
+
+Classification compute_classification(const Mesh& mesh) {
+  Classification c;
+  c.vertex_class.assign(mesh.vertex_capacity(), VertexClass::interior);
+
+  // Every boundary face contributes its three edges with its surface id.
+  std::vector<EdgeSide> sides;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    for (int f = 0; f < 4; ++f) {
+      if (mesh.neighbour(t, f).valid()) continue;
+      const auto tri = face_vertices(mesh.tet(t), f);
+      const SurfaceId s = mesh.surface_id(t, f);
+      for (int i = 0; i < 3; ++i) {
+        sides.push_back({edge_key(tri[i], tri[(i + 1) % 3]), s});
+        c.vertex_class[tri[i]] = VertexClass::surface;
+      }
+    }
+  }
+  std::sort(sides.begin(), sides.end());
+
+  // Per vertex: number of ridge edges, and the surface pair of the first.
+  std::vector<std::uint8_t> degree(mesh.vertex_capacity(), 0);
+  std::vector<std::uint64_t> first_pair(mesh.vertex_capacity(), 0);
+  std::vector<std::uint8_t> pair_changes(mesh.vertex_capacity(), 0);
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j].key == sides[i].key) ++j;
+    const SurfaceId lo = sides[i].surface, hi = sides[j - 1].surface;
+    const bool ridge = lo != hi || mesh.feature_edges().count(sides[i].key) != 0;
+    if (ridge) {
+      c.ridges.insert(sides[i].key);
+      const std::uint64_t pair = (std::uint64_t(std::uint32_t(lo)) << 32) | std::uint32_t(hi);
+      for (VertexId v : edge_from_key(sides[i].key)) {
+        if (degree[v] == 0)
+          first_pair[v] = pair;
+        else if (first_pair[v] != pair)
+          pair_changes[v] = 1;
+        if (degree[v] < 255) ++degree[v];
+      }
+    }
+    i = j;
+  }
+
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    if (!mesh.vertex_alive(v) || c.vertex_class[v] == VertexClass::interior) continue;
+    if (mesh.is_required(v) || degree[v] == 1 || degree[v] >= 3 || pair_changes[v])
+      c.vertex_class[v] = VertexClass::corner;
+    else if (degree[v] == 2)
+      c.vertex_class[v] = VertexClass::ridge;
+  }
+  return c;
+}
+
+void Mesh::classify() {
+  auto c = compute_classification(*this);
+  vertex_class_ = std::move(c.vertex_class);
+  ridges_ = std::move(c.ridges);
+}
+
+std::size_t count_ridge_curves(const Mesh& mesh) {
+  // Union-find over ridge edges, joined at ridge (non-corner) vertices.
+  std::vector<std::uint64_t> edges(mesh.ridge_edges().begin(), mesh.ridge_edges().end());
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::size_t> parent(edges.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::vector<std::size_t> edge_at(mesh.vertex_capacity(), SIZE_MAX);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    for (VertexId v : edge_from_key(edges[i])) {
+      if (mesh.vertex_class(v) == VertexClass::corner) continue;
+      if (edge_at[v] == SIZE_MAX)
+        edge_at[v] = i;
+      else
+        parent[find(i)] = find(edge_at[v]);
+    }
+  }
+  std::size_t curves = 0;
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    if (find(i) == i) ++curves;
+  return curves;
+}
+
+}  // namespace metrica

@@ -1,0 +1,33 @@
+// Classification of the boundary: ridges and corners.
+//
+// A ridge edge lies between boundary faces of two different surface ids,
+// or is a feature edge given by the input. A corner is a boundary vertex
+// on 3 or more ridge edges, at the end of a ridge (1 ridge edge), where two
+// ridges of different surface pairs meet, or one the input requires. Other
+// vertices on a ridge are ridge vertices; other boundary vertices are
+// surface vertices; the rest are interior.
+#pragma once
+
+#include <metrica/mesh.hpp>
+
+#include <cstdint>
+#include <unordered_set>
+#include <vector>
+
+namespace metrica {
+
+struct Classification {
+  std::vector<VertexClass> vertex_class;  // by vertex id (dead vertices: interior)
+  std::unordered_set<std::uint64_t> ridges;
+};
+
+// Computes the classification from surface ids, feature edges and required
+// vertices, without changing the mesh (validate() compares it with the
+// stored one; Mesh::classify() stores it).
+Classification compute_classification(const Mesh& mesh);
+
+// Ridge curves: connected chains of ridge edges between corners (a closed
+// ridge loop without corners counts as one curve).
+std::size_t count_ridge_curves(const Mesh& mesh);
+
+}  // namespace metrica

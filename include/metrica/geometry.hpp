@@ -1,0 +1,28 @@
+// Plain floating-point geometry of points: volumes and orientation.
+//
+// These are the non-robust evaluations used for measures (volume, reports)
+// and for the validity check of the mesh core. Robust sign decisions
+// (Filtered / Exact precision policies) live in predicates/.
+#pragma once
+
+#include <metrica/ids.hpp>
+
+#include <Eigen/Geometry>
+
+namespace metrica {
+
+// Six times the signed volume of (a, b, c, d): det[b-a, c-a, d-a].
+// Positive when d lies on the side of the normal (b-a)x(c-a).
+inline double orient3d_fast(const Point& a, const Point& b, const Point& c, const Point& d) {
+  return (b - a).cross(c - a).dot(d - a);
+}
+
+inline double tet_volume(const Point& a, const Point& b, const Point& c, const Point& d) {
+  return orient3d_fast(a, b, c, d) / 6.0;
+}
+
+inline double triangle_area(const Point& a, const Point& b, const Point& c) {
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+
+}  // namespace metrica

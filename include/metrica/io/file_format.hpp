@@ -1,0 +1,22 @@
+// File formats by extension, and reading / writing a mesh whatever its
+// format (the `metrica` command's -i / -o follow the extension).
+#pragma once
+
+#include <metrica/io/mesh_data.hpp>
+
+#include <string>
+
+namespace metrica::io {
+
+enum class FileFormat { mesh, meshb, sol, solb, vtu, su2, unknown };
+
+FileFormat format_of(const std::string& path);
+const char* to_string(FileFormat f);
+
+// .mesh or .meshb; IoError for other formats.
+MeshData read_mesh_file(const std::string& path);
+
+// .mesh, .meshb (libMeshb `version`, 0 = keep data.version), .vtu, .su2.
+void write_mesh_file(const std::string& path, const MeshData& data, int version = 0);
+
+}  // namespace metrica::io

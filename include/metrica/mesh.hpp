@@ -1,0 +1,143 @@
+// The tetrahedral mesh: flat arrays indexed by 32-bit ids.
+//
+// Vertices carry a position, a metric tensor and its logarithm (6 numbers
+// each, filled by metrics/), a hint to one incident tet, a classification
+// (interior / surface / ridge / corner) and flags. Tets carry 4 vertex ids
+// (positively oriented), the neighbour across each face (tet2tets), the
+// surface id of each face (0 for an interior face) and a domain reference.
+// Deleted entities are recycled through free lists; compact() renumbers.
+//
+// The invariants of DESIGN.md are checked by validate() (validate.hpp).
+// Operators change the mesh through the small set of primitives below;
+// none of them allocates per call once capacity is reserved.
+#pragma once
+
+#include <metrica/ids.hpp>
+#include <metrica/tet_topology.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <unordered_set>
+#include <vector>
+
+namespace metrica {
+
+enum class VertexClass : std::uint8_t { interior = 0, surface = 1, ridge = 2, corner = 3 };
+
+const char* to_string(VertexClass c);
+
+class ValidationReport;
+struct ValidateOptions;
+
+class Mesh {
+ public:
+  // --- sizes -------------------------------------------------------------
+  // Ids run over [0, capacity); some may be dead (on a free list).
+  std::size_t vertex_capacity() const { return points_.size(); }
+  std::size_t tet_capacity() const { return tets_.size(); }
+  std::size_t num_vertices() const { return live_vertices_; }
+  std::size_t num_tets() const { return live_tets_; }
+
+  bool vertex_alive(VertexId v) const { return (vertex_flags_[v] & kAlive) != 0; }
+  bool tet_alive(TetId t) const { return tets_[t][0] != kNoId; }
+
+  // --- vertices ----------------------------------------------------------
+  const Point& point(VertexId v) const { return points_[v]; }
+  Point& point(VertexId v) { return points_[v]; }
+  int vertex_ref(VertexId v) const { return vertex_ref_[v]; }
+  TetId vert2tet(VertexId v) const { return vert2tet_[v]; }
+  void set_vert2tet(VertexId v, TetId t) { vert2tet_[v] = t; }
+  VertexClass vertex_class(VertexId v) const { return vertex_class_[v]; }
+  // Vertices the input marked as Corners or RequiredVertices: never moved
+  // or removed by an operator.
+  bool is_required(VertexId v) const { return (vertex_flags_[v] & kRequired) != 0; }
+  void set_required(VertexId v, bool required);
+
+  // Metric field: empty until set (metrics/ fills it).
+  bool has_metric() const { return !metric_.empty(); }
+  const Sym6& metric(VertexId v) const { return metric_[v]; }
+  const Sym6& log_metric(VertexId v) const { return log_metric_[v]; }
+  // Sets M and log M of a vertex; allocates the arrays on first use.
+  void set_metric(VertexId v, const Sym6& m, const Sym6& log_m);
+
+  // --- tets --------------------------------------------------------------
+  const TetVertices& tet(TetId t) const { return tets_[t]; }
+  int tet_ref(TetId t) const { return tet_ref_[t]; }
+  // Neighbour across face `face` of t (with its local face), or none.
+  FaceRef neighbour(TetId t, int face) const { return tet2tets_[t][face]; }
+  FaceRef neighbour(FaceRef f) const { return tet2tets_[f.tet()][f.face()]; }
+  SurfaceId surface_id(TetId t, int face) const { return face_surface_[t][face]; }
+  Point tet_point(TetId t, int i) const { return points_[tets_[t][i]]; }
+
+  // --- ridges ------------------------------------------------------------
+  // Ridge edges: between faces of two different surface ids, plus the
+  // feature edges the input gave (Edges / Ridges keywords).
+  bool is_ridge(VertexId a, VertexId b) const { return ridges_.count(edge_key(a, b)) != 0; }
+  const std::unordered_set<std::uint64_t>& ridge_edges() const { return ridges_; }
+  const std::unordered_set<std::uint64_t>& feature_edges() const { return feature_edges_; }
+  void add_feature_edge(VertexId a, VertexId b) { feature_edges_.insert(edge_key(a, b)); }
+
+  // Recomputes ridges and vertex classes from the surface ids, feature
+  // edges and required vertices (classification.cpp). The one function
+  // operators call after changing the boundary.
+  void classify();
+
+  // --- mutation primitives -----------------------------------------------
+  void reserve(std::size_t vertices, std::size_t tets);
+  VertexId add_vertex(const Point& p, int ref = 0);
+  void remove_vertex(VertexId v);
+  // Adds a tet with no neighbours and interior faces; the caller links it.
+  TetId add_tet(const TetVertices& vertices, int ref = 0);
+  void remove_tet(TetId t);
+  void set_tet_vertices(TetId t, const TetVertices& vertices) { tets_[t] = vertices; }
+  // Makes a and b neighbours of each other (both slots written).
+  void link(FaceRef a, FaceRef b) {
+    tet2tets_[a.tet()][a.face()] = b;
+    tet2tets_[b.tet()][b.face()] = a;
+  }
+  void set_neighbour(TetId t, int face, FaceRef n) { tet2tets_[t][face] = n; }
+  void set_surface_id(TetId t, int face, SurfaceId id) { face_surface_[t][face] = id; }
+  void set_vertex_class(VertexId v, VertexClass c) { vertex_class_[v] = c; }
+  void set_ridges(std::unordered_set<std::uint64_t> ridges) { ridges_ = std::move(ridges); }
+
+  // Removes dead entities and renumbers vertices along a Morton curve and
+  // tets by their vertices, so that neighbours in space are neighbours in
+  // memory (compact.cpp). Invalidates every id held outside.
+  void compact();
+
+  // Checks every invariant of DESIGN.md (validate.cpp).
+  ValidationReport validate(const ValidateOptions& options) const;
+  ValidationReport validate() const;
+
+  // Sum of the (Euclidean) volumes of the live tets.
+  double volume() const;
+
+ private:
+  static constexpr std::uint8_t kAlive = 1;
+  static constexpr std::uint8_t kRequired = 2;
+
+  std::vector<Point> points_;
+  std::vector<int> vertex_ref_;
+  std::vector<TetId> vert2tet_;
+  std::vector<VertexClass> vertex_class_;
+  std::vector<std::uint8_t> vertex_flags_;
+  std::vector<Sym6> metric_;
+  std::vector<Sym6> log_metric_;
+
+  std::vector<TetVertices> tets_;
+  std::vector<std::array<FaceRef, 4>> tet2tets_;
+  std::vector<std::array<SurfaceId, 4>> face_surface_;
+  std::vector<int> tet_ref_;
+
+  std::vector<VertexId> free_vertices_;
+  std::vector<TetId> free_tets_;
+  std::size_t live_vertices_ = 0;
+  std::size_t live_tets_ = 0;
+
+  std::unordered_set<std::uint64_t> ridges_;
+  std::unordered_set<std::uint64_t> feature_edges_;
+
+  friend class MeshCompactor;
+};
+
+}  // namespace metrica

@@ -1,0 +1,199 @@
+#include <metrica/classification.hpp>
+#include <metrica/error.hpp>
+#include <metrica/geometry.hpp>
+#include <metrica/log.hpp>
+#include <metrica/mesh_build.hpp>
+#include <metrica/vertex_tets.hpp>
+
+#include <fmt/core.h>
+
+#include <algorithm>
+
+namespace metrica {
+namespace {
+
+// Checks orientation; reorients every tet when all are negative.
+std::vector<TetVertices> oriented_tets(const io::MeshData& d, const std::string& source) {
+  std::vector<TetVertices> tets = d.tets;
+  std::size_t negative = 0;
+  std::vector<std::string> bad;
+  for (std::size_t i = 0; i < tets.size(); ++i) {
+    const auto& t = tets[i];
+    const bool repeated = t[0] == t[1] || t[0] == t[2] || t[0] == t[3] || t[1] == t[2] || t[1] == t[3] || t[2] == t[3];
+    const double o = repeated ? 0.0
+                              : orient3d_fast(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], d.vertices[t[3]]);
+    if (o < 0) ++negative;
+    if (o == 0 && bad.size() < 5)
+      bad.push_back(fmt::format("tet {} (vertices {} {} {} {}) is degenerate (zero volume)", i + 1, t[0] + 1,
+                                t[1] + 1, t[2] + 1, t[3] + 1));
+  }
+  if (negative == tets.size()) {
+    log::warn("{}: every tet is negatively oriented; reorienting all {} tets", source, tets.size());
+    for (auto& t : tets) std::swap(t[2], t[3]);
+  } else if (negative > 0) {
+    for (std::size_t i = 0; i < tets.size() && bad.size() < 5; ++i) {
+      const auto& t = tets[i];
+      if (orient3d_fast(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], d.vertices[t[3]]) < 0)
+        bad.push_back(fmt::format("tet {} (vertices {} {} {} {}) is inverted", i + 1, t[0] + 1, t[1] + 1, t[2] + 1,
+                                  t[3] + 1));
+    }
+  }
+  if (!bad.empty() || (negative > 0 && negative < tets.size())) {
+    std::string msg = fmt::format("{}: invalid input tetrahedra ({} inverted of {}):", source, negative, tets.size());
+    for (const auto& b : bad) msg += "\n  " + b;
+    throw InputError(msg);
+  }
+  return tets;
+}
+
+struct FaceKeyed {
+  TriangleVertices key;
+  std::uint32_t index;
+};
+
+}  // namespace
+
+Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
+  const std::string& src = opt.source;
+  if (d.tets.empty()) throw InputError(fmt::format("{}: the mesh has no tetrahedra", src));
+  const auto tets = oriented_tets(d, src);
+  const std::size_t nv = d.vertices.size();
+
+  Mesh mesh;
+  mesh.reserve(nv, tets.size());
+  for (std::size_t v = 0; v < nv; ++v) mesh.add_vertex(d.vertices[v], v < d.vertex_refs.size() ? d.vertex_refs[v] : 0);
+  for (std::size_t t = 0; t < tets.size(); ++t) mesh.add_tet(tets[t], t < d.tet_refs.size() ? d.tet_refs[t] : 0);
+
+  const VertexTets incidence(mesh);
+  std::size_t unused = 0;
+  for (VertexId v = 0; v < nv; ++v) {
+    if (incidence.of(v).empty()) {
+      mesh.remove_vertex(v);
+      ++unused;
+    } else {
+      mesh.set_vert2tet(v, incidence.of(v)[0]);
+    }
+  }
+  if (unused > 0) log::warn("{}: {} vertices belong to no tetrahedron and are dropped", src, unused);
+
+  // Face adjacency: the tets sharing a face all contain its first vertex.
+  for (TetId t = 0; t < tets.size(); ++t) {
+    for (int f = 0; f < 4; ++f) {
+      if (mesh.neighbour(t, f).valid()) continue;
+      const auto face = face_vertices(tets[t], f);
+      FaceRef match;
+      for (TetId u : incidence.of(face[0])) {
+        if (u == t) continue;
+        const auto& tu = tets[u];
+        const int ib = local_index(tu, face[1]), ic = local_index(tu, face[2]);
+        if (ib < 0 || ic < 0) continue;
+        const int ia = local_index(tu, face[0]);
+        const int g = 6 - ia - ib - ic;  // the remaining local index
+        if (match.valid())
+          throw InputError(fmt::format("{}: face ({} {} {}) is shared by more than two tetrahedra (tets {}, {}, {})",
+                                       src, face[0] + 1, face[1] + 1, face[2] + 1, t + 1, match.tet() + 1, u + 1));
+        match = FaceRef(u, g);
+      }
+      if (match.valid()) {
+        if (mesh.neighbour(match).valid())
+          throw InputError(fmt::format("{}: face ({} {} {}) is shared by more than two tetrahedra", src, face[0] + 1,
+                                       face[1] + 1, face[2] + 1));
+        mesh.link(FaceRef(t, f), match);
+      }
+    }
+  }
+
+  // Boundary faces take the surface id of the input triangle covering them.
+  std::vector<FaceKeyed> triangles(d.triangles.size());
+  SurfaceId max_id = 0;
+  for (std::size_t i = 0; i < d.triangles.size(); ++i) {
+    triangles[i] = {sorted(d.triangles[i]), static_cast<std::uint32_t>(i)};
+    if (i < d.triangle_refs.size()) max_id = std::max(max_id, d.triangle_refs[i]);
+  }
+  std::sort(triangles.begin(), triangles.end(),
+            [](const FaceKeyed& a, const FaceKeyed& b) { return a.key < b.key || (a.key == b.key && a.index < b.index); });
+  const SurfaceId default_id = opt.default_surface_id > 0 ? opt.default_surface_id : max_id + 1;
+  std::vector<char> used(d.triangles.size(), 0);
+  std::size_t untagged = 0, nonpositive = 0;
+  for (TetId t = 0; t < tets.size(); ++t) {
+    for (int f = 0; f < 4; ++f) {
+      if (mesh.neighbour(t, f).valid()) continue;
+      const auto key = sorted(face_vertices(tets[t], f));
+      auto it = std::lower_bound(triangles.begin(), triangles.end(), key,
+                                 [](const FaceKeyed& a, const TriangleVertices& k) { return a.key < k; });
+      SurfaceId id = default_id;
+      if (it != triangles.end() && it->key == key) {
+        const int ref = it->index < d.triangle_refs.size() ? d.triangle_refs[it->index] : 0;
+        if (ref > 0)
+          id = ref;
+        else
+          ++nonpositive;
+        for (auto jt = it; jt != triangles.end() && jt->key == key; ++jt) used[jt->index] = 1;
+      } else {
+        ++untagged;
+      }
+      mesh.set_surface_id(t, f, id);
+    }
+  }
+  if (untagged > 0)
+    log::warn("{}: {} boundary faces have no input triangle; they get surface id {}", src, untagged, default_id);
+  if (nonpositive > 0)
+    log::warn("{}: {} boundary triangles have a reference <= 0; they get surface id {}", src, nonpositive, default_id);
+
+  std::size_t internal = 0;
+  for (std::size_t i = 0; i < d.triangles.size(); ++i) {
+    if (used[i]) continue;
+    const auto& tri = d.triangles[i];
+    bool is_face = false;
+    for (TetId u : incidence.of(tri[0]))
+      if (local_index(tets[u], tri[1]) >= 0 && local_index(tets[u], tri[2]) >= 0) is_face = true;
+    if (!is_face)
+      throw InputError(fmt::format("{}: triangle {} (vertices {} {} {}) is not a face of any tetrahedron", src, i + 1,
+                                   tri[0] + 1, tri[1] + 1, tri[2] + 1));
+    ++internal;
+  }
+  if (internal > 0)
+    log::warn("{}: {} triangles lie inside the volume (internal surfaces are not kept)", src, internal);
+
+  for (const auto& e : d.edges) mesh.add_feature_edge(e[0], e[1]);
+  for (VertexId v : d.corners) mesh.set_required(v, true);
+  for (VertexId v : d.required_vertices) mesh.set_required(v, true);
+  mesh.classify();
+  return mesh;
+}
+
+io::MeshData extract_mesh_data(const Mesh& mesh) {
+  io::MeshData d;
+  std::vector<VertexId> new_id(mesh.vertex_capacity(), kNoId);
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    if (!mesh.vertex_alive(v)) continue;
+    new_id[v] = static_cast<VertexId>(d.vertices.size());
+    d.vertices.push_back(mesh.point(v));
+    d.vertex_refs.push_back(mesh.vertex_ref(v));
+    if (mesh.vertex_class(v) == VertexClass::corner) d.corners.push_back(new_id[v]);
+    if (mesh.is_required(v)) d.required_vertices.push_back(new_id[v]);
+  }
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const auto& tv = mesh.tet(t);
+    d.tets.push_back({new_id[tv[0]], new_id[tv[1]], new_id[tv[2]], new_id[tv[3]]});
+    d.tet_refs.push_back(mesh.tet_ref(t));
+    for (int f = 0; f < 4; ++f) {
+      if (mesh.neighbour(t, f).valid()) continue;
+      const auto tri = face_vertices(tv, f);
+      d.triangles.push_back({new_id[tri[0]], new_id[tri[1]], new_id[tri[2]]});
+      d.triangle_refs.push_back(mesh.surface_id(t, f));
+    }
+  }
+  std::vector<std::uint64_t> ridges(mesh.ridge_edges().begin(), mesh.ridge_edges().end());
+  std::sort(ridges.begin(), ridges.end());
+  for (auto key : ridges) {
+    const auto e = edge_from_key(key);
+    d.ridges.push_back(static_cast<std::uint32_t>(d.edges.size()));
+    d.edges.push_back({new_id[e[0]], new_id[e[1]]});
+    d.edge_refs.push_back(0);
+  }
+  return d;
+}
+
+}  // namespace metrica

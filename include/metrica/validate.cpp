@@ -1,0 +1,224 @@
+#include <metrica/classification.hpp>
+#include <metrica/geometry.hpp>
+#include <metrica/validate.hpp>
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace metrica {
+
+void ValidationReport::add(const std::string& check, std::string message, std::size_t max_messages) {
+  if (counts_[check]++ < max_messages) problems_.push_back({check, std::move(message)});
+}
+
+std::size_t ValidationReport::count(const std::string& check) const {
+  const auto it = counts_.find(check);
+  return it == counts_.end() ? 0 : it->second;
+}
+
+std::size_t ValidationReport::total() const {
+  std::size_t n = 0;
+  for (const auto& [check, c] : counts_) n += c;
+  return n;
+}
+
+std::string ValidationReport::to_string() const {
+  if (ok()) return "valid";
+  std::string out;
+  for (const auto& p : problems_) out += fmt::format("  [{}] {}\n", p.check, p.message);
+  out += "invalid:";
+  for (const auto& [check, c] : counts_) out += fmt::format(" {} {}", c, check);
+  return out;
+}
+
+namespace {
+
+class Checker {
+ public:
+  Checker(const Mesh& mesh, const ValidateOptions& opt) : m_(mesh), opt_(opt) {}
+
+  ValidationReport run() {
+    // Later checks assume vertex ids are sane; stop early if they are not.
+    if (!check_vertices()) return std::move(report_);
+    check_orientation();
+    check_adjacency();
+    check_manifold();
+    check_classification();
+    check_vert2tet();
+    check_volume();
+    return std::move(report_);
+  }
+
+ private:
+  template <class... Args>
+  void fail(const char* check, fmt::format_string<Args...> f, Args&&... args) {
+    report_.add(check, fmt::format(f, std::forward<Args>(args)...), opt_.max_messages_per_check);
+  }
+
+  bool check_vertices() {
+    std::size_t live_v = 0, live_t = 0;
+    for (VertexId v = 0; v < m_.vertex_capacity(); ++v) live_v += m_.vertex_alive(v);
+    if (live_v != m_.num_vertices())
+      fail("vertices", "{} live vertices flagged, but the count says {}", live_v, m_.num_vertices());
+    const std::size_t before = report_.total();
+    for (TetId t = 0; t < m_.tet_capacity(); ++t) {
+      if (!m_.tet_alive(t)) continue;
+      ++live_t;
+      const auto& tv = m_.tet(t);
+      for (int i = 0; i < 4; ++i) {
+        if (tv[i] >= m_.vertex_capacity() || !m_.vertex_alive(tv[i]))
+          fail("vertices", "tet {}: vertex {} ({}) is dead or out of range", t, i, tv[i]);
+        for (int j = 0; j < i; ++j)
+          if (tv[i] == tv[j]) fail("vertices", "tet {}: vertex {} appears twice", t, tv[i]);
+      }
+    }
+    if (live_t != m_.num_tets()) fail("vertices", "{} live tets found, but the count says {}", live_t, m_.num_tets());
+    return report_.total() == before;
+  }
+
+  void check_orientation() {
+    for (TetId t = 0; t < m_.tet_capacity(); ++t) {
+      if (!m_.tet_alive(t)) continue;
+      const auto& v = m_.tet(t);
+      const double o = orient3d_fast(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
+      if (!(o > 0)) fail("orientation", "tet {} ({} {} {} {}): orient3d = {:.3e} <= 0", t, v[0], v[1], v[2], v[3], o);
+    }
+  }
+
+  void check_adjacency() {
+    for (TetId t = 0; t < m_.tet_capacity(); ++t) {
+      if (!m_.tet_alive(t)) continue;
+      for (int f = 0; f < 4; ++f) {
+        const FaceRef n = m_.neighbour(t, f);
+        const SurfaceId s = m_.surface_id(t, f);
+        if (!n.valid()) {
+          if (s <= 0) fail("boundary", "tet {} face {}: boundary face with surface id {} (must be > 0)", t, f, s);
+          continue;
+        }
+        if (s != 0) fail("boundary", "tet {} face {}: interior face carries surface id {}", t, f, s);
+        if (n.tet() >= m_.tet_capacity() || !m_.tet_alive(n.tet())) {
+          fail("adjacency", "tet {} face {}: neighbour tet {} is dead or out of range", t, f, n.tet());
+          continue;
+        }
+        if (m_.neighbour(n) != FaceRef(t, f))
+          fail("adjacency", "tet {} face {} -> tet {} face {}, which does not point back", t, f, n.tet(), n.face());
+        if (sorted(face_vertices(m_.tet(t), f)) != sorted(face_vertices(m_.tet(n.tet()), n.face())))
+          fail("adjacency", "tet {} face {} and tet {} face {} hold different vertices", t, f, n.tet(), n.face());
+      }
+    }
+  }
+
+  // Each boundary edge on exactly two boundary faces, and around each
+  // boundary vertex the faces form a single closed umbrella.
+  void check_manifold() {
+    struct Link {
+      VertexId center, a, b;
+      bool operator<(const Link& o) const { return center < o.center; }
+    };
+    std::vector<std::uint64_t> edges;
+    std::vector<Link> links;
+    for (TetId t = 0; t < m_.tet_capacity(); ++t) {
+      if (!m_.tet_alive(t)) continue;
+      for (int f = 0; f < 4; ++f) {
+        if (m_.neighbour(t, f).valid()) continue;
+        const auto tri = face_vertices(m_.tet(t), f);
+        for (int i = 0; i < 3; ++i) {
+          edges.push_back(edge_key(tri[i], tri[(i + 1) % 3]));
+          links.push_back({tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]});
+        }
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t i = 0; i < edges.size();) {
+      std::size_t j = i;
+      while (j < edges.size() && edges[j] == edges[i]) ++j;
+      if (j - i != 2) {
+        const auto e = edge_from_key(edges[i]);
+        fail("manifold", "boundary edge ({} {}) lies on {} boundary faces (must be 2: the boundary is open or "
+             "non-manifold)", e[0], e[1], j - i);
+      }
+      i = j;
+    }
+    std::stable_sort(links.begin(), links.end());
+    std::vector<std::pair<VertexId, VertexId>> ring;
+    for (std::size_t i = 0; i < links.size();) {
+      std::size_t j = i;
+      while (j < links.size() && links[j].center == links[i].center) ++j;
+      // Follow a -> b around the center; one cycle must use every link.
+      ring.clear();
+      for (std::size_t k = i; k < j; ++k) ring.emplace_back(links[k].a, links[k].b);
+      std::sort(ring.begin(), ring.end());
+      bool ok = std::adjacent_find(ring.begin(), ring.end(), [](auto& x, auto& y) { return x.first == y.first; }) ==
+                ring.end();
+      if (ok) {
+        VertexId at = ring[0].second;
+        std::size_t steps = 1;
+        while (at != ring[0].first && steps <= ring.size()) {
+          auto it = std::lower_bound(ring.begin(), ring.end(), std::make_pair(at, VertexId{0}));
+          if (it == ring.end() || it->first != at) break;
+          at = it->second;
+          ++steps;
+        }
+        ok = at == ring[0].first && steps == ring.size();
+      }
+      if (!ok)
+        fail("manifold", "boundary vertex {}: its {} boundary faces do not form a single umbrella", links[i].center,
+             j - i);
+      i = j;
+    }
+  }
+
+  void check_classification() {
+    const auto c = compute_classification(m_);
+    for (VertexId v = 0; v < m_.vertex_capacity(); ++v) {
+      if (!m_.vertex_alive(v)) continue;
+      if (c.vertex_class[v] != m_.vertex_class(v))
+        fail("classification", "vertex {}: classified {}, should be {}", v, metrica::to_string(m_.vertex_class(v)),
+             metrica::to_string(c.vertex_class[v]));
+    }
+    for (auto key : c.ridges)
+      if (!m_.ridge_edges().count(key)) {
+        const auto e = edge_from_key(key);
+        fail("classification", "edge ({} {}) is a ridge but not marked", e[0], e[1]);
+      }
+    for (auto key : m_.ridge_edges())
+      if (!c.ridges.count(key)) {
+        const auto e = edge_from_key(key);
+        fail("classification", "edge ({} {}) is marked as a ridge but is not one", e[0], e[1]);
+      }
+  }
+
+  void check_vert2tet() {
+    for (VertexId v = 0; v < m_.vertex_capacity(); ++v) {
+      if (!m_.vertex_alive(v)) continue;
+      const TetId t = m_.vert2tet(v);
+      if (t >= m_.tet_capacity() || !m_.tet_alive(t))
+        fail("vert2tet", "vertex {}: hint {} is not a live tet", v, t);
+      else if (local_index(m_.tet(t), v) < 0)
+        fail("vert2tet", "vertex {}: hint tet {} does not contain it", v, t);
+    }
+  }
+
+  void check_volume() {
+    if (!opt_.expected_volume) return;
+    const double expected = *opt_.expected_volume, actual = m_.volume();
+    if (!(std::abs(actual - expected) <= opt_.volume_tolerance * std::abs(expected)))
+      fail("volume", "volume {:.17g} differs from the expected {:.17g} (relative {:.2e})", actual, expected,
+           std::abs(actual - expected) / std::abs(expected));
+  }
+
+  const Mesh& m_;
+  const ValidateOptions& opt_;
+  ValidationReport report_;
+};
+
+}  // namespace
+
+ValidationReport validate(const Mesh& mesh, const ValidateOptions& options) { return Checker(mesh, options).run(); }
+
+ValidationReport Mesh::validate(const ValidateOptions& options) const { return metrica::validate(*this, options); }
+ValidationReport Mesh::validate() const { return metrica::validate(*this, ValidateOptions{}); }
+
+}  // namespace metrica
