@@ -7,6 +7,8 @@
 
 #include <fmt/core.h>
 
+#include <cstdio>
+
 namespace metrica::cli {
 
 int run_cube(const std::vector<std::string>& args) {
@@ -17,8 +19,8 @@ int run_cube(const std::vector<std::string>& args) {
             "Example: metrica cube --n 3 -o cube.meshb");
   o.add()("n", po::value<std::vector<int>>()->multitoken()->value_name("N [NY NZ]"),
           "hexes per direction (one value for all three, or three)")(
-      "lo", po::value<std::vector<double>>()->multitoken()->value_name("X Y Z"), "lower corner (default 0 0 0)")(
-      "hi", po::value<std::vector<double>>()->multitoken()->value_name("X Y Z"), "upper corner (default 1 1 1)")(
+      "lo", po::value<std::string>()->value_name("X,Y,Z"), "lower corner (default 0,0,0; negative: --lo=-1,-1,-1)")(
+      "hi", po::value<std::string>()->value_name("X,Y,Z"), "upper corner (default 1,1,1)")(
       "output,o", po::value<std::string>()->value_name("FILE"), "output mesh (.mesh, .meshb, .vtu, .su2)")(
       "format-version", po::value<int>()->default_value(2)->value_name("V"), "libMeshb version to write (1-4)");
   o.positional("output", 1);
@@ -35,9 +37,12 @@ int run_cube(const std::vector<std::string>& args) {
     throw UsageError("cube: --n takes one value or three");
   auto corner = [&](const char* name, Point& p) {
     if (!o.has(name)) return;
-    const auto c = o.get<std::vector<double>>(name);
-    if (c.size() != 3) throw UsageError(fmt::format("cube: --{} takes three values", name));
-    p = Point(c[0], c[1], c[2]);
+    const auto text = o.get<std::string>(name);
+    double x, y, z;
+    char tail;
+    if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &x, &y, &z, &tail) != 3)
+      throw UsageError(fmt::format("cube: --{} takes X,Y,Z, got '{}'", name, text));
+    p = Point(x, y, z);
   };
   corner("lo", spec.lo);
   corner("hi", spec.hi);

@@ -47,8 +47,8 @@ struct BinarySource {
     const std::uint64_t entry = std::uint64_t(ints) * w.integer + std::uint64_t(reals) * w.real;
     if (n < 0) in.fail_at(fmt::format("negative count {}", n), at);
     if (entry > 0 && std::uint64_t(n) > in.left() / entry)
-      in.fail_at(fmt::format("count {} exceeds the file ({} bytes needed, {} left)", n, std::uint64_t(n) * entry,
-                             in.left()),
+      in.fail_at(fmt::format("count {} exceeds the file ({} bytes needed, {} left): the file is truncated or corrupt",
+                             n, std::uint64_t(n) * entry, in.left()),
                  at);
     return static_cast<std::size_t>(n);
   }
@@ -236,10 +236,9 @@ int walk_binary(ByteReader& in, const std::string& file, Visit&& visit) {
   bool dimension_seen = false;
   while (true) {
     in.set_context("");
-    if (in.at_end()) {
-      log_missing_end(file);
-      break;
-    }
+    // libMeshb always ends a binary file with End: without it the file was
+    // cut at a keyword boundary.
+    if (in.at_end()) in.fail("file is truncated: no End keyword");
     const std::size_t start = in.pos();
     const int code = in.raw<std::int32_t>();
     const auto name = keyword_name(code);
@@ -247,14 +246,16 @@ int walk_binary(ByteReader& in, const std::string& file, Visit&& visit) {
     const std::int64_t next = in.integer(w.offset);
     if (code == kEnd) break;
     if (next != 0 && (next <= std::int64_t(start) || std::uint64_t(next) > in.size()))
-      in.fail_at(fmt::format("next-keyword offset {} lies outside the file (size {})", next, in.size()), start);
+      in.fail_at(fmt::format("next-keyword offset {} lies outside the file (size {}): the file is truncated or corrupt",
+                             next, in.size()),
+                 start);
     if (code == kDimension) {
       check_dimension(in.raw<std::int32_t>(), file);
       dimension_seen = true;
     } else if (!name.empty()) {
       visit(code, BinarySource{in, w});
     }
-    if (next == 0) break;  // the last keyword of a file without End
+    if (next == 0) in.fail("file is truncated: no End keyword");
     in.seek(static_cast<std::size_t>(next));
   }
   if (!dimension_seen) throw IoError(fmt::format("{}: no Dimension keyword", file));

@@ -27,6 +27,8 @@ class BinaryWriter {
   explicit BinaryWriter(int version) : w_(version) {
     put<std::int32_t>(kMagic);
     put<std::int32_t>(version);
+    begin(kDimension);
+    put<std::int32_t>(3);  // always a 32-bit word
   }
 
   void begin(int code) {

@@ -1,0 +1,138 @@
+// The `metrica` command end to end: counts on the UGAWG files, exit codes
+// (0 ok, 1 invalid input, 2 usage; never a signal), atomic outputs.
+#include "test_support.hpp"
+
+#include <metrica/io/meshb.hpp>
+
+#include <doctest/doctest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sys/wait.h>
+
+using namespace metrica;
+
+namespace {
+
+struct Run {
+  int code = -1;
+  bool signalled = false;
+  std::string output;  // stdout and stderr together
+};
+
+Run metrica_cli(const std::string& args) {
+  Run r;
+  const std::string cmd = std::string(METRICA_CLI) + " " + args + " 2>&1";
+  std::FILE* p = popen(cmd.c_str(), "r");
+  REQUIRE(p != nullptr);
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
+  const int status = pclose(p);
+  r.signalled = WIFSIGNALED(status);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+bool has(const Run& r, const std::string& s) { return r.output.find(s) != std::string::npos; }
+
+}  // namespace
+
+TEST_SUITE("regression") {
+  TEST_CASE("info prints the counts of every UGAWG file - check says valid") {
+    struct Case {
+      const char* file;
+      const char* vertices;
+      const char* triangles;
+      const char* tets;
+    };
+    for (const auto& c : {Case{"cube-linear-00.mesh", "64", "108", "162"}, Case{"cube-linear-00.meshb", "64", "108", "162"},
+                          Case{"cube-cylinder.mesh", "286", "418", "952"}, Case{"cube-cylinder.meshb", "286", "418", "952"},
+                          Case{"cone-cone.meshb", "17", "28", "23"}}) {
+      CAPTURE(c.file);
+      const auto info = metrica_cli("info " + test::ugawg(c.file));
+      CHECK(info.code == 0);
+      CHECK(has(info, std::string("vertices             ") + c.vertices + "\n"));
+      CHECK(has(info, std::string("triangles            ") + c.triangles + "\n"));
+      CHECK(has(info, std::string("tetrahedra           ") + c.tets + "\n"));
+      const auto check = metrica_cli("check " + test::ugawg(c.file));
+      CHECK(check.code == 0);
+      CHECK(has(check, "valid"));
+    }
+    const auto cube = metrica_cli("info -i " + test::ugawg("cube-linear-00.meshb"));
+    CHECK(has(cube, "12 curves, 36 edges"));
+    CHECK(has(cube, "corners              8"));
+  }
+
+  TEST_CASE("cube then convert and check chain through every format") {
+    test::TempDir dir;
+    CHECK(metrica_cli("cube --n 3 -o " + (dir / "c.meshb")).code == 0);
+    CHECK(metrica_cli("convert " + (dir / "c.meshb") + " " + (dir / "c.mesh") + " --format-version 4").code == 0);
+    CHECK(metrica_cli("convert -i " + (dir / "c.mesh") + " -o " + (dir / "c3.meshb") + " --format-version 3").code == 0);
+    CHECK(metrica_cli("convert " + (dir / "c3.meshb") + " " + (dir / "c.vtu")).code == 0);
+    CHECK(metrica_cli("convert " + (dir / "c3.meshb") + " " + (dir / "c.su2")).code == 0);
+    CHECK(metrica_cli("check " + (dir / "c3.meshb")).code == 0);
+    auto a = io::read_meshb(dir / "c.meshb"), b = io::read_meshb(dir / "c3.meshb");
+    CHECK(b.version == 3);
+    b.version = a.version;
+    CHECK(a == b);
+    CHECK(metrica_cli("cube --n 2 3 4 --lo=-1,-1,-1 --hi 1,1,1 -o " + (dir / "b.mesh")).code == 0);
+    CHECK(has(metrica_cli("info " + (dir / "b.mesh")), "volume               8\n"));
+    CHECK(metrica_cli("convert " + test::ugawg("cube-linear-00.solb") + " " + (dir / "m.sol")).code == 0);
+    CHECK(io::read_sol(dir / "m.sol") == io::read_sol(test::ugawg("cube-linear-00.solb")));
+  }
+
+  TEST_CASE("bad input: exit 1 with one clear message - nothing written") {
+    test::TempDir dir;
+    {
+      std::ofstream(dir / "bad.meshb") << "this is not a mesh";
+      const auto r = metrica_cli("check " + (dir / "bad.meshb"));
+      CHECK(r.code == 1);
+      CHECK_FALSE(r.signalled);
+      CHECK(has(r, "bad magic number"));
+    }
+    {
+      const auto r = metrica_cli("info " + (dir / "missing.meshb"));
+      CHECK(r.code == 1);
+      CHECK(has(r, "cannot open"));
+    }
+    {
+      // Truncated binary file.
+      const auto bytes = io::read_file_bytes(test::ugawg("cube-cylinder.meshb"));
+      std::ofstream(dir / "cut.meshb", std::ios::binary) << bytes.substr(0, bytes.size() / 3);
+      const auto r = metrica_cli("convert " + (dir / "cut.meshb") + " " + (dir / "out.meshb"));
+      CHECK(r.code == 1);
+      CHECK(has(r, "truncated"));
+      CHECK_FALSE(std::filesystem::exists(dir / "out.meshb"));
+    }
+    {
+      // An inverted tet.
+      std::ofstream(dir / "inv.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n5\n0 0 0 0\n1 0 0 0\n"
+                                         "0 1 0 0\n0 0 1 0\n0 0 -1 0\nTetrahedra\n2\n1 2 3 4 0\n1 2 3 5 0\nEnd\n";
+      const auto r = metrica_cli("convert " + (dir / "inv.mesh") + " " + (dir / "inv.meshb"));
+      CHECK(r.code == 1);
+      CHECK(has(r, "inverted"));
+      CHECK_FALSE(std::filesystem::exists(dir / "inv.meshb"));
+    }
+    // Only the inputs remain: no temporary files were left behind.
+    std::size_t files = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
+    CHECK(files == 3);
+  }
+
+  TEST_CASE("usage errors exit 2 - --help exits 0 for every command") {
+    CHECK(metrica_cli("").code == 2);
+    CHECK(metrica_cli("frobnicate").code == 2);
+    CHECK(metrica_cli("cube --n 3").code == 2);  // no output
+    CHECK(metrica_cli("cube --n 1 2 -o x.mesh").code == 2);
+    CHECK(metrica_cli("check --no-such-option").code == 2);
+    CHECK(metrica_cli("info --threads 0 x.mesh").code == 2);
+    CHECK(metrica_cli("convert a.sol b.mesh").code == 2);
+    CHECK(metrica_cli("--help").code == 0);
+    for (const char* c : {"cube", "info", "check", "convert"}) {
+      const auto r = metrica_cli(std::string(c) + " --help");
+      CHECK(r.code == 0);
+      CHECK(has(r, "Example"));
+    }
+  }
+}

@@ -1,0 +1,69 @@
+// Helpers shared by the tests: data paths, temporary folders, a seeded
+// random generator whose seed is printed and can be overridden
+// (METRICA_TEST_SEED=N) to replay a failure.
+#pragma once
+
+#include <metrica/geometry.hpp>
+#include <metrica/io/mesh_data.hpp>
+#include <metrica/log.hpp>
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <unistd.h>
+
+namespace metrica::test {
+
+inline std::string ugawg(const std::string& name) { return std::string(METRICA_UGAWG_DIR) + "/" + name; }
+
+inline std::uint64_t seed() {
+  static const std::uint64_t s = [] {
+    const char* env = std::getenv("METRICA_TEST_SEED");
+    const std::uint64_t v = env ? std::strtoull(env, nullptr, 10) : 20261122ull;
+    std::fprintf(stderr, "random seed %llu (set METRICA_TEST_SEED to override)\n", static_cast<unsigned long long>(v));
+    return v;
+  }();
+  return s;
+}
+
+inline std::mt19937_64 rng(std::uint64_t stream = 0) { return std::mt19937_64(seed() + stream * 0x9e3779b97f4a7c15ull); }
+
+// Lists each tet's vertices so that it is positively oriented.
+inline void orient_positively(io::MeshData& d) {
+  for (auto& t : d.tets)
+    if (orient3d_fast(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], d.vertices[t[3]]) < 0) std::swap(t[2], t[3]);
+}
+
+// A fresh folder under the system temp dir, removed at scope exit.
+class TempDir {
+ public:
+  TempDir() {
+    static int counter = 0;
+    path_ = std::filesystem::temp_directory_path() /
+            ("metrica-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  std::string operator/(const std::string& name) const { return (path_ / name).string(); }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Silences warnings for the scope (tests that provoke them on purpose).
+class QuietLog {
+ public:
+  QuietLog() : saved_(log::level()) { log::set_level(log::Level::quiet); }
+  ~QuietLog() { log::set_level(saved_); }
+
+ private:
+  log::Level saved_;
+};
+
+}  // namespace metrica::test
