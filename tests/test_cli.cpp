@@ -82,6 +82,18 @@ TEST_SUITE("regression") {
     CHECK(io::read_sol(dir / "m.sol") == io::read_sol(test::ugawg("cube-linear-00.solb")));
   }
 
+  TEST_CASE("metric --analytic linear reproduces the UGAWG solution") {
+    test::TempDir dir;
+    const auto r = metrica_cli("metric " + test::ugawg("cube-linear-00.meshb") + " --analytic linear -o " + (dir / "m.solb"));
+    CHECK(r.code == 0);
+    const auto ours = io::read_sol(dir / "m.solb"), ref = io::read_sol(test::ugawg("cube-linear-00.solb"));
+    REQUIRE(ours.values.size() == ref.values.size());
+    for (std::size_t i = 0; i < ours.values.size(); ++i)
+      CHECK(ours.values[i] == doctest::Approx(ref.values[i]).epsilon(1e-12));
+    CHECK(metrica_cli("metric " + test::ugawg("cube-linear-00.meshb") + " --analytic cubic -o " + (dir / "x.solb")).code == 1);
+    CHECK_FALSE(std::filesystem::exists(dir / "x.solb"));
+  }
+
   TEST_CASE("bad input: exit 1 with one clear message - nothing written") {
     test::TempDir dir;
     {
@@ -129,7 +141,7 @@ TEST_SUITE("regression") {
     CHECK(metrica_cli("info --threads 0 x.mesh").code == 2);
     CHECK(metrica_cli("convert a.sol b.mesh").code == 2);
     CHECK(metrica_cli("--help").code == 0);
-    for (const char* c : {"cube", "info", "check", "convert"}) {
+    for (const char* c : {"cube", "info", "check", "convert", "metric"}) {
       const auto r = metrica_cli(std::string(c) + " --help");
       CHECK(r.code == 0);
       CHECK(has(r, "Example"));

@@ -1,0 +1,74 @@
+#include <metrica/error.hpp>
+#include <metrica/metrics/metric_field.hpp>
+#include <metrica/metrics/sym_tensor.hpp>
+
+#include <fmt/core.h>
+
+#include <cmath>
+
+namespace metrica {
+
+void check_metric_field(const std::vector<Sym6>& metrics, const std::string& source) {
+  for (std::size_t v = 0; v < metrics.size(); ++v) {
+    const auto& m = metrics[v];
+    for (double x : m)
+      if (!std::isfinite(x))
+        throw InputError(fmt::format("{}: metric at vertex {} has a non-finite entry ({})", source, v + 1, x));
+    const auto e = eigen_decomposition(m);
+    if (!(e.values[0] > 0.0))
+      throw InputError(fmt::format("{}: metric at vertex {} is not positive definite (eigenvalues {:.3g} {:.3g} {:.3g})",
+                                   source, v + 1, e.values[0], e.values[1], e.values[2]));
+  }
+}
+
+std::vector<Sym6> metric_field_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source) {
+  if (sol.count != vertices)
+    throw InputError(fmt::format("{}: the metric has {} entries but the mesh has {} vertices", source, sol.count,
+                                 vertices));
+  std::vector<Sym6> out(vertices);
+  const auto stride = static_cast<std::size_t>(sol.stride());
+  for (std::size_t k = 0; k < sol.types.size(); ++k) {
+    const auto off = static_cast<std::size_t>(sol.offset(k));
+    if (sol.types[k] == io::SolType::sym_matrix) {
+      for (std::size_t v = 0; v < vertices; ++v)
+        for (int c = 0; c < 6; ++c) out[v][c] = sol.values[v * stride + off + c];
+    } else if (sol.types[k] == io::SolType::scalar) {
+      for (std::size_t v = 0; v < vertices; ++v) {
+        const double h = sol.values[v * stride + off];
+        if (!(h > 0.0) || !std::isfinite(h))
+          throw InputError(fmt::format("{}: size at vertex {} is {} (must be finite and > 0)", source, v + 1, h));
+        out[v] = isotropic_metric(h);
+      }
+    } else {
+      continue;
+    }
+    check_metric_field(out, source);
+    return out;
+  }
+  throw InputError(fmt::format("{}: no scalar or symmetric-matrix field to use as a metric", source));
+}
+
+io::SolData metric_field_to_sol(const std::vector<Sym6>& metrics) {
+  io::SolData s;
+  s.count = metrics.size();
+  s.types = {io::SolType::sym_matrix};
+  s.values.reserve(6 * metrics.size());
+  for (const auto& m : metrics) s.values.insert(s.values.end(), m.begin(), m.end());
+  return s;
+}
+
+std::vector<Sym6> analytic_metric_field(AnalyticMetric m, const std::vector<Point>& points) {
+  std::vector<Sym6> out(points.size());
+  for (std::size_t v = 0; v < points.size(); ++v) out[v] = evaluate(m, points[v]);
+  return out;
+}
+
+void assign_metric(Mesh& mesh, const std::vector<Sym6>& metrics) {
+  if (metrics.size() != mesh.vertex_capacity())
+    throw InputError(fmt::format("metric field of {} tensors for a mesh of {} vertex ids", metrics.size(),
+                                 mesh.vertex_capacity()));
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v)) mesh.set_metric(v, metrics[v], spd_log(metrics[v]));
+}
+
+}  // namespace metrica

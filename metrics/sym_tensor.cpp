@@ -1,0 +1,38 @@
+#include <metrica/metrics/sym_tensor.hpp>
+
+#include <Eigen/Eigenvalues>
+
+namespace metrica {
+
+Sym6 metric_from_sizes(const Matrix3& directions, const Eigen::Vector3d& sizes) {
+  const Eigen::Vector3d l = sizes.array().square().inverse();
+  return to_sym6(directions * l.asDiagonal() * directions.transpose());
+}
+
+Eigen3 eigen_decomposition(const Sym6& m) {
+  Eigen::SelfAdjointEigenSolver<Matrix3> solver(to_matrix(m));
+  return {solver.eigenvalues(), solver.eigenvectors()};
+}
+
+bool is_spd(const Sym6& m) {
+  for (double x : m)
+    if (!std::isfinite(x)) return false;
+  return eigen_decomposition(m).values[0] > 0.0;
+}
+
+Sym6 spd_log(const Sym6& m) {
+  const auto e = eigen_decomposition(m);
+  return to_sym6(e.vectors * e.values.array().log().matrix().asDiagonal() * e.vectors.transpose());
+}
+
+Sym6 spd_exp(const Sym6& log_m) {
+  const auto e = eigen_decomposition(log_m);
+  return to_sym6(e.vectors * e.values.array().exp().matrix().asDiagonal() * e.vectors.transpose());
+}
+
+Matrix3 metric_factor(const Sym6& m) {
+  const auto e = eigen_decomposition(m);
+  return e.values.array().sqrt().matrix().asDiagonal() * e.vectors.transpose();
+}
+
+}  // namespace metrica

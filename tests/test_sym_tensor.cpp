@@ -1,0 +1,86 @@
+// Laws of symmetric tensors: log/exp inverse to each other, the factor L
+// with L^T L = M, SPD detection; accurate at anisotropy ratios of 1e8.
+#include "test_support.hpp"
+
+#include <metrica/metrics/sym_tensor.hpp>
+
+#include <Eigen/Geometry>
+#include <doctest/doctest.h>
+
+using namespace metrica;
+
+namespace {
+
+// A random SPD tensor with eigenvalues spread over [1, ratio] times a scale.
+Sym6 random_metric(std::mt19937_64& r, double ratio) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0), e(0.0, 1.0);
+  const Eigen::Quaterniond q(Eigen::Vector4d(u(r), u(r), u(r), u(r)).normalized());
+  const Eigen::Vector3d l(1.0, std::pow(ratio, e(r)), ratio);
+  return to_sym6(q.toRotationMatrix() * (l * std::pow(10.0, 4 * u(r))).asDiagonal() *
+                 q.toRotationMatrix().transpose());
+}
+
+double rel_diff(const Sym6& a, const Sym6& b) {
+  return (to_matrix(a) - to_matrix(b)).norm() / to_matrix(b).norm();
+}
+
+}  // namespace
+
+TEST_SUITE("property") {
+  TEST_CASE("spd_exp inverts spd_log on random tensors up to anisotropy 1e8") {
+    auto r = test::rng(10);
+    for (double ratio : {1.0, 1e2, 1e4, 1e8}) {
+      for (int i = 0; i < 200; ++i) {
+        const auto m = random_metric(r, ratio);
+        CAPTURE(ratio);
+        CHECK(rel_diff(spd_exp(spd_log(m)), m) < 1e-13);
+        // The smallest eigenvalue survives too, to the limit its storage
+        // allows: entries rounded relative to the largest eigenvalue fix
+        // the smallest only to (ratio x machine epsilon).
+        const auto e0 = eigen_decomposition(m).values[0], e1 = eigen_decomposition(spd_exp(spd_log(m))).values[0];
+        CHECK(std::abs(e1 - e0) / e0 < 50.0 * ratio * std::numeric_limits<double>::epsilon());
+      }
+    }
+  }
+
+  TEST_CASE("the metric factor L gives M as its Gram matrix and metric norms") {
+    auto r = test::rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 200; ++i) {
+      const auto m = random_metric(r, 1e6);
+      const Matrix3 l = metric_factor(m);
+      CHECK((l.transpose() * l - to_matrix(m)).norm() / to_matrix(m).norm() < 1e-13);
+      const Eigen::Vector3d v(u(r), u(r), u(r));
+      CHECK((l * v).squaredNorm() == doctest::Approx(metric_norm2(m, v)).epsilon(1e-10));
+      CHECK(metric_norm2(m, v) == doctest::Approx(v.dot(to_matrix(m) * v)).epsilon(1e-12));
+    }
+  }
+}
+
+TEST_SUITE("unit") {
+  TEST_CASE("identity and isotropic tensors") {
+    const auto id = isotropic_metric(1.0);
+    for (double x : spd_log(id)) CHECK(x == doctest::Approx(0.0));
+    const auto m = isotropic_metric(0.1);
+    CHECK(m[0] == doctest::Approx(100.0));
+    CHECK(spd_log(m)[0] == doctest::Approx(std::log(100.0)));
+    CHECK(determinant(m) == doctest::Approx(1e6));
+  }
+
+  TEST_CASE("metric_from_sizes puts size h along each direction") {
+    const Matrix3 dirs = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    const auto m = metric_from_sizes(dirs, Eigen::Vector3d(0.1, 0.01, 2.0));
+    // A segment of length h along direction i has unit metric length.
+    CHECK(std::sqrt(metric_norm2(m, 0.1 * dirs.col(0))) == doctest::Approx(1.0));
+    CHECK(std::sqrt(metric_norm2(m, 0.01 * dirs.col(1))) == doctest::Approx(1.0));
+    CHECK(std::sqrt(metric_norm2(m, 2.0 * dirs.col(2))) == doctest::Approx(1.0));
+  }
+
+  TEST_CASE("is_spd rejects indefinite, singular and non-finite tensors") {
+    CHECK(is_spd(isotropic_metric(3.0)));
+    CHECK_FALSE(is_spd({1, 0, -1, 0, 0, 1}));
+    CHECK_FALSE(is_spd({1, 1, 1, 0, 0, 1}));  // singular
+    CHECK_FALSE(is_spd({1, 0, 1, 0, 0, std::nan("")}));
+    CHECK_FALSE(is_spd({1, 0, 1, 0, 0, INFINITY}));
+  }
+}
