@@ -29,7 +29,7 @@ TEST_SUITE("regression") {
 }
 
 TEST_SUITE("unit") {
-  TEST_CASE("polar metrics: h_r across the circle r = 0.5, h_t and h_z = 0.1 (polar-1)") {
+  TEST_CASE("polar metrics: h_r across the circle r = 0.5 and h_t and h_z = 0.1 for polar-1") {
     for (auto kind : {AnalyticMetric::polar1, AnalyticMetric::polar2}) {
       const double t = 0.7;
       const Point on(0.5 * std::cos(t), 0.5 * std::sin(t), 0.3);

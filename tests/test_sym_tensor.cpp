@@ -76,7 +76,7 @@ TEST_SUITE("unit") {
     CHECK(std::sqrt(metric_norm2(m, 2.0 * dirs.col(2))) == doctest::Approx(1.0));
   }
 
-  TEST_CASE("is_spd rejects indefinite, singular and non-finite tensors") {
+  TEST_CASE("is_spd rejects indefinite - singular and non-finite tensors") {
     CHECK(is_spd(isotropic_metric(3.0)));
     CHECK_FALSE(is_spd({1, 0, -1, 0, 0, 1}));
     CHECK_FALSE(is_spd({1, 1, 1, 0, 0, 1}));  // singular

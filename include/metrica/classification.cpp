@@ -20,18 +20,14 @@ Classification compute_classification(const Mesh& mesh) {
 
   // Every boundary face contributes its three edges with its surface id.
   std::vector<EdgeSide> sides;
-  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
-    if (!mesh.tet_alive(t)) continue;
-    for (int f = 0; f < 4; ++f) {
-      if (mesh.neighbour(t, f).valid()) continue;
-      const auto tri = face_vertices(mesh.tet(t), f);
-      const SurfaceId s = mesh.surface_id(t, f);
-      for (int i = 0; i < 3; ++i) {
-        sides.push_back({edge_key(tri[i], tri[(i + 1) % 3]), s});
-        c.vertex_class[tri[i]] = VertexClass::surface;
-      }
+  for_each_boundary_face(mesh, [&](TetId t, int f) {
+    const auto tri = face_vertices(mesh.tet(t), f);
+    const SurfaceId s = mesh.surface_id(t, f);
+    for (int i = 0; i < 3; ++i) {
+      sides.push_back({edge_key(tri[i], tri[(i + 1) % 3]), s});
+      c.vertex_class[tri[i]] = VertexClass::surface;
     }
-  }
+  });
   std::sort(sides.begin(), sides.end());
 
   // Per vertex: number of ridge edges, and the surface pair of the first.

@@ -140,4 +140,14 @@ class Mesh {
   friend class MeshCompactor;
 };
 
+// Calls f(tet, face) for every face of a live tet that has no neighbour.
+template <class F>
+void for_each_boundary_face(const Mesh& mesh, F&& f) {
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    for (int face = 0; face < 4; ++face)
+      if (!mesh.neighbour(t, face).valid()) f(t, face);
+  }
+}
+
 }  // namespace metrica

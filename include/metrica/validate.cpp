@@ -119,17 +119,13 @@ class Checker {
     };
     std::vector<std::uint64_t> edges;
     std::vector<Link> links;
-    for (TetId t = 0; t < m_.tet_capacity(); ++t) {
-      if (!m_.tet_alive(t)) continue;
-      for (int f = 0; f < 4; ++f) {
-        if (m_.neighbour(t, f).valid()) continue;
-        const auto tri = face_vertices(m_.tet(t), f);
-        for (int i = 0; i < 3; ++i) {
-          edges.push_back(edge_key(tri[i], tri[(i + 1) % 3]));
-          links.push_back({tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]});
-        }
+    for_each_boundary_face(m_, [&](TetId t, int f) {
+      const auto tri = face_vertices(m_.tet(t), f);
+      for (int i = 0; i < 3; ++i) {
+        edges.push_back(edge_key(tri[i], tri[(i + 1) % 3]));
+        links.push_back({tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]});
       }
-    }
+    });
     std::sort(edges.begin(), edges.end());
     for (std::size_t i = 0; i < edges.size();) {
       std::size_t j = i;

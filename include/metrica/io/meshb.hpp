@@ -36,6 +36,10 @@ void write_sol(const std::string& path, const SolData& data, int version = 0);
 std::string format_mesh(const MeshData& data, Encoding encoding, int version = 0);
 std::string format_sol(const SolData& data, Encoding encoding, int version = 0);
 
+// The encoding a path's extension asks for (`ascii_ext` or `binary_ext`,
+// e.g. ".mesh" / ".meshb"); IoError for any other extension.
+Encoding encoding_of(const std::string& path, std::string_view ascii_ext, std::string_view binary_ext);
+
 // Reads a whole file into memory; IoError if it is missing or unreadable.
 std::string read_file_bytes(const std::string& path);
 

@@ -26,10 +26,6 @@ void log_missing_end(const std::string& file) {
   log::warn("{}: no End keyword; the file may be truncated", file);
 }
 
-bool ends_with(const std::string& s, std::string_view suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // Values of one record kind, to bound counts against the file size.
 struct BinarySource {
   ByteReader& in;
@@ -110,6 +106,18 @@ std::uint32_t read_index(Source& src) {
   return static_cast<std::uint32_t>(i - 1);
 }
 
+// Elements of N vertices, each followed by its reference.
+template <class Source, std::size_t N>
+void read_elements(Source& src, std::vector<std::array<VertexId, N>>& elements, std::vector<int>& refs) {
+  const auto n = src.count(int(N) + 1, 0);
+  elements.resize(n);
+  refs.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (auto& v : elements[i]) v = read_index(src);
+    refs[i] = read_ref(src);
+  }
+}
+
 // Where each keyword was found, for messages about its content.
 using Locations = std::map<int, std::string>;
 
@@ -128,36 +136,9 @@ void read_mesh_keyword(Source& src, int code, MeshData& m, Locations& where) {
       }
       break;
     }
-    case kEdges: {
-      const auto n = src.count(3, 0);
-      m.edges.resize(n);
-      m.edge_refs.resize(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        for (auto& v : m.edges[i]) v = read_index(src);
-        m.edge_refs[i] = read_ref(src);
-      }
-      break;
-    }
-    case kTriangles: {
-      const auto n = src.count(4, 0);
-      m.triangles.resize(n);
-      m.triangle_refs.resize(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        for (auto& v : m.triangles[i]) v = read_index(src);
-        m.triangle_refs[i] = read_ref(src);
-      }
-      break;
-    }
-    case kTetrahedra: {
-      const auto n = src.count(5, 0);
-      m.tets.resize(n);
-      m.tet_refs.resize(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        for (auto& v : m.tets[i]) v = read_index(src);
-        m.tet_refs[i] = read_ref(src);
-      }
-      break;
-    }
+    case kEdges: read_elements(src, m.edges, m.edge_refs); break;
+    case kTriangles: read_elements(src, m.triangles, m.triangle_refs); break;
+    case kTetrahedra: read_elements(src, m.tets, m.tet_refs); break;
     case kCorners:
     case kRequiredVertices:
     case kRidges: {
@@ -301,12 +282,6 @@ int walk_text(TextReader& in, const std::string& file, Visit&& visit) {
   return version == 0 ? 2 : version;
 }
 
-Encoding encoding_of(const std::string& path, std::string_view ascii_ext, std::string_view binary_ext) {
-  if (ends_with(path, binary_ext)) return Encoding::binary;
-  if (ends_with(path, ascii_ext)) return Encoding::ascii;
-  throw IoError(fmt::format("{}: unknown extension (expected {} or {})", path, ascii_ext, binary_ext));
-}
-
 }  // namespace
 
 std::string read_file_bytes(const std::string& path) {
@@ -356,6 +331,18 @@ SolData parse_sol(std::string_view bytes, Encoding encoding, const std::string& 
   }
   if (!found) throw IoError(fmt::format("{}: no SolAtVertices keyword", name));
   return s;
+}
+
+namespace {
+bool ends_with(const std::string& s, std::string_view suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+}  // namespace
+
+Encoding encoding_of(const std::string& path, std::string_view ascii_ext, std::string_view binary_ext) {
+  if (ends_with(path, binary_ext)) return Encoding::binary;
+  if (ends_with(path, ascii_ext)) return Encoding::ascii;
+  throw IoError(fmt::format("{}: unknown extension (expected {} or {})", path, ascii_ext, binary_ext));
 }
 
 MeshData read_meshb(const std::string& path) {

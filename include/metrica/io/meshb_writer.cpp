@@ -16,10 +16,6 @@ namespace {
 
 using namespace meshb;
 
-bool ends_with(const std::string& s, std::string_view suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // Appends binary words; keywords are chained by patching each keyword's
 // next-offset field when the following keyword begins.
 class BinaryWriter {
@@ -208,12 +204,6 @@ int choose_version(int requested, int data_version, Encoding enc, std::uint64_t 
   return version;
 }
 
-Encoding encoding_for(const std::string& path, std::string_view ascii_ext, std::string_view binary_ext) {
-  if (ends_with(path, binary_ext)) return Encoding::binary;
-  if (ends_with(path, ascii_ext)) return Encoding::ascii;
-  throw IoError(fmt::format("{}: unknown extension (expected {} or {})", path, ascii_ext, binary_ext));
-}
-
 }  // namespace
 
 std::string format_mesh(const MeshData& data, Encoding encoding, int version) {
@@ -236,12 +226,12 @@ std::string format_sol(const SolData& data, Encoding encoding, int version) {
 }
 
 void write_meshb(const std::string& path, const MeshData& data, int version) {
-  const auto enc = encoding_for(path, ".mesh", ".meshb");
+  const auto enc = encoding_of(path, ".mesh", ".meshb");
   write_file_atomically(path, format_mesh(data, enc, version));
 }
 
 void write_sol(const std::string& path, const SolData& data, int version) {
-  const auto enc = encoding_for(path, ".sol", ".solb");
+  const auto enc = encoding_of(path, ".sol", ".solb");
   write_file_atomically(path, format_sol(data, enc, version));
 }
 
