@@ -94,12 +94,9 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
                                        src, face[0] + 1, face[1] + 1, face[2] + 1, t + 1, match.tet() + 1, u + 1));
         match = FaceRef(u, g);
       }
-      if (match.valid()) {
-        if (mesh.neighbour(match).valid())
-          throw InputError(fmt::format("{}: face ({} {} {}) is shared by more than two tetrahedra", src, face[0] + 1,
-                                       face[1] + 1, face[2] + 1));
-        mesh.link(FaceRef(t, f), match);
-      }
+      // A third tet on this face would have been found above, when the
+      // first of the three was processed, so `match` is still unlinked.
+      if (match.valid()) mesh.link(FaceRef(t, f), match);
     }
   }
 
