@@ -44,6 +44,20 @@ bool Options::parse(const std::vector<std::string>& args) {
   return true;
 }
 
+void Options::input(const char* what) {
+  own_.add_options()("input,i", po::value<std::string>()->value_name("FILE"), what);
+  positional_.add("input", 1);
+}
+
+void Options::output(const char* what) {
+  own_.add_options()("output,o", po::value<std::string>()->value_name("FILE"), what);
+  positional_.add("output", 1);
+}
+
+void Options::format_version(const char* what) {
+  own_.add_options()("format-version", po::value<int>()->value_name("V"), what);
+}
+
 std::string Options::required(const char* name, const char* what) const {
   if (!vm_.count(name)) throw UsageError(fmt::format("{}: missing {} (see metrica {} --help)", command_, what, command_));
   return vm_[name].as<std::string>();

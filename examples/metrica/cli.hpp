@@ -41,6 +41,13 @@ class Options {
   Options(std::string command, std::string usage, std::string description);
   po::options_description_easy_init add() { return own_.add_options(); }
   void positional(const char* name, int max_count) { positional_.add(name, max_count); }
+  // The common -i/--input and -o/--output, each also accepted
+  // positionally (input before output, in the order these are called).
+  void input(const char* what);
+  void output(const char* what);
+  // --format-version V (libMeshb version to write); 0 when not given.
+  void format_version(const char* what);
+  int format_version() const { return has("format-version") ? get<int>("format-version") : 0; }
   bool parse(const std::vector<std::string>& args);
   const po::variables_map& vm() const { return vm_; }
   bool has(const char* name) const { return vm_.count(name) != 0; }

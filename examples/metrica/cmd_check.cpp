@@ -13,10 +13,9 @@ int run_check(const std::vector<std::string>& args) {
             "symmetric adjacency, surface ids on boundary faces, a closed manifold boundary, up-to-date\n"
             "ridge/corner classification, vertex hints. Exit 0 when valid, 1 with a report when not.\n\n"
             "Example: metrica check cube.meshb");
-  o.add()("input,i", po::value<std::string>()->value_name("FILE"), "mesh to check (.mesh, .meshb)")(
-      "max-messages", po::value<std::size_t>()->default_value(20)->value_name("N"),
+  o.input("mesh to check (.mesh, .meshb)");
+  o.add()("max-messages", po::value<std::size_t>()->default_value(20)->value_name("N"),
       "problems listed per check (counts stay exact)");
-  o.positional("input", 1);
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
 

@@ -20,16 +20,14 @@ int run_convert(const std::vector<std::string>& args) {
             "Examples: metrica convert cube.mesh cube.meshb\n"
             "          metrica convert cube.meshb cube.vtu\n"
             "          metrica convert metric.solb metric.sol --format-version 2");
-  o.add()("input,i", po::value<std::string>()->value_name("FILE"), "input file")(
-      "output,o", po::value<std::string>()->value_name("FILE"), "output file; its extension picks the format")(
-      "format-version", po::value<int>()->value_name("V"), "libMeshb version to write (default: the input's)")(
-      "no-check", "write even if the mesh fails its checks");
-  o.positional("input", 1);
-  o.positional("output", 1);
+  o.input("input file");
+  o.output("output file; its extension picks the format");
+  o.format_version("libMeshb version to write (default: the input's)");
+  o.add()("no-check", "write even if the mesh fails its checks");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input file (-i)");
   const auto output = o.required("output", "the output file (-o)");
-  const int version = o.has("format-version") ? o.get<int>("format-version") : 0;
+  const int version = o.format_version();
 
   Stopwatch clock;
   const auto in_format = io::format_of(input), out_format = io::format_of(output);

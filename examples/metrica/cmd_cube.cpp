@@ -20,10 +20,9 @@ int run_cube(const std::vector<std::string>& args) {
   o.add()("n", po::value<std::vector<int>>()->multitoken()->value_name("N [NY NZ]"),
           "hexes per direction (one value for all three, or three)")(
       "lo", po::value<std::string>()->value_name("X,Y,Z"), "lower corner (default 0,0,0; negative: --lo=-1,-1,-1)")(
-      "hi", po::value<std::string>()->value_name("X,Y,Z"), "upper corner (default 1,1,1)")(
-      "output,o", po::value<std::string>()->value_name("FILE"), "output mesh (.mesh, .meshb, .vtu, .su2)")(
-      "format-version", po::value<int>()->default_value(2)->value_name("V"), "libMeshb version to write (1-4)");
-  o.positional("output", 1);
+      "hi", po::value<std::string>()->value_name("X,Y,Z"), "upper corner (default 1,1,1)");
+  o.output("output mesh (.mesh, .meshb, .vtu, .su2)");
+  o.format_version("libMeshb version to write, 1-4 (default 2)");
   if (!o.parse(args)) return kOk;
 
   BoxSpec spec;
@@ -50,7 +49,7 @@ int run_cube(const std::vector<std::string>& args) {
 
   Stopwatch clock;
   auto data = box_mesh_data(spec);
-  data.version = o.get<int>("format-version");
+  data.version = o.format_version() != 0 ? o.format_version() : 2;
   io::write_mesh_file(output, data);
   if (log::level() >= log::Level::normal)
     fmt::print("wrote {}: {} vertices, {} tets, {} boundary triangles ({:.2f} s)\n", output,

@@ -14,8 +14,7 @@ int run_info(const std::vector<std::string>& args) {
             "Prints what a mesh file holds (keyword counts) and what Metrica derives from it: vertex\n"
             "classes, surface ids with their areas, ridge curves, corners, extent and volume.\n\n"
             "Example: metrica info cube.meshb");
-  o.add()("input,i", po::value<std::string>()->value_name("FILE"), "mesh (.mesh, .meshb)");
-  o.positional("input", 1);
+  o.input("mesh (.mesh, .meshb)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
 

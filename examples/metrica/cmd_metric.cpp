@@ -15,12 +15,10 @@ int run_metric(const std::vector<std::string>& args) {
             "an analytic metric of the UGAWG benchmarks: linear, polar-1, polar-2. The output is .solb or\n"
             ".sol (libMeshb version of the mesh unless --format-version).\n\n"
             "Example: metrica metric cube-linear-00.meshb --analytic linear -o linear.solb");
-  o.add()("input,i", po::value<std::string>()->value_name("FILE"), "mesh (.mesh, .meshb)")(
-      "output,o", po::value<std::string>()->value_name("FILE"), "metric (.sol, .solb)")(
-      "analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
-      "format-version", po::value<int>()->value_name("V"), "libMeshb version to write");
-  o.positional("input", 1);
-  o.positional("output", 1);
+  o.input("mesh (.mesh, .meshb)");
+  o.output("metric (.sol, .solb)");
+  o.format_version("libMeshb version to write (default: the mesh's)");
+  o.add()("analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   const auto output = o.required("output", "the output metric (-o)");
@@ -33,7 +31,7 @@ int run_metric(const std::vector<std::string>& args) {
   check_metric_field(field, name);
   auto sol = metric_field_to_sol(field);
   sol.version = loaded.data.version;
-  io::write_sol(output, sol, o.has("format-version") ? o.get<int>("format-version") : 0);
+  io::write_sol(output, sol, o.format_version());
   if (log::level() >= log::Level::normal)
     fmt::print("wrote {}: metric '{}' at {} vertices ({:.2f} s)\n", output, name, count_text(field.size()),
                clock.seconds());
