@@ -35,4 +35,13 @@ Matrix3 metric_factor(const Sym6& m) {
   return e.values.array().sqrt().matrix().asDiagonal() * e.vectors.transpose();
 }
 
+Sym6 log_euclidean_mean(std::span<const Sym6> metrics, std::span<const double> weights) {
+  Sym6 l{};
+  for (std::size_t i = 0; i < metrics.size(); ++i) {
+    const Sym6 li = spd_log(metrics[i]);
+    for (int c = 0; c < 6; ++c) l[c] += weights[i] * li[c];
+  }
+  return spd_exp(l);
+}
+
 }  // namespace metrica

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <span>
 
 namespace metrica {
 
@@ -61,6 +62,9 @@ inline double metric_norm2(const Sym6& m, const Eigen::Vector3d& v) {
   return m[0] * v.x() * v.x() + m[2] * v.y() * v.y() + m[5] * v.z() * v.z() +
          2.0 * (m[1] * v.x() * v.y() + m[3] * v.x() * v.z() + m[4] * v.y() * v.z());
 }
+
+// The log-Euclidean mean exp(sum w_i log M_i) (sum w_i = 1).
+Sym6 log_euclidean_mean(std::span<const Sym6> metrics, std::span<const double> weights);
 
 inline double determinant(const Sym6& m) { return to_matrix(m).determinant(); }
 

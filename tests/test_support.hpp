@@ -6,6 +6,9 @@
 #include <metrica/geometry.hpp>
 #include <metrica/io/mesh_data.hpp>
 #include <metrica/log.hpp>
+#include <metrica/metrics/sym_tensor.hpp>
+
+#include <Eigen/Geometry>
 
 #include <cstdint>
 #include <cstdlib>
@@ -34,6 +37,16 @@ inline std::mt19937_64 rng(std::uint64_t stream = 0) { return std::mt19937_64(se
 inline void orient_positively(io::MeshData& d) {
   for (auto& t : d.tets)
     if (orient3d_fast(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], d.vertices[t[3]]) < 0) std::swap(t[2], t[3]);
+}
+
+// A random SPD tensor with eigenvalues spread over [1, ratio] times a
+// random scale in [1e-4, 1e4], in random principal axes.
+inline Sym6 random_metric(std::mt19937_64& r, double ratio) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0), e(0.0, 1.0);
+  const Eigen::Quaterniond q(Eigen::Vector4d(u(r), u(r), u(r), u(r)).normalized());
+  const Eigen::Vector3d l(1.0, std::pow(ratio, e(r)), ratio);
+  return to_sym6(q.toRotationMatrix() * (l * std::pow(10.0, 4 * u(r))).asDiagonal() *
+                 q.toRotationMatrix().transpose());
 }
 
 // A fresh folder under the system temp dir, removed at scope exit.

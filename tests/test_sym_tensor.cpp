@@ -11,14 +11,7 @@ using namespace metrica;
 
 namespace {
 
-// A random SPD tensor with eigenvalues spread over [1, ratio] times a scale.
-Sym6 random_metric(std::mt19937_64& r, double ratio) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0), e(0.0, 1.0);
-  const Eigen::Quaterniond q(Eigen::Vector4d(u(r), u(r), u(r), u(r)).normalized());
-  const Eigen::Vector3d l(1.0, std::pow(ratio, e(r)), ratio);
-  return to_sym6(q.toRotationMatrix() * (l * std::pow(10.0, 4 * u(r))).asDiagonal() *
-                 q.toRotationMatrix().transpose());
-}
+using test::random_metric;
 
 double rel_diff(const Sym6& a, const Sym6& b) {
   return (to_matrix(a) - to_matrix(b)).norm() / to_matrix(b).norm();

@@ -1,0 +1,13 @@
+// The unique edges of a mesh, for loops over edges (gradation, quality
+// reports, point creation by edges). A snapshot, sorted by (low, high) id.
+#pragma once
+
+#include <metrica/mesh.hpp>
+
+#include <vector>
+
+namespace metrica {
+
+std::vector<EdgeVertices> unique_edges(const Mesh& mesh);
+
+}  // namespace metrica

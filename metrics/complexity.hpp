@@ -1,0 +1,27 @@
+// Metric complexity (seed, eq. (complexity)): C(M) = sum_i sqrt(det M_i) V_i,
+// V_i the dual volume of vertex i. For a unit mesh C is about the number of
+// vertices divided by a constant, so it is how a target size is asked for.
+// V_i is the median-dual volume, a quarter of each incident tet, which sums
+// to the domain's volume exactly.
+#pragma once
+
+#include <metrica/mesh.hpp>
+
+#include <vector>
+
+namespace metrica {
+
+// Indexed by vertex id (0 at dead ids).
+std::vector<double> dual_volumes(const Mesh& mesh);
+
+double complexity(const std::vector<Sym6>& field, const std::vector<double>& dual_volume);
+double complexity(const Mesh& mesh, const std::vector<Sym6>& field);
+
+// Multiplies every tensor by s (sizes by 1/sqrt(s); complexity by s^1.5).
+void scale_metrics(std::vector<Sym6>& field, double s);
+
+// Scales so that the complexity becomes `target` exactly (up to
+// round-off); InputError when target <= 0 or the field has none.
+void scale_to_complexity(std::vector<Sym6>& field, const std::vector<double>& dual_volume, double target);
+
+}  // namespace metrica

@@ -1,0 +1,49 @@
+// Lengths, volumes and shape of simplices measured in a metric: the
+// UGAWG measures of the seed's appendix A, as pure functions of points and
+// tensors. The Space policies (space.hpp) choose which tensor to use.
+#pragma once
+
+#include <metrica/geometry.hpp>
+#include <metrica/metrics/sym_tensor.hpp>
+
+#include <array>
+#include <cmath>
+
+namespace metrica {
+
+using TetPoints = std::array<Point, 4>;
+
+// Eq. (length) of the seed, appendix A: the length of edge v between
+// endpoints with metrics Ma and Mb, exact when the size varies
+// geometrically along the edge; the mean when the two lengths nearly agree.
+inline double ugawg_length(double la, double lb) {
+  if (std::abs(la - lb) > 0.001) return (la - lb) / std::log(la / lb);
+  return 0.5 * (la + lb);
+}
+inline double ugawg_length(const Eigen::Vector3d& v, const Sym6& ma, const Sym6& mb) {
+  return ugawg_length(std::sqrt(metric_norm2(ma, v)), std::sqrt(metric_norm2(mb, v)));
+}
+
+// |K| sqrt(det M): the volume of K in the constant metric M.
+inline double metric_volume(const TetPoints& p, const Sym6& m) {
+  return tet_volume(p[0], p[1], p[2], p[3]) * std::sqrt(determinant(m));
+}
+
+// Eq. (quality), appendix A: the mean ratio
+//   Q = 36 / 3^(1/3) (|K| sqrt(det M))^(2/3) / sum_e v_e^T M v_e,
+// 1 for the regular tet in M, 0 when flat; negative volume gives a negative
+// value (sign kept so that inversion is never mistaken for quality).
+inline double mean_ratio(const TetPoints& p, const Sym6& m) {
+  const double vol = metric_volume(p, m);
+  double sum = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) sum += metric_norm2(m, p[j] - p[i]);
+  if (!(sum > 0.0)) return 0.0;
+  static const double kNorm = 36.0 / std::cbrt(3.0);
+  const double q = kNorm * std::cbrt(vol * vol) / sum;
+  return vol < 0.0 ? -q : q;
+}
+
+inline Point centroid(const TetPoints& p) { return 0.25 * (p[0] + p[1] + p[2] + p[3]); }
+
+}  // namespace metrica

@@ -1,0 +1,96 @@
+#include <metrica/error.hpp>
+#include <metrica/metrics/complexity.hpp>
+#include <metrica/metrics/multiscale.hpp>
+#include <metrica/metrics/recovery.hpp>
+#include <metrica/metrics/sym_tensor.hpp>
+#include <metrica/timer.hpp>
+
+#include <fmt/core.h>
+
+#include <cmath>
+
+namespace metrica {
+
+namespace {
+
+// Eigenvalues below this share of the field's largest are raised to it, so
+// that det|H| > 0 where the field is locally linear; h_max then decides.
+constexpr double kRelativeEigenFloor = 1e-12;
+
+void check_options(const MultiscaleOptions& o) {
+  if (!(o.complexity > 0.0) || !std::isfinite(o.complexity))
+    throw InputError(fmt::format("the target complexity must be a positive number (got {})", o.complexity));
+  if (!(o.norm >= 1.0) || !std::isfinite(o.norm))
+    throw InputError(fmt::format("the norm p must be a number >= 1 (got {})", o.norm));
+  check_bounds(o.bounds);
+  if (o.gradation && !(o.gradation_options.beta >= 1.0))
+    throw InputError(fmt::format("the gradation must be >= 1 (got {})", o.gradation_options.beta));
+}
+
+}  // namespace
+
+std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<Sym6> hessian,
+                                                 const MultiscaleOptions& o, MultiscaleReport* report) {
+  check_options(o);
+  Stopwatch clock;
+  if (hessian.size() != mesh.vertex_capacity())
+    throw InputError(fmt::format("Hessian field of {} tensors for {} vertex ids", hessian.size(), mesh.vertex_capacity()));
+  std::vector<Eigen3> eig(hessian.size());
+  double largest = 0.0;
+  for (std::size_t v = 0; v < hessian.size(); ++v) {
+    if (!mesh.vertex_alive(static_cast<VertexId>(v))) continue;
+    eig[v] = eigen_decomposition(hessian[v]);
+    eig[v].values = eig[v].values.cwiseAbs();
+    largest = std::max(largest, eig[v].values.maxCoeff());
+  }
+  if (!(largest > 0.0) || !std::isfinite(largest))
+    throw InputError("the field's Hessian is zero everywhere (a linear field): no multiscale metric to make");
+  const double floor = kRelativeEigenFloor * largest;
+  const double exponent = -1.0 / (2.0 * o.norm + 3.0);
+  std::vector<Sym6> metric(hessian.size(), isotropic_metric(1.0));
+  for (std::size_t v = 0; v < hessian.size(); ++v) {
+    if (!mesh.vertex_alive(static_cast<VertexId>(v))) continue;
+    Eigen::Vector3d l = eig[v].values.cwiseMax(floor);
+    l *= std::pow(l.prod(), exponent);
+    metric[v] = to_sym6(eig[v].vectors * l.asDiagonal() * eig[v].vectors.transpose());
+  }
+
+  const auto dual = dual_volumes(mesh);
+  MultiscaleReport r;
+  scale_to_complexity(metric, dual, o.complexity);
+  const bool relax = o.bounds.active() || o.gradation;
+  for (r.relaxations = 0; relax && r.relaxations < o.max_relaxations;) {
+    ++r.relaxations;
+    clamp_metrics(metric, o.bounds);
+    if (o.gradation) {
+      Stopwatch g;
+      limit_gradation(mesh, metric, o.gradation_options);
+      r.gradation_seconds += g.seconds();
+    }
+    const double c = complexity(metric, dual);
+    if (std::abs(c / o.complexity - 1.0) < o.complexity_tolerance) break;
+    scale_to_complexity(metric, dual, o.complexity);
+  }
+  r.complexity = complexity(metric, dual);
+  r.total_seconds = clock.seconds();
+  if (report) {
+    r.hessian_seconds = report->hessian_seconds;
+    r.total_seconds += report->hessian_seconds;
+    *report = r;
+  }
+  return metric;
+}
+
+std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<double>& values, const MultiscaleOptions& o,
+                                    MultiscaleReport* report) {
+  check_options(o);
+  Stopwatch clock;
+  auto hessian = recover_hessian(mesh, values);
+  MultiscaleReport r;
+  r.hessian_seconds = clock.seconds();
+  auto metric = multiscale_metric_from_hessian(mesh, std::move(hessian), o, &r);
+  if (report) *report = r;
+  return metric;
+}
+
+}  // namespace metrica

@@ -1,0 +1,74 @@
+#include <metrica/error.hpp>
+#include <metrica/geometry.hpp>
+#include <metrica/metrics/recovery.hpp>
+#include <metrica/metrics/sym_tensor.hpp>
+
+#include <Eigen/LU>
+#include <fmt/core.h>
+
+#include <cmath>
+
+namespace metrica {
+
+namespace {
+
+// Volume-weighted projection of the P1 gradients of `ncomp` fields stored
+// with stride `ncomp` (component c of vertex v at values[v * ncomp + c]).
+// Returns for each vertex the ncomp gradients, row c = gradient of field c.
+std::vector<Eigen::Matrix3d> project_gradients(const Mesh& mesh, const double* values, int ncomp) {
+  std::vector<Eigen::Matrix3d> sum(mesh.vertex_capacity(), Eigen::Matrix3d::Zero());
+  std::vector<double> weight(mesh.vertex_capacity(), 0.0);
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const auto& k = mesh.tet(t);
+    Eigen::Matrix3d j;  // rows: edge vectors from vertex 0
+    for (int i = 0; i < 3; ++i) j.row(i) = (mesh.point(k[i + 1]) - mesh.point(k[0])).transpose();
+    const double vol = j.determinant() / 6.0;
+    const Eigen::Matrix3d j_inv = j.inverse();
+    Eigen::Matrix3d g = Eigen::Matrix3d::Zero();
+    for (int c = 0; c < ncomp; ++c) {
+      const double u0 = values[static_cast<std::size_t>(k[0]) * ncomp + c];
+      Eigen::Vector3d du;
+      for (int i = 0; i < 3; ++i) du[i] = values[static_cast<std::size_t>(k[i + 1]) * ncomp + c] - u0;
+      g.row(c) = (j_inv * du).transpose();  // j g = du
+    }
+    for (VertexId v : k) {
+      sum[v] += vol * g;
+      weight[v] += vol;
+    }
+  }
+  for (std::size_t v = 0; v < sum.size(); ++v)
+    if (weight[v] > 0.0) sum[v] /= weight[v];
+  return sum;
+}
+
+void check_values(const Mesh& mesh, const std::vector<double>& values) {
+  if (values.size() != mesh.vertex_capacity())
+    throw InputError(fmt::format("field of {} values for a mesh of {} vertex ids", values.size(), mesh.vertex_capacity()));
+  for (std::size_t v = 0; v < values.size(); ++v)
+    if (mesh.vertex_alive(static_cast<VertexId>(v)) && !std::isfinite(values[v]))
+      throw InputError(fmt::format("field value at vertex {} is not finite ({})", v + 1, values[v]));
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> recover_gradient(const Mesh& mesh, const std::vector<double>& values) {
+  check_values(mesh, values);
+  const auto g = project_gradients(mesh, values.data(), 1);
+  std::vector<Eigen::Vector3d> out(g.size());
+  for (std::size_t v = 0; v < g.size(); ++v) out[v] = g[v].row(0).transpose();
+  return out;
+}
+
+std::vector<Sym6> recover_hessian(const Mesh& mesh, const std::vector<double>& values) {
+  const auto grad = recover_gradient(mesh, values);
+  std::vector<double> flat(3 * grad.size());
+  for (std::size_t v = 0; v < grad.size(); ++v)
+    for (int c = 0; c < 3; ++c) flat[3 * v + c] = grad[v][c];
+  const auto h = project_gradients(mesh, flat.data(), 3);
+  std::vector<Sym6> out(h.size());
+  for (std::size_t v = 0; v < h.size(); ++v) out[v] = to_sym6(h[v]);
+  return out;
+}
+
+}  // namespace metrica
