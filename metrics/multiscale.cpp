@@ -85,7 +85,21 @@ std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<double>&
                                     MultiscaleReport* report) {
   check_options(o);
   Stopwatch clock;
-  auto hessian = recover_hessian(mesh, values);
+  const auto gradient = recover_gradient(mesh, values);
+  auto hessian = recover_hessian(mesh, gradient);
+  // A Hessian at round-off level of the gradient's scale is zero: the
+  // field is linear and asks for no particular size.
+  double gmax = 0.0, hmax = 0.0;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    if (!mesh.vertex_alive(v)) continue;
+    gmax = std::max(gmax, gradient[v].norm());
+    hmax = std::max(hmax, to_matrix(hessian[v]).norm());
+    lo = lo.cwiseMin(mesh.point(v));
+    hi = hi.cwiseMax(mesh.point(v));
+  }
+  if (hmax <= 1e-9 * gmax / (hi - lo).norm())
+    throw InputError("the field's Hessian is zero everywhere (a linear field): no multiscale metric to make");
   MultiscaleReport r;
   r.hessian_seconds = clock.seconds();
   auto metric = multiscale_metric_from_hessian(mesh, std::move(hessian), o, &r);

@@ -61,7 +61,10 @@ std::vector<Eigen::Vector3d> recover_gradient(const Mesh& mesh, const std::vecto
 }
 
 std::vector<Sym6> recover_hessian(const Mesh& mesh, const std::vector<double>& values) {
-  const auto grad = recover_gradient(mesh, values);
+  return recover_hessian(mesh, recover_gradient(mesh, values));
+}
+
+std::vector<Sym6> recover_hessian(const Mesh& mesh, const std::vector<Eigen::Vector3d>& grad) {
   std::vector<double> flat(3 * grad.size());
   for (std::size_t v = 0; v < grad.size(); ++v)
     for (int c = 0; c < 3; ++c) flat[3 * v + c] = grad[v][c];

@@ -18,5 +18,6 @@ namespace metrica {
 // sizes differ or a value is not finite.
 std::vector<Eigen::Vector3d> recover_gradient(const Mesh& mesh, const std::vector<double>& values);
 std::vector<Sym6> recover_hessian(const Mesh& mesh, const std::vector<double>& values);
+std::vector<Sym6> recover_hessian(const Mesh& mesh, const std::vector<Eigen::Vector3d>& gradient);
 
 }  // namespace metrica

@@ -1,0 +1,222 @@
+// Metric fields made from data: dual volumes and complexity, scaling to a
+// target, gradation, Hessian recovery and the multiscale metric; analytic
+// fields; and the errors a user gets for bad input.
+#include "test_support.hpp"
+
+#include <metrica/box.hpp>
+#include <metrica/error.hpp>
+#include <metrica/mesh_edges.hpp>
+#include <metrica/metrics/analytic_field.hpp>
+#include <metrica/metrics/complexity.hpp>
+#include <metrica/metrics/gradation.hpp>
+#include <metrica/metrics/metric_field.hpp>
+#include <metrica/metrics/multiscale.hpp>
+#include <metrica/metrics/recovery.hpp>
+
+#include <doctest/doctest.h>
+
+#include <numeric>
+#include <optional>
+
+using namespace metrica;
+
+namespace {
+
+std::vector<Point> points_of(const Mesh& mesh) {
+  std::vector<Point> p(mesh.vertex_capacity());
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) p[v] = mesh.point(v);
+  return p;
+}
+
+// u = 1/2 x^T A x + b.x + c with a fixed symmetric A.
+const Sym6 kQuadratic = {2.0, 0.5, -1.0, 0.25, 0.75, 3.0};
+double quadratic(const Point& p) {
+  return 0.5 * p.dot(to_matrix(kQuadratic) * p) + 0.3 * p.x() - 0.2 * p.y() + 0.1 * p.z() + 1.0;
+}
+
+// Vertices whose whole star is interior (no boundary vertex among their
+// neighbours): where L2-projection recovery is exact for quadratics.
+std::vector<bool> deep_interior(const Mesh& mesh, const BoxSpec& b) {
+  auto interior = [&](VertexId v) {
+    const Point& p = mesh.point(v);
+    for (int i = 0; i < 3; ++i)
+      if (p[i] <= b.lo[i] + 1e-12 || p[i] >= b.hi[i] - 1e-12) return false;
+    return true;
+  };
+  std::vector<bool> deep(mesh.vertex_capacity(), true);
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (!interior(v)) deep[v] = false;
+  for (const auto& [a, c] : unique_edges(mesh)) {
+    if (!interior(a)) deep[c] = false;
+    if (!interior(c)) deep[a] = false;
+  }
+  return deep;
+}
+
+}  // namespace
+
+TEST_SUITE("unit") {
+  TEST_CASE("dual volumes sum to the domain volume and complexity of a constant metric is h^-3 V") {
+    const Mesh mesh = make_box({.nx = 3, .ny = 4, .nz = 5, .lo = Point(0, 0, 0), .hi = Point(2, 1, 1)});
+    const auto dual = dual_volumes(mesh);
+    CHECK(std::accumulate(dual.begin(), dual.end(), 0.0) == doctest::Approx(2.0).epsilon(1e-13));
+    const std::vector<Sym6> field(mesh.vertex_capacity(), isotropic_metric(0.1));
+    CHECK(complexity(field, dual) == doctest::Approx(2000.0).epsilon(1e-12));
+    auto scaled = field;
+    scale_to_complexity(scaled, dual, 12345.0);
+    CHECK(complexity(scaled, dual) == doctest::Approx(12345.0).epsilon(1e-12));
+    CHECK_THROWS_AS(scale_to_complexity(scaled, dual, 0.0), InputError);
+    CHECK_THROWS_AS(scale_to_complexity(scaled, dual, -5.0), InputError);
+    CHECK_THROWS_AS(scale_to_complexity(scaled, dual, std::nan("")), InputError);
+  }
+
+  TEST_CASE("the complexity of linear on a fine cube is 4651.7 within 1 percent") {
+    // h_z varies from 0.001 to 0.1 in z: a fine grid in z resolves it.
+    const Mesh mesh = make_box({.nx = 2, .ny = 2, .nz = 800});
+    const auto field = analytic_metric_field(AnalyticMetric::linear, points_of(mesh));
+    const double c = complexity(mesh, field);
+    MESSAGE("complexity of linear on a 2x2x800 box: " << c);
+    CHECK(c == doctest::Approx(100.0 * std::log(100.0) / 0.099).epsilon(0.01));
+  }
+
+  TEST_CASE("analytic fields: names and values") {
+    for (const auto& n : analytic_field_names()) CHECK(to_string(analytic_field_from_name(n)) == n);
+    CHECK_THROWS_AS(analytic_field_from_name("sinfun"), InputError);
+    CHECK(evaluate(AnalyticField::sinfun3, Point(0.4, 0.7, 0.9)) == 0.0);
+    CHECK(evaluate(AnalyticField::tanh3, Point(0.5, 0.5, 0.0)) == 0.0);
+    // In the strong shell sinfun3 is sin(50 s); outside it is damped.
+    const Point in(0.5, 0.5, 0.5);  // s = 0.001
+    CHECK(evaluate(AnalyticField::sinfun3, in) == doctest::Approx(std::sin(0.05)));
+    const Point out(1.0, 1.0, 1.0);  // s = 0.216 > 2 pi / 50
+    CHECK(evaluate(AnalyticField::sinfun3, out) == doctest::Approx(0.1 * std::sin(50 * 0.216)));
+    CHECK(evaluate(AnalyticField::sinatan3, Point(0.2, 0.3, 0.4)) ==
+          doctest::Approx(0.1 * std::sin(50 * 0.08) + std::atan(0.1 / (std::sin(1.5) - 0.16))));
+  }
+}
+
+TEST_SUITE("property") {
+  TEST_CASE("recovered gradient of a linear field is exact and Hessian of a quadratic is exact inside") {
+    const BoxSpec spec{.nx = 6, .ny = 5, .nz = 7, .lo = Point(-1, 0, 0.5), .hi = Point(1, 1, 2)};
+    const Mesh mesh = make_box(spec);
+    const auto pts = points_of(mesh);
+    std::vector<double> linear(pts.size()), quad(pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      linear[i] = 2.0 * pts[i].x() - 3.0 * pts[i].y() + 0.5 * pts[i].z();
+      quad[i] = quadratic(pts[i]);
+    }
+    for (const auto& g : recover_gradient(mesh, linear))
+      CHECK((g - Eigen::Vector3d(2.0, -3.0, 0.5)).norm() < 1e-12);
+    const auto h = recover_hessian(mesh, quad);
+    const auto deep = deep_interior(mesh, spec);
+    int checked = 0;
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+      if (!deep[v]) continue;
+      ++checked;
+      for (int c = 0; c < 6; ++c) CHECK(h[v][c] == doctest::Approx(kQuadratic[c]).epsilon(1e-10).scale(1.0));
+    }
+    CHECK(checked == 3 * 2 * 4);
+  }
+
+  TEST_CASE("multiscale metric hits the target complexity") {
+    const Mesh mesh = make_box({.nx = 8, .ny = 8, .nz = 8});
+    for (AnalyticField f : {AnalyticField::sinfun3, AnalyticField::tanh3, AnalyticField::sinatan3}) {
+      const auto values = analytic_field_values(f, points_of(mesh));
+      for (bool graded : {false, true}) {
+        MultiscaleOptions o;
+        o.complexity = 4000.0;
+        o.gradation = graded;
+        o.bounds = {.hmin = 1e-4, .hmax = 0.5};
+        MultiscaleReport report;
+        const auto m = multiscale_metric(mesh, values, o, &report);
+        CAPTURE(to_string(f));
+        CAPTURE(graded);
+        CHECK(report.complexity == doctest::Approx(4000.0).epsilon(0.01));
+        CHECK(complexity(mesh, m) == doctest::Approx(report.complexity).epsilon(1e-12));
+        CHECK_NOTHROW(check_metric_field(m, "multiscale"));
+      }
+    }
+  }
+
+  TEST_CASE("multiscale metric of a quadratic is constant inside and scales with the complexity") {
+    const BoxSpec spec{.nx = 6, .ny = 6, .nz = 6};
+    const Mesh mesh = make_box(spec);
+    const auto pts = points_of(mesh);
+    std::vector<double> u(pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) u[i] = quadratic(pts[i]);
+    MultiscaleOptions o;
+    o.gradation = false;
+    o.complexity = 1000.0;
+    const auto m1 = multiscale_metric(mesh, u, o);
+    o.complexity = 8000.0;
+    const auto m8 = multiscale_metric(mesh, u, o);
+    const auto deep = deep_interior(mesh, spec);
+    std::optional<Sym6> first;
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+      if (!deep[v]) continue;
+      if (!first) first = m1[v];
+      for (int c = 0; c < 6; ++c) {
+        CHECK(m1[v][c] == doctest::Approx((*first)[c]).epsilon(1e-9).scale(1.0));
+        // Complexity x8 -> sizes / 2 -> tensors x4.
+        CHECK(m8[v][c] == doctest::Approx(4.0 * m1[v][c]).epsilon(1e-9).scale(1.0));
+      }
+    }
+    // There it is a multiple of |H| (absolute eigenvalues of the Hessian).
+    auto e = eigen_decomposition(kQuadratic);
+    const Sym6 abs_h = to_sym6(e.vectors * e.values.cwiseAbs().asDiagonal() * e.vectors.transpose());
+    const double s = (*first)[0] / abs_h[0];
+    for (int c = 0; c < 6; ++c) CHECK((*first)[c] == doctest::Approx(s * abs_h[c]).epsilon(1e-9).scale(s));
+  }
+
+  TEST_CASE("gradation bounds the size growth along every edge") {
+    const Mesh mesh = make_box({.nx = 10, .ny = 10, .nz = 10});
+    // Isotropic sizes: tiny at one corner, large elsewhere.
+    std::vector<Sym6> field(mesh.vertex_capacity(), isotropic_metric(0.5));
+    field[0] = isotropic_metric(0.001);
+    const auto original = field;
+    const double beta = 1.5;
+    const auto stats = limit_gradation(mesh, field, {.beta = beta, .space = GradationSpace::metric, .max_passes = 50});
+    CHECK(stats.changed_last_pass == 0);
+    for (const auto& [a, b] : unique_edges(mesh)) {
+      const double len = (mesh.point(b) - mesh.point(a)).norm();
+      const double ha = 1.0 / std::sqrt(field[a][0]), hb = 1.0 / std::sqrt(field[b][0]);
+      // Metric-space growth of an isotropic size: h_b <= h_a + |e| ln(beta).
+      CHECK(hb <= (ha + len * std::log(beta)) * (1 + 2e-3));
+      CHECK(ha <= (hb + len * std::log(beta)) * (1 + 2e-3));
+    }
+    // Gradation only refines.
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) CHECK(field[v][0] >= original[v][0] * (1 - 1e-12));
+    CHECK(field[1][0] > original[1][0]);
+    // Mixed space grows more slowly in the physical part; it refines too.
+    auto mixed = original;
+    limit_gradation(mesh, mixed, {.beta = beta, .space = GradationSpace::mixed, .max_passes = 50});
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) CHECK(mixed[v][0] >= original[v][0] * (1 - 1e-12));
+    CHECK_THROWS_AS(limit_gradation(mesh, mixed, {.beta = 0.5}), InputError);
+  }
+}
+
+TEST_SUITE("regression") {
+  TEST_CASE("multiscale metric rejects bad input with clear errors") {
+    const Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+    const auto pts = points_of(mesh);
+    std::vector<double> u(pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) u[i] = quadratic(pts[i]);
+    MultiscaleOptions o;
+    o.complexity = 0.0;
+    CHECK_THROWS_AS(multiscale_metric(mesh, u, o), InputError);
+    o.complexity = -10.0;
+    CHECK_THROWS_AS(multiscale_metric(mesh, u, o), InputError);
+    o.complexity = 100.0;
+    o.norm = 0.5;
+    CHECK_THROWS_AS(multiscale_metric(mesh, u, o), InputError);
+    o.norm = 2.0;
+    auto bad = u;
+    bad[5] = std::nan("");
+    CHECK_THROWS_WITH_AS(multiscale_metric(mesh, bad, o), doctest::Contains("vertex 6"), InputError);
+    bad = u;
+    bad.pop_back();
+    CHECK_THROWS_AS(multiscale_metric(mesh, bad, o), InputError);
+    std::vector<double> flat(pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) flat[i] = pts[i].x() + 2 * pts[i].y();
+    CHECK_THROWS_WITH_AS(multiscale_metric(mesh, flat, o), doctest::Contains("linear"), InputError);
+  }
+}
