@@ -18,32 +18,52 @@ GradationSpace gradation_space_from_name(std::string_view name) {
 
 namespace {
 
-Sym6 grow(const Sym6& m, const Eigen::Vector3d& e, double log_beta, const GradationOptions& o) {
-  const double lm = std::sqrt(metric_norm2(m, e));
-  const double metric_part = 1.0 + lm * log_beta;
-  if (o.space == GradationSpace::metric) {
-    const double s = 1.0 / (metric_part * metric_part);
-    Sym6 g = m;
-    for (double& x : g) x *= s;
-    return g;
+// What a vertex's metric needs for growing it and for testing containment,
+// kept up to date as the metric changes.
+struct Cached {
+  Eigen3 eig;
+  Matrix3 inverse;
+  void set(const Sym6& m) {
+    eig = eigen_decomposition(m);
+    inverse = eig.vectors * eig.values.cwiseInverse().asDiagonal() * eig.vectors.transpose();
   }
-  auto d = eigen_decomposition(m);
+};
+
+// The eigenvalues of M_p grown along e (same eigenvectors).
+Eigen::Vector3d grown_values(const Sym6& m, const Cached& c, const Eigen::Vector3d& e, double log_beta,
+                             const GradationOptions& o) {
+  const double metric_part = 1.0 + std::sqrt(metric_norm2(m, e)) * log_beta;
+  if (o.space == GradationSpace::metric) return c.eig.values / (metric_part * metric_part);
+  Eigen::Vector3d l = c.eig.values;
   const double len = e.norm();
   for (int i = 0; i < 3; ++i) {
-    const double phys_part = 1.0 + std::sqrt(d.values[i]) * len * log_beta;
+    const double phys_part = 1.0 + std::sqrt(l[i]) * len * log_beta;
     const double eta = std::pow(phys_part, o.t) * std::pow(metric_part, 1.0 - o.t);
-    d.values[i] /= eta * eta;
+    l[i] /= eta * eta;
   }
-  return to_sym6(d.vectors * d.values.asDiagonal() * d.vectors.transpose());
+  return l;
 }
 
-bool differs(const Sym6& a, const Sym6& b, double tol) {
+// Limits M_q by M_p grown along e; true when M_q changed by more than tol.
+bool limit(Sym6& mq, Cached& cq, const Sym6& mp, const Cached& cp, const Eigen::Vector3d& e, double log_beta,
+           const GradationOptions& o) {
+  const Eigen::Vector3d l = grown_values(mp, cp, e, log_beta, o);
+  // G <= M_q when the largest eigenvalue of G M_q^-1 is <= 1; its trace
+  // bounds it (G M_q^-1 is similar to a PSD matrix), and is cheap.
+  double trace = 0.0;
+  for (int i = 0; i < 3; ++i) trace += l[i] * cp.eig.vectors.col(i).dot(cq.inverse * cp.eig.vectors.col(i));
+  if (trace <= 1.0) return false;
+  const Sym6 g = to_sym6(cp.eig.vectors * l.asDiagonal() * cp.eig.vectors.transpose());
+  const Sym6 x = intersect(mq, g);
   double scale = 0.0, diff = 0.0;
   for (int c = 0; c < 6; ++c) {
-    scale = std::max(scale, std::abs(a[c]));
-    diff = std::max(diff, std::abs(a[c] - b[c]));
+    scale = std::max(scale, std::abs(mq[c]));
+    diff = std::max(diff, std::abs(x[c] - mq[c]));
   }
-  return diff > tol * scale;
+  if (diff == 0.0) return false;
+  mq = x;
+  cq.set(mq);
+  return diff > o.tolerance * scale;
 }
 
 }  // namespace
@@ -54,17 +74,16 @@ GradationStats limit_gradation(const Mesh& mesh, std::vector<Sym6>& field, const
     throw InputError(fmt::format("metric field of {} tensors for {} vertex ids", field.size(), mesh.vertex_capacity()));
   const double log_beta = std::log(o.beta);
   const auto edges = unique_edges(mesh);
+  std::vector<Cached> cache(field.size());
+  for (VertexId v = 0; v < field.size(); ++v)
+    if (mesh.vertex_alive(v)) cache[v].set(field[v]);
   GradationStats stats;
   for (stats.passes = 1; stats.passes <= o.max_passes; ++stats.passes) {
     stats.changed_last_pass = 0;
     for (const auto& [p, q] : edges) {
       const Eigen::Vector3d e = mesh.point(q) - mesh.point(p);
-      const Sym6 mq = intersect(field[q], grow(field[p], e, log_beta, o));
-      const Sym6 mp = intersect(field[p], grow(field[q], e, log_beta, o));
-      if (differs(mq, field[q], o.tolerance)) ++stats.changed_last_pass;
-      if (differs(mp, field[p], o.tolerance)) ++stats.changed_last_pass;
-      field[q] = mq;
-      field[p] = mp;
+      stats.changed_last_pass += limit(field[q], cache[q], field[p], cache[p], e, log_beta, o);
+      stats.changed_last_pass += limit(field[p], cache[p], field[q], cache[q], e, log_beta, o);
     }
     if (stats.changed_last_pass == 0) break;
   }

@@ -48,6 +48,29 @@ std::vector<Sym6> metric_field_from_sol(const io::SolData& sol, std::size_t vert
   throw InputError(fmt::format("{}: no scalar or symmetric-matrix field to use as a metric", source));
 }
 
+std::vector<double> scalar_field_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source) {
+  if (sol.count != vertices)
+    throw InputError(fmt::format("{}: the field has {} entries but the mesh has {} vertices", source, sol.count,
+                                 vertices));
+  for (std::size_t k = 0; k < sol.types.size(); ++k) {
+    if (sol.types[k] != io::SolType::scalar) continue;
+    std::vector<double> out = sol.field(k);
+    for (std::size_t v = 0; v < out.size(); ++v)
+      if (!std::isfinite(out[v]))
+        throw InputError(fmt::format("{}: value at vertex {} is not finite ({})", source, v + 1, out[v]));
+    return out;
+  }
+  throw InputError(fmt::format("{}: no scalar field in the file", source));
+}
+
+io::SolData scalar_field_to_sol(const std::vector<double>& values) {
+  io::SolData s;
+  s.count = values.size();
+  s.types = {io::SolType::scalar};
+  s.values = values;
+  return s;
+}
+
 io::SolData metric_field_to_sol(const std::vector<Sym6>& metrics) {
   io::SolData s;
   s.count = metrics.size();

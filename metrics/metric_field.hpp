@@ -17,6 +17,11 @@ namespace metrica {
 // not finite and symmetric positive definite.
 std::vector<Sym6> metric_field_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source);
 
+// The first scalar field of `sol` (a solver variable, say), with the same
+// checks: count, finite values.
+std::vector<double> scalar_field_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source);
+io::SolData scalar_field_to_sol(const std::vector<double>& values);
+
 io::SolData metric_field_to_sol(const std::vector<Sym6>& metrics);
 
 std::vector<Sym6> analytic_metric_field(AnalyticMetric m, const std::vector<Point>& points);

@@ -94,6 +94,46 @@ TEST_SUITE("regression") {
     CHECK_FALSE(std::filesystem::exists(dir / "x.solb"));
   }
 
+  TEST_CASE("metric from a field then quality: complexity on target and a CSV report") {
+    test::TempDir dir;
+    REQUIRE(metrica_cli("cube --n 8 -o " + (dir / "c.meshb")).code == 0);
+    const auto m = metrica_cli("metric " + (dir / "c.meshb") + " --field tanh3 --complexity 3000 --gradation 3 --hmax 0.5 -o " +
+                               (dir / "m.solb"));
+    CHECK(m.code == 0);
+    CHECK(has(m, "complexity 30"));  // 3000 within 0.5 percent: 29xx or 30xx
+    const auto q = metrica_cli("quality " + (dir / "c.meshb") + " -m " + (dir / "m.solb") + " --csv " + (dir / "q.csv"));
+    CHECK(q.code == 0);
+    CHECK(has(q, "edges in [1/sqrt2, sqrt2]"));
+    CHECK(has(q, "mean ratio histogram"));
+    std::ifstream csv(dir / "q.csv");
+    std::string line;
+    std::getline(csv, line);
+    CHECK(line == "section,key,lo,hi,value");
+    std::getline(csv, line);
+    CHECK(line == "summary,vertices,,,729");
+    // A scalar field from a file, intersected with an analytic metric.
+    io::SolData f;
+    f.count = 729;
+    f.types = {io::SolType::scalar};
+    const auto mesh = io::read_meshb(dir / "c.meshb");
+    for (const auto& p : mesh.vertices) f.values.push_back(p.x() * p.x() + 3 * p.y() * p.z());
+    io::write_sol(dir / "f.solb", f);
+    REQUIRE(metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear -o " + (dir / "lin.solb")).code == 0);
+    const auto mf = metrica_cli("metric " + (dir / "c.meshb") + " --field-file " + (dir / "f.solb") +
+                                " --complexity 500 --intersect " + (dir / "lin.solb") + " -o " + (dir / "mf.solb"));
+    CHECK(mf.code == 0);
+    CHECK(has(mf, "intersected with"));
+    // Bad requests: exit 1, nothing written.
+    CHECK(metrica_cli("metric " + (dir / "c.meshb") + " --field tanh3 --complexity 0 -o " + (dir / "z.solb")).code == 1);
+    CHECK(metrica_cli("metric " + (dir / "c.meshb") + " --field tanh3 --norm 0.5 -o " + (dir / "z.solb")).code == 1);
+    CHECK(metrica_cli("metric " + (dir / "c.meshb") + " --field tanh3 --hmin 2 --hmax 1 -o " + (dir / "z.solb")).code == 1);
+    CHECK(metrica_cli("metric " + (dir / "c.meshb") + " --field tanh3 --gradation 0.5 -o " + (dir / "z.solb")).code == 1);
+    const auto wrong = metrica_cli("quality " + test::ugawg("cube-linear-00.meshb") + " -m " + (dir / "m.solb"));
+    CHECK(wrong.code == 1);
+    CHECK(has(wrong, "729 entries but the mesh has 64 vertices"));
+    CHECK_FALSE(std::filesystem::exists(dir / "z.solb"));
+  }
+
   TEST_CASE("bad input: exit 1 with one clear message - nothing written") {
     test::TempDir dir;
     {
@@ -141,7 +181,10 @@ TEST_SUITE("regression") {
     CHECK(metrica_cli("info --threads 0 x.mesh").code == 2);
     CHECK(metrica_cli("convert a.sol b.mesh").code == 2);
     CHECK(metrica_cli("--help").code == 0);
-    for (const char* c : {"cube", "info", "check", "convert", "metric"}) {
+    CHECK(metrica_cli("metric x.meshb -o m.solb").code == 2);  // no source
+    CHECK(metrica_cli("metric x.meshb --analytic linear --field tanh3 -o m.solb").code == 2);
+    CHECK(metrica_cli("quality x.meshb").code == 2);  // no metric
+    for (const char* c : {"cube", "info", "check", "convert", "metric", "quality"}) {
       const auto r = metrica_cli(std::string(c) + " --help");
       CHECK(r.code == 0);
       CHECK(has(r, "Example"));

@@ -11,6 +11,7 @@
 #include <metrica/metrics/intersection.hpp>
 #include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/metric_field.hpp>
+#include <metrica/metrics/quality_report.hpp>
 #include <metrica/metrics/space.hpp>
 #include <metrica/predicates/edge_weight.hpp>
 #include <metrica/predicates/metric_delaunay.hpp>
@@ -236,5 +237,31 @@ TEST_SUITE("property") {
     CHECK(min_edge_weight(k, isotropic_metric(1.0)) < 0.0);
     CHECK(improves_min_quality(0.2, 0.3));
     CHECK_FALSE(improves_min_quality(0.3, 0.3));
+  }
+}
+
+TEST_SUITE("unit") {
+  TEST_CASE("quality report of one Kuhn cube in the identity metric") {
+    Mesh mesh = make_box({.nx = 1, .ny = 1, .nz = 1});
+    assign_metric(mesh, std::vector<Sym6>(mesh.vertex_capacity(), isotropic_metric(1.0)));
+    for (SpaceKind s : {SpaceKind::isotropic, SpaceKind::anisotropic, SpaceKind::log_euclidean}) {
+      const auto r = quality_report(mesh, s);
+      CHECK(r.vertices == 8);
+      CHECK(r.tets == 6);
+      CHECK(r.edges == 19);  // 12 sides, 6 face diagonals, 1 main diagonal
+      CHECK(r.length.min == doctest::Approx(1.0));
+      CHECK(r.length.max == doctest::Approx(std::sqrt(3.0)));
+      CHECK(r.unit_length_share == doctest::Approx(18.0 / 19.0));
+      CHECK(r.complexity == doctest::Approx(1.0));
+      CHECK(r.volume == doctest::Approx(1.0));
+      CHECK(r.quality.min == doctest::Approx(r.quality.max));  // 6 congruent tets
+      CHECK(r.quality_below_03 == 0.0);
+      std::size_t in_bins = 0;
+      for (auto c : r.quality_histogram.counts) in_bins += c;
+      CHECK(in_bins == 6);
+    }
+    CHECK_THROWS_AS(space_from_name("riemann"), InputError);
+    Mesh bare = make_box({.nx = 1, .ny = 1, .nz = 1});
+    CHECK_THROWS_AS(quality_report(bare), InputError);
   }
 }

@@ -1,40 +1,134 @@
 #include "cli.hpp"
 
+#include <metrica/error.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/log.hpp>
+#include <metrica/metrics/analytic_field.hpp>
+#include <metrica/metrics/complexity.hpp>
+#include <metrica/metrics/intersection.hpp>
 #include <metrica/metrics/metric_field.hpp>
+#include <metrica/metrics/multiscale.hpp>
 #include <metrica/timer.hpp>
 
 #include <fmt/core.h>
 
 namespace metrica::cli {
 
+namespace {
+
+std::vector<Point> points_of(const io::MeshData& d) { return d.vertices; }
+
+}  // namespace
+
 int run_metric(const std::vector<std::string>& args) {
-  Options o("metric", "[-i] MESH --analytic NAME [-o] OUTPUT",
-            "Writes a metric field (one symmetric tensor per vertex, SolAtVertices) for a mesh. For now from\n"
-            "an analytic metric of the UGAWG benchmarks: linear, polar-1, polar-2. The output is .solb or\n"
-            ".sol (libMeshb version of the mesh unless --format-version).\n\n"
-            "Example: metrica metric cube-linear-00.meshb --analytic linear -o linear.solb");
+  Options o("metric", "[-i] MESH (--analytic NAME | --field NAME | --field-file F.solb | -m M.solb) [-o] OUTPUT",
+            "Writes a metric field (one symmetric tensor per vertex, SolAtVertices) for a mesh, from one of:\n"
+            "  --analytic NAME    a UGAWG analytic metric: linear, polar-1, polar-2;\n"
+            "  --field NAME       the multiscale metric of an analytic field: sinfun3, tanh3, sinatan3;\n"
+            "  --field-file F     the multiscale metric of the first scalar field of a .sol/.solb;\n"
+            "  -m M               an existing metric (to scale, bound, grade or intersect).\n"
+            "The multiscale metric (Loseille & Alauzet) controls the L^p norm of the P1 interpolation error\n"
+            "for a target complexity (--complexity, default 1000); its Hessian comes from L2-projection\n"
+            "recovery. For the other sources --complexity scales the field to that complexity.\n"
+            "Then, in order: bounds (--hmin, --hmax, --max-anisotropy), gradation (--gradation, mixed space\n"
+            "by default) with rescaling to the complexity, and intersection with --intersect.\n"
+            "The output is .solb or .sol (libMeshb version of the mesh unless --format-version).\n\n"
+            "Examples:\n"
+            "  metrica metric cube-linear-00.meshb --analytic linear -o linear.solb\n"
+            "  metrica metric cube.meshb --field sinfun3 --complexity 8000 --gradation 3 -o m.solb");
   o.input("mesh (.mesh, .meshb)");
   o.output("metric (.sol, .solb)");
   o.format_version("libMeshb version to write (default: the mesh's)");
-  o.add()("analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2");
+  o.add()("analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
+      "field", po::value<std::string>()->value_name("NAME"), "analytic field for a multiscale metric")(
+      "field-file", po::value<std::string>()->value_name("FILE"), "scalar field (.sol/.solb) for a multiscale metric")(
+      "metric,m", po::value<std::string>()->value_name("FILE"), "an existing metric to post-process")(
+      "complexity", po::value<double>()->value_name("C"), "target complexity (multiscale default 1000)")(
+      "norm", po::value<double>()->default_value(2.0)->value_name("P"), "L^p norm of the multiscale metric (p >= 1)")(
+      "gradation", po::value<double>()->value_name("BETA"), "size gradation (>= 1; none when not given)")(
+      "gradation-space", po::value<std::string>()->default_value("mixed")->value_name("S"),
+      "gradation space: mixed (Alauzet 2010, t = 1/8) or metric")(
+      "hmin", po::value<double>()->value_name("H"), "smallest size")("hmax", po::value<double>()->value_name("H"),
+                                                                       "largest size")(
+      "max-anisotropy", po::value<double>()->value_name("R"), "largest ratio of sizes of one tensor")(
+      "intersect", po::value<std::string>()->value_name("FILE"), "intersect with this metric (.sol/.solb)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   const auto output = o.required("output", "the output metric (-o)");
-  const auto name = o.required("analytic", "the metric (--analytic NAME)");
-  const auto kind = analytic_metric_from_name(name);
+  const int sources = static_cast<int>(o.has("analytic") + o.has("field") + o.has("field-file") + o.has("metric"));
+  if (sources != 1)
+    throw UsageError("metric: give exactly one source: --analytic, --field, --field-file or -m");
 
   Stopwatch clock;
   const auto loaded = load_mesh(input);
-  const auto field = analytic_metric_field(kind, loaded.data.vertices);
-  check_metric_field(field, name);
+  const Mesh& mesh = loaded.mesh;
+  const std::size_t n = loaded.data.vertices.size();
+
+  MetricBounds bounds;
+  if (o.has("hmin")) bounds.hmin = o.get<double>("hmin");
+  if (o.has("hmax")) bounds.hmax = o.get<double>("hmax");
+  if (o.has("max-anisotropy")) bounds.max_anisotropy = o.get<double>("max-anisotropy");
+  check_bounds(bounds);
+  GradationOptions grading;
+  grading.space = gradation_space_from_name(o.get<std::string>("gradation-space"));
+  if (o.has("gradation")) grading.beta = o.get<double>("gradation");
+  if (o.has("complexity") && !(o.get<double>("complexity") > 0.0))
+    throw InputError(fmt::format("the target complexity must be > 0 (got {})", o.get<double>("complexity")));
+
+  std::vector<Sym6> field;
+  std::string what;
+  if (o.has("field") || o.has("field-file")) {
+    std::vector<double> values;
+    if (o.has("field")) {
+      const auto f = analytic_field_from_name(o.get<std::string>("field"));
+      values = analytic_field_values(f, points_of(loaded.data));
+      what = fmt::format("multiscale metric of {}", to_string(f));
+    } else {
+      const auto path = o.get<std::string>("field-file");
+      values = scalar_field_from_sol(io::read_sol(path), n, path);
+      what = fmt::format("multiscale metric of {}", path);
+    }
+    MultiscaleOptions ms;
+    ms.complexity = o.has("complexity") ? o.get<double>("complexity") : 1000.0;
+    ms.norm = o.get<double>("norm");
+    ms.bounds = bounds;
+    ms.gradation = o.has("gradation");
+    ms.gradation_options = grading;
+    MultiscaleReport rep;
+    field = multiscale_metric(mesh, values, ms, &rep);
+    log::info("multiscale: Hessian {:.3f} s, gradation {:.3f} s, {} relaxations, total {:.3f} s", rep.hessian_seconds,
+              rep.gradation_seconds, rep.relaxations, rep.total_seconds);
+  } else {
+    if (o.has("analytic")) {
+      const auto kind = analytic_metric_from_name(o.get<std::string>("analytic"));
+      field = analytic_metric_field(kind, points_of(loaded.data));
+      what = fmt::format("metric '{}'", to_string(kind));
+    } else {
+      const auto path = o.get<std::string>("metric");
+      field = metric_field_from_sol(io::read_sol(path), n, path);
+      what = fmt::format("metric of {}", path);
+    }
+    const auto dual = dual_volumes(mesh);
+    if (o.has("complexity")) scale_to_complexity(field, dual, o.get<double>("complexity"));
+    clamp_metrics(field, bounds);
+    if (o.has("gradation")) {
+      limit_gradation(mesh, field, grading);
+      if (o.has("complexity")) scale_to_complexity(field, dual, o.get<double>("complexity"));
+    }
+  }
+  if (o.has("intersect")) {
+    const auto path = o.get<std::string>("intersect");
+    const auto other = metric_field_from_sol(io::read_sol(path), n, path);
+    for (std::size_t v = 0; v < n; ++v) field[v] = intersect(field[v], other[v]);
+    what += fmt::format(" intersected with {}", path);
+  }
+  check_metric_field(field, what);
   auto sol = metric_field_to_sol(field);
   sol.version = loaded.data.version;
   io::write_sol(output, sol, o.format_version());
   if (log::level() >= log::Level::normal)
-    fmt::print("wrote {}: metric '{}' at {} vertices ({:.2f} s)\n", output, name, count_text(field.size()),
-               clock.seconds());
+    fmt::print("wrote {}: {} at {} vertices, complexity {:.6g} ({:.2f} s)\n", output, what, count_text(n),
+               complexity(mesh, field), clock.seconds());
   return kOk;
 }
 

@@ -7,6 +7,7 @@ int run_info(const std::vector<std::string>& args);
 int run_check(const std::vector<std::string>& args);
 int run_convert(const std::vector<std::string>& args);
 int run_metric(const std::vector<std::string>& args);
+int run_quality(const std::vector<std::string>& args);
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> list{
@@ -14,7 +15,8 @@ const std::vector<Command>& commands() {
       {"info", "print counts, extent, surfaces, ridges, corners and volume of a mesh", run_info},
       {"check", "read a mesh and check every invariant (exit 1 with a report if invalid)", run_check},
       {"convert", "convert between .mesh, .meshb, .vtu, .su2 (and .sol <-> .solb)", run_convert},
-      {"metric", "write a metric field on a mesh (analytic: linear, polar-1, polar-2)", run_metric},
+      {"metric", "write a metric field: analytic, multiscale from a field, scaled, bounded, graded", run_metric},
+      {"quality", "print the UGAWG quality report of a mesh in a metric (--csv for a table)", run_quality},
   };
   return list;
 }

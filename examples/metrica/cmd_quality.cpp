@@ -1,0 +1,50 @@
+#include "cli.hpp"
+
+#include <metrica/io/atomic_file.hpp>
+#include <metrica/io/meshb.hpp>
+#include <metrica/log.hpp>
+#include <metrica/metrics/analytic_metric.hpp>
+#include <metrica/metrics/metric_field.hpp>
+#include <metrica/metrics/quality_report.hpp>
+
+#include <fmt/core.h>
+
+namespace metrica::cli {
+
+int run_quality(const std::vector<std::string>& args) {
+  Options o("quality", "[-i] MESH (-m METRIC | --analytic NAME) [--csv FILE]",
+            "Prints the UGAWG quality report of a mesh in a metric: counts; min / mean / max of the edge\n"
+            "length (UGAWG formula) and of the mean ratio (metric at the tet centroid); the share of edges\n"
+            "in [1/sqrt2, sqrt2]; the share of tets with Q < 0.1 and < 0.3; the complexity and\n"
+            "vertices / complexity; histograms of lengths (log2 bins) and of Q.\n\n"
+            "Examples:\n"
+            "  metrica quality cube-linear-00.meshb -m cube-linear-00.solb\n"
+            "  metrica quality adapted.meshb --analytic polar-1 --csv report.csv");
+  o.input("mesh (.mesh, .meshb)");
+  o.add()("metric,m", po::value<std::string>()->value_name("FILE"), "metric (.sol, .solb)")(
+      "analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
+      "space", po::value<std::string>()->default_value("log-euclidean")->value_name("S"),
+      "metric interpolation for Q: log-euclidean, anisotropic, isotropic")(
+      "csv", po::value<std::string>()->value_name("FILE"), "also write the report as CSV (section,key,lo,hi,value)");
+  if (!o.parse(args)) return kOk;
+  const auto input = o.required("input", "the input mesh (-i)");
+  if (o.has("metric") == o.has("analytic")) throw UsageError("quality: give one of -m METRIC or --analytic NAME");
+  const auto space = space_from_name(o.get<std::string>("space"));
+
+  auto loaded = load_mesh(input);
+  const std::size_t n = loaded.data.vertices.size();
+  std::vector<Sym6> field;
+  if (o.has("analytic")) {
+    field = analytic_metric_field(analytic_metric_from_name(o.get<std::string>("analytic")), loaded.data.vertices);
+  } else {
+    const auto path = o.get<std::string>("metric");
+    field = metric_field_from_sol(io::read_sol(path), n, path);
+  }
+  assign_metric(loaded.mesh, field);
+  const auto report = quality_report(loaded.mesh, space);
+  if (o.has("csv")) io::write_file_atomically(o.get<std::string>("csv"), report_csv(report));
+  if (log::level() >= log::Level::normal) fmt::print("{}: {}", input, format_report(report));
+  return kOk;
+}
+
+}  // namespace metrica::cli

@@ -1,0 +1,52 @@
+// The UGAWG quality report of a mesh in its metric (DESIGN.md, "Quality
+// measures"; seed appendix A): edge lengths (UGAWG formula) and mean
+// ratios (metric at the centroid), their extremes, means and histograms,
+// the share of edges in [1/sqrt 2, sqrt 2] (conformity), the share of tets
+// with Q < 0.1 and < 0.3, and the metric complexity.
+#pragma once
+
+#include <metrica/mesh.hpp>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace metrica {
+
+enum class SpaceKind { isotropic, anisotropic, log_euclidean };
+SpaceKind space_from_name(std::string_view name);  // InputError if unknown
+const char* to_string(SpaceKind s);
+
+struct Histogram {
+  std::vector<double> edges;         // bin boundaries, size bins + 1
+  std::vector<std::size_t> counts;   // per bin
+  std::size_t below = 0, above = 0;  // outside the first / last boundary
+};
+
+struct SampleStats {
+  double min = 0, mean = 0, max = 0;
+  std::size_t count = 0;
+};
+
+struct QualityReport {
+  std::string space;
+  std::size_t vertices = 0, edges = 0, tets = 0;
+  SampleStats length, quality;
+  double unit_length_share = 0;  // edges with L in [1/sqrt 2, sqrt 2]
+  double quality_below_01 = 0, quality_below_03 = 0;  // shares of tets
+  double complexity = 0;
+  double vertices_per_complexity = 0;
+  double volume = 0;
+  Histogram length_histogram;   // log2 bins of width 1/2 from 2^-4 to 2^4
+  Histogram quality_histogram;  // bins of 0.1 on [0, 1]
+};
+
+// The mesh must carry a metric (Mesh::has_metric).
+QualityReport quality_report(const Mesh& mesh, SpaceKind space = SpaceKind::log_euclidean);
+
+// For people: a summary and both histograms as text.
+std::string format_report(const QualityReport& r);
+// Tidy CSV (section,key,lo,hi,value): summary rows, then one row per bin.
+std::string report_csv(const QualityReport& r);
+
+}  // namespace metrica
