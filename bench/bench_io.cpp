@@ -5,6 +5,8 @@
 //   build/bench/bench_io [hexes-per-direction=55] [runs=5] [folder=/tmp]
 //
 // 55^3 hexes x 6 = 998,250 tets (the "1M-tet cube").
+#include "bench_common.hpp"
+
 #include <metrica/box.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/mesh_build.hpp>
@@ -19,21 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace {
-
-template <class F>
-double median_seconds(int runs, F&& f) {
-  std::vector<double> t;
-  for (int r = 0; r < runs; ++r) {
-    metrica::Stopwatch clock;
-    f();
-    t.push_back(clock.seconds());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
-
-}  // namespace
+using metrica::bench::median_seconds;
 
 int main(int argc, char** argv) {
   using namespace metrica;

@@ -18,11 +18,11 @@ using I3 = IntervalKernel::Point_3;
 I3 interval(const Point& p) { return {p.x(), p.y(), p.z()}; }
 }  // namespace
 
-int Filtered::orient3d(const Point& a, const Point& b, const Point& c, const Point& d) {
+int Filtered::orient3d_cgal(const Point& a, const Point& b, const Point& c, const Point& d) {
   return static_cast<int>(CGAL::orientation(cgal(a), cgal(b), cgal(c), cgal(d)));
 }
 
-int Filtered::insphere(const Point& a, const Point& b, const Point& c, const Point& d, const Point& e) {
+int Filtered::insphere_cgal(const Point& a, const Point& b, const Point& c, const Point& d, const Point& e) {
   return static_cast<int>(CGAL::side_of_oriented_sphere(cgal(a), cgal(b), cgal(c), cgal(d), cgal(e)));
 }
 

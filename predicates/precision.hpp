@@ -22,6 +22,7 @@
 
 #include <metrica/geometry.hpp>
 
+#include <cmath>
 #include <concepts>
 #include <string_view>
 
@@ -67,11 +68,78 @@ struct Fast {
   }
 };
 
+// A semi-static filter run inline before CGAL: the determinant in double
+// with the a-priori error bounds of Shewchuk ("Adaptive precision
+// floating-point arithmetic and fast robust geometric predicates", 1997,
+// bounds o3derrboundA and isperrboundA): when |det| exceeds the bound
+// times the permanent, its sign is exact. Returns 0 when undecided (then
+// the caller asks CGAL). Shewchuk's orientation is the opposite of ours;
+// the signs are turned on return.
+namespace detail {
+inline constexpr double kEps = 0x1p-53;
+inline constexpr double kOrientBound = (7.0 + 56.0 * kEps) * kEps;
+inline constexpr double kInsphereBound = (16.0 + 224.0 * kEps) * kEps;
+// Below this permanent, underflow could void the bounds.
+inline constexpr double kTinyPermanent = 1e-250;
+
+inline int orient3d_filter(const Point& a, const Point& b, const Point& c, const Point& d) {
+  const double adx = a.x() - d.x(), bdx = b.x() - d.x(), cdx = c.x() - d.x();
+  const double ady = a.y() - d.y(), bdy = b.y() - d.y(), cdy = c.y() - d.y();
+  const double adz = a.z() - d.z(), bdz = b.z() - d.z(), cdz = c.z() - d.z();
+  const double bc = bdy * cdz - bdz * cdy, ca = cdy * adz - cdz * ady, ab = ady * bdz - adz * bdy;
+  const double det = adx * bc + bdx * ca + cdx * ab;
+  const double permanent = (std::abs(bdy * cdz) + std::abs(bdz * cdy)) * std::abs(adx) +
+                           (std::abs(cdy * adz) + std::abs(cdz * ady)) * std::abs(bdx) +
+                           (std::abs(ady * bdz) + std::abs(adz * bdy)) * std::abs(cdx);
+  const double bound = kOrientBound * permanent;
+  if (permanent < kTinyPermanent) return 0;
+  if (det > bound) return -1;
+  if (-det > bound) return 1;
+  return 0;
+}
+
+inline int insphere_filter(const Point& a, const Point& b, const Point& c, const Point& d, const Point& e) {
+  const double aex = a.x() - e.x(), bex = b.x() - e.x(), cex = c.x() - e.x(), dex = d.x() - e.x();
+  const double aey = a.y() - e.y(), bey = b.y() - e.y(), cey = c.y() - e.y(), dey = d.y() - e.y();
+  const double aez = a.z() - e.z(), bez = b.z() - e.z(), cez = c.z() - e.z(), dez = d.z() - e.z();
+  const double aexbey = aex * bey, bexaey = bex * aey, bexcey = bex * cey, cexbey = cex * bey;
+  const double cexdey = cex * dey, dexcey = dex * cey, dexaey = dex * aey, aexdey = aex * dey;
+  const double aexcey = aex * cey, cexaey = cex * aey, bexdey = bex * dey, dexbey = dex * bey;
+  const double ab = aexbey - bexaey, bc = bexcey - cexbey, cd = cexdey - dexcey, da = dexaey - aexdey;
+  const double ac = aexcey - cexaey, bd = bexdey - dexbey;
+  const double abc = aez * bc - bez * ac + cez * ab, bcd = bez * cd - cez * bd + dez * bc;
+  const double cda = cez * da + dez * ac + aez * cd, dab = dez * ab + aez * bd + bez * da;
+  const double alift = aex * aex + aey * aey + aez * aez, blift = bex * bex + bey * bey + bez * bez;
+  const double clift = cex * cex + cey * cey + cez * cez, dlift = dex * dex + dey * dey + dez * dez;
+  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+  using std::abs;
+  const double aez_ = abs(aez), bez_ = abs(bez), cez_ = abs(cez), dez_ = abs(dez);
+  const double ab_ = abs(aexbey) + abs(bexaey), bc_ = abs(bexcey) + abs(cexbey), cd_ = abs(cexdey) + abs(dexcey);
+  const double da_ = abs(dexaey) + abs(aexdey), ac_ = abs(aexcey) + abs(cexaey), bd_ = abs(bexdey) + abs(dexbey);
+  const double permanent = (cd_ * bez_ + bd_ * cez_ + bc_ * dez_) * alift + (da_ * cez_ + ac_ * dez_ + cd_ * aez_) * blift +
+                           (ab_ * dez_ + bd_ * aez_ + da_ * bez_) * clift + (bc_ * aez_ + ac_ * bez_ + ab_ * cez_) * dlift;
+  const double bound = kInsphereBound * permanent;
+  if (permanent < kTinyPermanent) return 0;
+  if (det > bound) return -1;
+  if (-det > bound) return 1;
+  return 0;
+}
+}  // namespace detail
+
 struct Filtered {
   static constexpr std::string_view name = "filtered";
-  static int orient3d(const Point& a, const Point& b, const Point& c, const Point& d);
-  static int insphere(const Point& a, const Point& b, const Point& c, const Point& d, const Point& e);
+  static int orient3d(const Point& a, const Point& b, const Point& c, const Point& d) {
+    const int s = detail::orient3d_filter(a, b, c, d);
+    return s != 0 ? s : orient3d_cgal(a, b, c, d);
+  }
+  static int insphere(const Point& a, const Point& b, const Point& c, const Point& d, const Point& e) {
+    const int s = detail::insphere_filter(a, b, c, d, e);
+    return s != 0 ? s : insphere_cgal(a, b, c, d, e);
+  }
   static int incircle(const Point& a, const Point& b, const Point& c, const Point& d);
+  // CGAL's filtered kernel alone (static filter, intervals, exact).
+  static int orient3d_cgal(const Point& a, const Point& b, const Point& c, const Point& d);
+  static int insphere_cgal(const Point& a, const Point& b, const Point& c, const Point& d, const Point& e);
 };
 
 struct Exact {
