@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include <cmath>
+#include <limits>
 
 namespace metrica {
 
@@ -55,13 +56,26 @@ std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<S
     metric[v] = to_sym6(eig[v].vectors * l.asDiagonal() * eig[v].vectors.transpose());
   }
 
+  // Sizes beyond the domain mean nothing a mesh could follow; bounding them
+  // by its largest extent (unless the user set h_max) also spares the
+  // gradation from walking down sizes of 1e6 in flat regions.
+  MetricBounds bounds = o.bounds;
+  if (!(bounds.hmax < std::numeric_limits<double>::infinity())) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+      if (mesh.vertex_alive(v)) {
+        lo = lo.cwiseMin(mesh.point(v));
+        hi = hi.cwiseMax(mesh.point(v));
+      }
+    bounds.hmax = std::max((hi - lo).maxCoeff(), bounds.hmin);
+  }
   const auto dual = dual_volumes(mesh);
   MultiscaleReport r;
   scale_to_complexity(metric, dual, o.complexity);
-  const bool relax = o.bounds.active() || o.gradation;
+  const bool relax = bounds.active() || o.gradation;
   for (r.relaxations = 0; relax && r.relaxations < o.max_relaxations;) {
     ++r.relaxations;
-    clamp_metrics(metric, o.bounds);
+    clamp_metrics(metric, bounds);
     if (o.gradation) {
       Stopwatch g;
       limit_gradation(mesh, metric, o.gradation_options);

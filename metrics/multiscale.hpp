@@ -20,7 +20,7 @@ namespace metrica {
 struct MultiscaleOptions {
   double complexity = 1000.0;
   double norm = 2.0;  // p, in [1, inf)
-  MetricBounds bounds;
+  MetricBounds bounds;  // h_max defaults to the domain's largest extent
   bool gradation = true;
   GradationOptions gradation_options;
   int max_relaxations = 8;           // scale / bound / grade rounds
