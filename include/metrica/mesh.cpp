@@ -105,6 +105,17 @@ void Mesh::remove_tet(TetId t) {
   --live_tets_;
 }
 
+void Mesh::split_ridge(VertexId a, VertexId b, VertexId m) {
+  if (ridges_.erase(edge_key(a, b))) {
+    ridges_.insert(edge_key(a, m));
+    ridges_.insert(edge_key(m, b));
+  }
+  if (feature_edges_.erase(edge_key(a, b))) {
+    feature_edges_.insert(edge_key(a, m));
+    feature_edges_.insert(edge_key(m, b));
+  }
+}
+
 double Mesh::volume() const {
   double sum = 0.0;
   for (TetId t = 0; t < tet_capacity(); ++t) {

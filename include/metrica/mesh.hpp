@@ -99,6 +99,9 @@ class Mesh {
   void set_surface_id(TetId t, int face, SurfaceId id) { face_surface_[t][face] = id; }
   void set_vertex_class(VertexId v, VertexClass c) { vertex_class_[v] = c; }
   void set_ridges(std::unordered_set<std::uint64_t> ridges) { ridges_ = std::move(ridges); }
+  // Replaces ridge (and feature) edge ab by am and mb when an operator
+  // puts vertex m on it, keeping the classification up to date.
+  void split_ridge(VertexId a, VertexId b, VertexId m);
 
   // Removes dead entities and renumbers vertices along a Morton curve and
   // tets by their vertices, so that neighbours in space are neighbours in

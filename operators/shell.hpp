@@ -1,0 +1,120 @@
+// Cavities read from connectivity only (the "find" step of DESIGN.md):
+// the ball of a vertex (its incident tets) and the shell of an edge (the
+// tets around it, in rotation order). No allocation: small vectors sized
+// for the usual cases spill to the heap only for unusual valences.
+#pragma once
+
+#include <metrica/mesh.hpp>
+
+#include <boost/container/small_vector.hpp>
+
+#include <algorithm>
+
+namespace metrica {
+
+using TetList = boost::container::small_vector<TetId, 64>;
+using VertexList = boost::container::small_vector<VertexId, 64>;
+
+// The tets containing v, by a walk over faces through v from its hint.
+inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
+  ball.clear();
+  const TetId start = mesh.vert2tet(v);
+  if (start == kNoId || !mesh.tet_alive(start)) return;
+  ball.push_back(start);
+  for (std::size_t k = 0; k < ball.size(); ++k) {
+    const TetId t = ball[k];
+    const int iv = local_index(mesh.tet(t), v);
+    for (int f = 0; f < 4; ++f) {
+      if (f == iv) continue;  // the face opposite v does not contain it
+      const FaceRef n = mesh.neighbour(t, f);
+      if (n.valid() && std::find(ball.begin(), ball.end(), n.tet()) == ball.end()) ball.push_back(n.tet());
+    }
+  }
+}
+
+// The vertices joined to v by an edge.
+inline void vertex_neighbours(const Mesh& mesh, const TetList& ball, VertexId v, VertexList& out) {
+  out.clear();
+  for (TetId t : ball)
+    for (VertexId w : mesh.tet(t))
+      if (w != v && std::find(out.begin(), out.end(), w) == out.end()) out.push_back(w);
+}
+
+// The shell of edge ab: the tets containing both, in rotation order about
+// the edge; `closed` is false when the edge is on the boundary (the shell
+// then starts and ends at boundary faces). False when no tet holds ab.
+struct Shell {
+  TetList tets;
+  bool closed = true;
+};
+
+inline bool edge_shell(const Mesh& mesh, VertexId a, VertexId b, const TetList& ball_of_a, Shell& shell) {
+  shell.tets.clear();
+  TetId start = kNoId;
+  for (TetId t : ball_of_a)
+    if (local_index(mesh.tet(t), b) >= 0) {
+      start = t;
+      break;
+    }
+  if (start == kNoId) return false;
+  // Turn one way: from t leave through the face opposite one of the two
+  // other vertices; the next tet shares a, b and the remaining vertex.
+  auto step = [&](TetId t, VertexId through_kept) -> TetId {
+    const auto& v = mesh.tet(t);
+    for (int f = 0; f < 4; ++f) {
+      const VertexId opposite = v[f];
+      if (opposite == a || opposite == b || opposite == through_kept) continue;
+      const FaceRef n = mesh.neighbour(t, f);
+      return n.valid() ? n.tet() : kNoId;
+    }
+    return kNoId;
+  };
+  // The vertex kept in the face we cross: the one shared with the next tet.
+  auto others = [&](TetId t) {
+    std::array<VertexId, 2> o{kNoId, kNoId};
+    int k = 0;
+    for (VertexId w : mesh.tet(t))
+      if (w != a && w != b) o[k++] = w;
+    return o;
+  };
+  shell.closed = true;
+  shell.tets.push_back(start);
+  VertexId kept = others(start)[0];
+  TetId t = start;
+  for (;;) {
+    const TetId next = step(t, kept);
+    if (next == kNoId) {
+      shell.closed = false;
+      break;
+    }
+    if (next == start) break;
+    const auto o = others(next);
+    kept = (o[0] == kept) ? o[1] : o[0];
+    shell.tets.push_back(next);
+    t = next;
+  }
+  if (!shell.closed) {
+    // Walk the other way from start and prepend, so that the list runs
+    // from one boundary face to the other.
+    TetList back;
+    kept = others(start)[1];
+    t = start;
+    for (;;) {
+      const TetId next = step(t, kept);
+      if (next == kNoId) break;
+      const auto o = others(next);
+      kept = (o[0] == kept) ? o[1] : o[0];
+      back.push_back(next);
+      t = next;
+    }
+    for (std::size_t k = 0; k < shell.tets.size(); ++k) back.push_back(shell.tets[k]);
+    // back holds the reverse walk then the forward one; put the reverse
+    // walk in order (the forward part already is).
+    const std::size_t nback = back.size() - shell.tets.size();
+    std::reverse(back.begin(), back.begin() + static_cast<std::ptrdiff_t>(nback));
+    shell.tets.swap(back);
+  }
+  return true;
+}
+
+}  // namespace metrica

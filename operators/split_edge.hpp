@@ -1,0 +1,89 @@
+// Insertion of a vertex on an edge: every tet of the edge's shell is cut in
+// two (seed, section 3.2's insertion by split; the edge-based rule of Mmg,
+// Omega_h and refine). Boundary faces of the shell are cut too and keep
+// their surface ids; a ridge edge becomes two ridge edges and the new
+// vertex is a ridge vertex, so the classification stays up to date.
+//
+// The topology (apply) is one function for every policy; the geometric
+// check (decide) that no child is flat or inverted is a Precision template.
+#pragma once
+
+#include <metrica/metrics/space.hpp>
+#include <metrica/operators/shell.hpp>
+#include <metrica/predicates/precision.hpp>
+
+namespace metrica {
+
+// Decide: both children of every shell tet are positively oriented with m
+// at p. Pure: reads the mesh, writes nothing.
+template <Precision P>
+bool split_is_valid(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p) {
+  for (TetId t : shell.tets) {
+    const auto& v = mesh.tet(t);
+    std::array<Point, 4> x{mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3])};
+    const int ia = local_index(v, a), ib = local_index(v, b);
+    std::array<Point, 4> y = x;
+    x[ib] = p;
+    y[ia] = p;
+    if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0 || P::orient3d(y[0], y[1], y[2], y[3]) <= 0) return false;
+  }
+  return true;
+}
+
+// Apply: inserts the vertex at p with metric `m` on edge ab (shell from
+// edge_shell) and returns it. Each shell tet keeps its id with b replaced
+// by the new vertex; its twin with a replaced is a new tet. Local vertex
+// order is kept, so every face index carries over to the children.
+inline VertexId split_edge(Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p,
+                           const VertexMetric& m) {
+  const VertexId n = mesh.add_vertex(p);
+  mesh.set_metric(n, m.m, m.log_m);
+  boost::container::small_vector<TetId, 64> twin(shell.tets.size());
+  auto twin_of = [&](TetId t) {
+    for (std::size_t k = 0; k < shell.tets.size(); ++k)
+      if (shell.tets[k] == t) return twin[k];
+    return kNoId;
+  };
+  for (std::size_t k = 0; k < shell.tets.size(); ++k) {
+    const TetId t = shell.tets[k];
+    TetVertices v2 = mesh.tet(t);
+    v2[local_index(v2, a)] = n;
+    twin[k] = mesh.add_tet(v2, mesh.tet_ref(t));
+  }
+  for (std::size_t k = 0; k < shell.tets.size(); ++k) {
+    const TetId t1 = shell.tets[k], t2 = twin[k];
+    const TetVertices old = mesh.tet(t1);
+    const int ia = local_index(old, a), ib = local_index(old, b);
+    // Outer faces: opposite b for t1 (it holds a), opposite a for t2.
+    const FaceRef out_a = mesh.neighbour(t1, ia);
+    const SurfaceId sid_a = mesh.surface_id(t1, ia);
+    if (out_a.valid()) mesh.link(FaceRef(t2, ia), out_a);
+    else mesh.set_surface_id(t2, ia, sid_a);
+    mesh.set_neighbour(t1, ia, FaceRef(t2, ib));
+    mesh.set_neighbour(t2, ib, FaceRef(t1, ia));
+    mesh.set_surface_id(t1, ia, 0);  // t1 keeps its face opposite b as it was
+    // The two faces through the edge: neighbours are shell tets, whose
+    // children pair up the same way; on the boundary both children keep
+    // the surface id.
+    for (int f = 0; f < 4; ++f) {
+      if (f == ia || f == ib) continue;
+      const FaceRef nb = mesh.neighbour(t1, f);
+      if (nb.valid()) {
+        mesh.set_neighbour(t2, f, FaceRef(twin_of(nb.tet()), nb.face()));
+      } else {
+        mesh.set_surface_id(t2, f, mesh.surface_id(t1, f));
+      }
+    }
+    TetVertices v1 = old;
+    v1[ib] = n;
+    mesh.set_tet_vertices(t1, v1);
+  }
+  mesh.set_vert2tet(n, shell.tets.front());
+  mesh.set_vert2tet(b, twin.front());  // the other shell vertices are in both children
+  if (mesh.is_ridge(a, b)) mesh.set_vertex_class(n, VertexClass::ridge);
+  else if (!shell.closed) mesh.set_vertex_class(n, VertexClass::surface);
+  mesh.split_ridge(a, b, n);
+  return n;
+}
+
+}  // namespace metrica
