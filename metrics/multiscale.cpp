@@ -61,13 +61,8 @@ std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<S
   // gradation from walking down sizes of 1e6 in flat regions.
   MetricBounds bounds = o.bounds;
   if (!(bounds.hmax < std::numeric_limits<double>::infinity())) {
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
-    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-      if (mesh.vertex_alive(v)) {
-        lo = lo.cwiseMin(mesh.point(v));
-        hi = hi.cwiseMax(mesh.point(v));
-      }
-    bounds.hmax = std::max((hi - lo).maxCoeff(), bounds.hmin);
+    const auto box = bounding_box(mesh);
+    bounds.hmax = std::max((box.hi - box.lo).maxCoeff(), bounds.hmin);
   }
   const auto dual = dual_volumes(mesh);
   MultiscaleReport r;
@@ -104,15 +99,13 @@ std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<double>&
   // A Hessian at round-off level of the gradient's scale is zero: the
   // field is linear and asks for no particular size.
   double gmax = 0.0, hmax = 0.0;
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
     if (!mesh.vertex_alive(v)) continue;
     gmax = std::max(gmax, gradient[v].norm());
     hmax = std::max(hmax, to_matrix(hessian[v]).norm());
-    lo = lo.cwiseMin(mesh.point(v));
-    hi = hi.cwiseMax(mesh.point(v));
   }
-  if (hmax <= 1e-9 * gmax / (hi - lo).norm())
+  const auto box = bounding_box(mesh);
+  if (hmax <= 1e-9 * gmax / (box.hi - box.lo).norm())
     throw InputError("the field's Hessian is zero everywhere (a linear field): no multiscale metric to make");
   MultiscaleReport r;
   r.hessian_seconds = clock.seconds();

@@ -14,12 +14,6 @@
 
 namespace metrica::cli {
 
-namespace {
-
-std::vector<Point> points_of(const io::MeshData& d) { return d.vertices; }
-
-}  // namespace
-
 int run_metric(const std::vector<std::string>& args) {
   Options o("metric", "[-i] MESH (--analytic NAME | --field NAME | --field-file F.solb | -m M.solb) [-o] OUTPUT",
             "Writes a metric field (one symmetric tensor per vertex, SolAtVertices) for a mesh, from one of:\n"
@@ -81,7 +75,7 @@ int run_metric(const std::vector<std::string>& args) {
     std::vector<double> values;
     if (o.has("field")) {
       const auto f = analytic_field_from_name(o.get<std::string>("field"));
-      values = analytic_field_values(f, points_of(loaded.data));
+      values = analytic_field_values(f, loaded.data.vertices);
       what = fmt::format("multiscale metric of {}", to_string(f));
     } else {
       const auto path = o.get<std::string>("field-file");
@@ -101,7 +95,7 @@ int run_metric(const std::vector<std::string>& args) {
   } else {
     if (o.has("analytic")) {
       const auto kind = analytic_metric_from_name(o.get<std::string>("analytic"));
-      field = analytic_metric_field(kind, points_of(loaded.data));
+      field = analytic_metric_field(kind, loaded.data.vertices);
       what = fmt::format("metric '{}'", to_string(kind));
     } else {
       const auto path = o.get<std::string>("metric");

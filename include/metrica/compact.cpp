@@ -37,14 +37,10 @@ void permute(std::vector<T>& a, const std::vector<std::uint32_t>& old_of_new) {
 
 void Mesh::compact() {
   // Vertices along the Morton curve of the bounding box.
-  Point lo = Point::Constant(std::numeric_limits<double>::max()), hi = -lo;
+  const auto [lo, hi] = bounding_box(*this);
   std::vector<std::uint32_t> vertex_order;
-  for (VertexId v = 0; v < vertex_capacity(); ++v) {
-    if (!vertex_alive(v)) continue;
-    vertex_order.push_back(v);
-    lo = lo.cwiseMin(points_[v]);
-    hi = hi.cwiseMax(points_[v]);
-  }
+  for (VertexId v = 0; v < vertex_capacity(); ++v)
+    if (vertex_alive(v)) vertex_order.push_back(v);
   const Point scale = ((hi - lo).array().max(1e-300).inverse() * double((1u << 21) - 1)).matrix();
   std::vector<std::uint64_t> code(vertex_capacity(), 0);
   for (VertexId v : vertex_order) {

@@ -1,6 +1,8 @@
 #include <metrica/geometry.hpp>
 #include <metrica/mesh.hpp>
 
+#include <limits>
+
 namespace metrica {
 
 const char* to_string(VertexClass c) {
@@ -114,6 +116,16 @@ void Mesh::split_ridge(VertexId a, VertexId b, VertexId m) {
     feature_edges_.insert(edge_key(a, m));
     feature_edges_.insert(edge_key(m, b));
   }
+}
+
+BoundingBox bounding_box(const Mesh& mesh) {
+  BoundingBox b{Point::Constant(std::numeric_limits<double>::max()), Point::Constant(-std::numeric_limits<double>::max())};
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    if (!mesh.vertex_alive(v)) continue;
+    b.lo = b.lo.cwiseMin(mesh.point(v));
+    b.hi = b.hi.cwiseMax(mesh.point(v));
+  }
+  return b;
 }
 
 double Mesh::volume() const {

@@ -143,6 +143,12 @@ class Mesh {
   friend class MeshCompactor;
 };
 
+// The axis-aligned bounding box of the live vertices.
+struct BoundingBox {
+  Point lo, hi;
+};
+BoundingBox bounding_box(const Mesh& mesh);
+
 // Calls f(tet, face) for every face of a live tet that has no neighbour.
 template <class F>
 void for_each_boundary_face(const Mesh& mesh, F&& f) {

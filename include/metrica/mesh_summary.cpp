@@ -11,12 +11,11 @@ MeshSummary summarize(const Mesh& m) {
   MeshSummary s;
   s.vertices = m.num_vertices();
   s.tets = m.num_tets();
-  s.lo = Point::Constant(std::numeric_limits<double>::max());
-  s.hi = -s.lo;
+  const auto box = bounding_box(m);
+  s.lo = box.lo;
+  s.hi = box.hi;
   for (VertexId v = 0; v < m.vertex_capacity(); ++v) {
     if (!m.vertex_alive(v)) continue;
-    s.lo = s.lo.cwiseMin(m.point(v));
-    s.hi = s.hi.cwiseMax(m.point(v));
     s.required_vertices += m.is_required(v);
     switch (m.vertex_class(v)) {
       case VertexClass::interior: ++s.interior_vertices; break;
