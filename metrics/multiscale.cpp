@@ -82,11 +82,7 @@ std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<S
   }
   r.complexity = complexity(metric, dual);
   r.total_seconds = clock.seconds();
-  if (report) {
-    r.hessian_seconds = report->hessian_seconds;
-    r.total_seconds += report->hessian_seconds;
-    *report = r;
-  }
+  if (report) *report = r;
   return metric;
 }
 
@@ -107,9 +103,11 @@ std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<double>&
   const auto box = bounding_box(mesh);
   if (hmax <= 1e-9 * gmax / (box.hi - box.lo).norm())
     throw InputError("the field's Hessian is zero everywhere (a linear field): no multiscale metric to make");
+  const double hessian_seconds = clock.seconds();
   MultiscaleReport r;
-  r.hessian_seconds = clock.seconds();
   auto metric = multiscale_metric_from_hessian(mesh, std::move(hessian), o, &r);
+  r.hessian_seconds = hessian_seconds;
+  r.total_seconds += hessian_seconds;
   if (report) *report = r;
   return metric;
 }

@@ -47,8 +47,9 @@ bool metric_delaunay_violated(const TetPoints& k, const Point& p, const std::arr
   int same = 0;
   for (const auto& m : mk) same += (m == mp);
   if (same == 4) return true;  // constant metric: the sign above decides
-  double sum = delaunay_measure(k, p, lp);
-  for (const auto& m : mk) sum += (m == mp) ? delaunay_measure(k, p, lp) : delaunay_measure(k, p, metric_factor(m));
+  const double alpha_p = delaunay_measure(k, p, lp);
+  double sum = alpha_p;
+  for (const auto& m : mk) sum += (m == mp) ? alpha_p : delaunay_measure(k, p, metric_factor(m));
   return sum < 5.0;
 }
 

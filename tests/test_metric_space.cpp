@@ -23,13 +23,12 @@
 
 using namespace metrica;
 using test::random_metric;
+using test::rel_diff;
 
 namespace {
 
 // The regular tet, positively oriented.
 const TetPoints kRegular = {Point(1, 1, 1), Point(1, -1, -1), Point(-1, -1, 1), Point(-1, 1, -1)};
-
-double rel_diff(const Sym6& a, const Sym6& b) { return (to_matrix(a) - to_matrix(b)).norm() / to_matrix(b).norm(); }
 
 // Lowest eigenvalue of x - y relative to |x|: >= -tol when x >= y.
 double min_eig_of_difference(const Sym6& x, const Sym6& y) {

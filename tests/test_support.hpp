@@ -49,6 +49,11 @@ inline Sym6 random_metric(std::mt19937_64& r, double ratio) {
                  q.toRotationMatrix().transpose());
 }
 
+// |a - b| / |b| in the Frobenius norm.
+inline double rel_diff(const Sym6& a, const Sym6& b) {
+  return (to_matrix(a) - to_matrix(b)).norm() / to_matrix(b).norm();
+}
+
 // A fresh folder under the system temp dir, removed at scope exit.
 class TempDir {
  public:

@@ -12,10 +12,8 @@ using namespace metrica;
 namespace {
 
 using test::random_metric;
+using test::rel_diff;
 
-double rel_diff(const Sym6& a, const Sym6& b) {
-  return (to_matrix(a) - to_matrix(b)).norm() / to_matrix(b).norm();
-}
 
 }  // namespace
 
