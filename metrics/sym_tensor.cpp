@@ -1,5 +1,7 @@
 #include <metrica/metrics/sym_tensor.hpp>
 
+#include <cmath>
+
 #include <Eigen/Eigenvalues>
 
 namespace metrica {
@@ -28,6 +30,13 @@ Sym6 spd_log(const Sym6& m) {
 Sym6 spd_exp(const Sym6& log_m) {
   const auto e = eigen_decomposition(log_m);
   return to_sym6(e.vectors * e.values.array().exp().matrix().asDiagonal() * e.vectors.transpose());
+}
+
+Sym6 spd_exp_fast(const Sym6& log_m) {
+  Eigen::SelfAdjointEigenSolver<Matrix3> solver;
+  solver.computeDirect(to_matrix(log_m));
+  const Eigen::Vector3d v = solver.eigenvalues().array().exp();
+  return to_sym6(solver.eigenvectors() * v.asDiagonal() * solver.eigenvectors().transpose());
 }
 
 Matrix3 metric_factor(const Sym6& m) {

@@ -53,6 +53,11 @@ bool is_spd(const Sym6& m);
 // SPD log and exp (the log-Euclidean framework of Arsigny et al., 2006).
 Sym6 spd_log(const Sym6& m);
 Sym6 spd_exp(const Sym6& log_m);
+// The same by the closed-form 3x3 eigensolver: several times faster, with
+// a relative error up to ~1e-13 at anisotropy 1e8 (1e-15 for spd_exp).
+// For measuring (the metric of a tet in quality evaluations), not for
+// metrics that are stored.
+Sym6 spd_exp_fast(const Sym6& log_m);
 
 // L with M = L^T L (L = diag(sqrt l) R^T): maps a vector into the metric's
 // Euclidean space, |L v| = sqrt(v^T M v).

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <metrica/mesh_edges.hpp>
+#include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operator_stats.hpp>
 #include <metrica/operators/split_edge.hpp>
 #include <metrica/policies/concurrency.hpp>
@@ -21,6 +22,8 @@ namespace metrica {
 struct RefineOptions {
   double max_length = std::sqrt(2.0);
   double min_new_distance = 1.0 / std::sqrt(2.0);
+  // When set, new vertices take this metric instead of an interpolated one.
+  const MetricFunction* metric = nullptr;
 };
 
 // The parameter t in [0,1] of the point of ab at equal metric distance from
@@ -90,7 +93,7 @@ OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}) {
     }
     const std::array<VertexId, 2> ends{c.a, c.b};
     const std::array<double, 2> w{1.0 - t, t};
-    const VertexMetric m = S::interpolate(mesh, ends, w);
+    const VertexMetric m = new_vertex_metric<S>(mesh, o.metric, ends, w, p);
     const VertexId n = split_edge(mesh, shell, c.a, c.b, p, m);
     locks.release();
     ++stats.applied;

@@ -9,11 +9,19 @@
 #include <boost/container/small_vector.hpp>
 
 #include <algorithm>
+#include <span>
 
 namespace metrica {
 
 using TetList = boost::container::small_vector<TetId, 64>;
 using VertexList = boost::container::small_vector<VertexId, 64>;
+
+// A read-only view of a small vector (boost's iterators are not C++20
+// contiguous iterators, so std::span does not convert on its own).
+template <class T, std::size_t N>
+std::span<const T> view(const boost::container::small_vector<T, N>& v) {
+  return {v.data(), v.size()};
+}
 
 // The tets containing v, by a walk over faces through v from its hint.
 inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {

@@ -134,6 +134,62 @@ TEST_SUITE("regression") {
     CHECK_FALSE(std::filesystem::exists(dir / "z.solb"));
   }
 
+  TEST_CASE("adapt writes a valid mesh and its metric - quality reads them back") {
+    test::TempDir dir;
+    REQUIRE(metrica_cli("cube --n 2 -o " + (dir / "c.meshb")).code == 0);
+    REQUIRE(metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --complexity 300 -o " + (dir / "m.solb")).code == 0);
+    const auto r = metrica_cli("adapt " + (dir / "c.meshb") + " -m " + (dir / "m.solb") + " -o " + (dir / "a.meshb") +
+                               " --metric-out " + (dir / "a.solb") + " --vtu " + (dir / "a.vtu"));
+    INFO(r.output);
+    REQUIRE(r.code == 0);
+    CHECK(has(r, "cycle "));
+    CHECK(has(r, "polish"));
+    CHECK(has(r, "edges in [1/sqrt2, sqrt2]"));
+    CHECK(metrica_cli("check " + (dir / "a.meshb")).code == 0);
+    const auto q = metrica_cli("quality " + (dir / "a.meshb") + " -m " + (dir / "a.solb"));
+    CHECK(q.code == 0);
+    CHECK(std::filesystem::exists(dir / "a.vtu"));
+    // The UGAWG loop form: analytic metric, two iterations.
+    const auto l = metrica_cli("adapt " + (dir / "c.meshb") + " --analytic polar-1 --iterations 2 --cycles 2 " +
+                               "--quality-passes 1 -o " + (dir / "p.meshb"));
+    CHECK(l.code == 0);
+    CHECK(has(l, "iteration 2:"));
+  }
+
+  TEST_CASE("adapt on bad input: exit 1 with the reason - nothing written") {
+    test::TempDir dir;
+    REQUIRE(metrica_cli("cube --n 2 -o " + (dir / "c.meshb")).code == 0);
+    {
+      // A metric for another mesh.
+      const auto r = metrica_cli("adapt " + (dir / "c.meshb") + " -m " + test::ugawg("cube-linear-00.solb") + " -o " +
+                                 (dir / "a.meshb"));
+      CHECK(r.code == 1);
+      CHECK(has(r, "the metric has 64 entries but the mesh has 27 vertices"));
+    }
+    {
+      // A tensor that is not positive definite.
+      std::ofstream sol(dir / "bad.sol");
+      sol << "MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n27\n1 3\n";
+      for (int i = 0; i < 27; ++i) sol << (i == 5 ? "1 0 1 0 0 -1\n" : "1 0 1 0 0 1\n");
+      sol << "End\n";
+    }
+    {
+      const auto r = metrica_cli("adapt " + (dir / "c.meshb") + " -m " + (dir / "bad.sol") + " -o " + (dir / "a.meshb"));
+      CHECK(r.code == 1);
+      CHECK(has(r, "not positive definite"));
+    }
+    {
+      std::ofstream(dir / "inv.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n5\n0 0 0 0\n1 0 0 0\n"
+                                         "0 1 0 0\n0 0 1 0\n0 0 -1 0\nTetrahedra\n2\n1 2 3 4 0\n1 2 3 5 0\nEnd\n";
+      const auto r = metrica_cli("adapt " + (dir / "inv.mesh") + " --analytic linear -o " + (dir / "a.meshb"));
+      CHECK(r.code == 1);
+      CHECK(has(r, "inverted"));
+    }
+    CHECK(metrica_cli("adapt " + (dir / "c.meshb") + " -o " + (dir / "a.meshb")).code == 2);  // no metric
+    CHECK(metrica_cli("adapt " + (dir / "c.meshb") + " --analytic linear --space curved -o " + (dir / "a.meshb")).code == 1);
+    CHECK_FALSE(std::filesystem::exists(dir / "a.meshb"));
+  }
+
   TEST_CASE("bad input: exit 1 with one clear message - nothing written") {
     test::TempDir dir;
     {
@@ -184,7 +240,7 @@ TEST_SUITE("regression") {
     CHECK(metrica_cli("metric x.meshb -o m.solb").code == 2);  // no source
     CHECK(metrica_cli("metric x.meshb --analytic linear --field tanh3 -o m.solb").code == 2);
     CHECK(metrica_cli("quality x.meshb").code == 2);  // no metric
-    for (const char* c : {"cube", "info", "check", "convert", "metric", "quality"}) {
+    for (const char* c : {"cube", "info", "check", "convert", "metric", "quality", "adapt"}) {
       const auto r = metrica_cli(std::string(c) + " --help");
       CHECK(r.code == 0);
       CHECK(has(r, "Example"));

@@ -8,10 +8,17 @@
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_edges.hpp>
 #include <metrica/metrics/metric_field.hpp>
+#include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/operators/collapse.hpp>
+#include <metrica/operators/reconnect.hpp>
 #include <metrica/operators/refine_edges.hpp>
+#include <metrica/operators/smooth.hpp>
 #include <metrica/validate.hpp>
 
 #include <doctest/doctest.h>
+
+#include <map>
+#include <random>
 
 using namespace metrica;
 
@@ -35,6 +42,56 @@ double longest(const Mesh& mesh) {
   double l = 0.0;
   for (const auto& [a, b] : unique_edges(mesh)) l = std::max(l, S::edge_length(mesh, a, b));
   return l;
+}
+
+// A box whose interior vertices are moved at random by up to `amount` of
+// the spacing: tets of every shape, flips and smoothing have work to do.
+Mesh jittered_box(int n, double amount, std::uint64_t stream) {
+  Mesh mesh = make_box({.nx = n, .ny = n, .nz = n});
+  auto r = test::rng(stream);
+  std::uniform_real_distribution<double> u(-amount / n, amount / n);
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_class(v) == VertexClass::interior) mesh.point(v) += Point(u(r), u(r), u(r));
+  return mesh;
+}
+
+// Accepts every valid configuration: exercises the topology alone.
+struct AlwaysFlip {
+  template <MetricSpace S, Precision P>
+  static bool prefers(const Mesh&, std::span<const TetVertices>, std::span<const TetVertices>) {
+    return true;
+  }
+};
+
+std::vector<TetVertices> sorted_tets(const Mesh& mesh) {
+  std::vector<TetVertices> out;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+    if (mesh.tet_alive(t)) {
+      TetVertices v = mesh.tet(t);
+      std::sort(v.begin(), v.end());
+      out.push_back(v);
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+template <class S>
+double worst_quality(const Mesh& mesh) {
+  double q = 1.0;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+    if (mesh.tet_alive(t)) q = std::min(q, S::mean_ratio(mesh, mesh.tet(t)));
+  return q;
+}
+
+// Area of the boundary faces of each surface id.
+std::map<SurfaceId, double> surface_areas(const Mesh& mesh) {
+  std::map<SurfaceId, double> area;
+  for_each_boundary_face(mesh, [&](TetId t, int f) {
+    const auto v = face_vertices(mesh.tet(t), f);
+    area[mesh.surface_id(t, f)] +=
+        0.5 * (mesh.point(v[1]) - mesh.point(v[0])).cross(mesh.point(v[2]) - mesh.point(v[0])).norm();
+  });
+  return area;
 }
 
 template <class S, class P, class C>
@@ -79,6 +136,185 @@ TEST_SUITE("invariant") {
       require_valid(mesh, volume);
     }
     CHECK(mesh.ridge_edges().size() > ridges_before);
+  }
+}
+
+TEST_SUITE("invariant") {
+  TEST_CASE_TEMPLATE("a 2-3 flip then the 3-2 flip of its new edge restores the tets", T, METRICA_POLICY_COMBINATIONS) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    Mesh mesh = jittered_box(3, 0.2, 1);
+    set_uniform_metric(mesh, 0.3);
+    const auto before = sorted_tets(mesh);
+    FlipScratch s;
+    FlipOptions fo;
+    int done = 0;
+    for (TetId t = 0; t < mesh.tet_capacity() && done < 20; ++t) {
+      if (!mesh.tet_alive(t)) continue;
+      for (int f = 0; f < 4; ++f) {
+        const FaceRef nb = mesh.neighbour(t, f);
+        if (!nb.valid()) continue;
+        const VertexId a = mesh.tet(t)[f], b = mesh.tet(nb.tet())[nb.face()];
+        if (flip23<S, P, AlwaysFlip>(mesh, t, f, s) != FlipResult::applied) continue;
+        require_valid(mesh, 1.0);
+        CHECK(sorted_tets(mesh) != before);
+        vertex_ball(mesh, a, s.ball);
+        REQUIRE(edge_shell(mesh, a, b, s.ball, s.shell));
+        CHECK(s.shell.tets.size() == 3);
+        REQUIRE(remove_edge<S, P, AlwaysFlip>(mesh, a, b, s, fo) == FlipResult::applied);
+        require_valid(mesh, 1.0);
+        CHECK(sorted_tets(mesh) == before);
+        ++done;
+        break;
+      }
+    }
+    CHECK(done == 20);
+  }
+
+  TEST_CASE_TEMPLATE("reconnection under each criterion keeps the mesh valid - quality flips never lower the worst tet", T,
+                     METRICA_POLICY_COMBINATIONS) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    using C = typename T::Concurrency;
+    Mesh mesh = jittered_box(3, 0.35, 2);
+    std::vector<Sym6> f(mesh.vertex_capacity());
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) f[v] = evaluate(AnalyticMetric::polar1, mesh.point(v));
+    assign_metric(mesh, f);
+    const auto areas = surface_areas(mesh);
+    const double q0 = worst_quality<S>(mesh);
+    const auto st = reconnect<S, P, C, MinQuality>(mesh);
+    CHECK(st.applied > 0);
+    require_valid(mesh, 1.0);
+    CHECK(worst_quality<S>(mesh) >= q0);
+    reconnect<S, P, C, MetricDelaunay>(mesh);
+    require_valid(mesh, 1.0);
+    reconnect<S, P, C, MaxMinEdgeWeight>(mesh);
+    require_valid(mesh, 1.0);
+    // Boundary 2-2 flips moved boundary edges inside their faces only.
+    const auto after = surface_areas(mesh);
+    REQUIRE(after.size() == areas.size());
+    for (const auto& [id, area] : areas) CHECK(after.at(id) == doctest::Approx(area).epsilon(1e-12));
+  }
+
+  TEST_CASE_TEMPLATE("boundary 2-2 flips swap diagonals inside one surface", T, METRICA_POLICY_COMBINATIONS) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    Mesh mesh = make_box({.nx = 2, .ny = 2, .nz = 2});
+    set_uniform_metric(mesh, 0.5);
+    const auto areas = surface_areas(mesh);
+    FlipScratch s;
+    FlipOptions fo;
+    int flipped = 0;
+    for (const auto& [a, b] : unique_edges(mesh)) {
+      if (!mesh.vertex_alive(a) || mesh.is_ridge(a, b)) continue;
+      vertex_ball(mesh, a, s.ball);
+      if (!edge_shell(mesh, a, b, s.ball, s.shell) || s.shell.closed) continue;
+      if (remove_edge<S, P, AlwaysFlip>(mesh, a, b, s, fo) == FlipResult::applied) {
+        ++flipped;
+        require_valid(mesh, 1.0);
+      }
+    }
+    CHECK(flipped > 0);
+    CHECK(surface_areas(mesh) == areas);
+  }
+
+  TEST_CASE_TEMPLATE("edge collapse keeps corners and ridges and the volume", T, METRICA_POLICY_COMBINATIONS) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    using C = typename T::Concurrency;
+    Mesh mesh = make_box({.nx = 4, .ny = 4, .nz = 4});
+    set_uniform_metric(mesh, 0.6);  // every edge is short
+    const std::size_t start = mesh.num_vertices();
+    for (int pass = 0; pass < 4; ++pass) {
+      collapse_edges<S, P, C>(mesh);
+      require_valid(mesh, 1.0);
+    }
+    CHECK(mesh.num_vertices() < start / 2);
+    int corners = 0;
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+      if (!mesh.vertex_alive(v)) continue;
+      const Point& p = mesh.point(v);
+      int on_faces = 0;
+      for (int k = 0; k < 3; ++k) on_faces += (p[k] == 0.0 || p[k] == 1.0);
+      switch (mesh.vertex_class(v)) {
+        case VertexClass::corner:
+          ++corners;
+          CHECK(on_faces == 3);
+          break;
+        case VertexClass::ridge: CHECK(on_faces == 2); break;
+        case VertexClass::surface: CHECK(on_faces == 1); break;
+        case VertexClass::interior: CHECK(on_faces == 0); break;
+      }
+    }
+    CHECK(corners == 8);
+  }
+
+  TEST_CASE_TEMPLATE("smoothing never lowers the worst quality of a ball and never inverts", T, METRICA_POLICY_COMBINATIONS) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    Mesh mesh = jittered_box(3, 0.35, 3);
+    set_uniform_metric(mesh, 0.3);
+    SmoothScratch s;
+    SmoothOptions so;
+    TetList ball;
+    int moved = 0;
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+      vertex_ball(mesh, v, ball);
+      double before = 1.0, after = 1.0;
+      for (TetId t : ball) before = std::min(before, S::mean_ratio(mesh, mesh.tet(t)));
+      const Point x = mesh.point(v);
+      const auto r = smooth_vertex<S, P>(mesh, v, s, so);
+      for (TetId t : ball) after = std::min(after, S::mean_ratio(mesh, mesh.tet(t)));
+      if (r == FlipResult::applied) {
+        ++moved;
+        CHECK(after > before);
+      } else {
+        CHECK(mesh.point(v) == x);
+      }
+      if (mesh.vertex_class(v) == VertexClass::corner) CHECK(mesh.point(v) == x);
+    }
+    CHECK(moved > 0);
+    require_valid(mesh, 1.0);
+  }
+}
+
+TEST_SUITE("property") {
+  TEST_CASE("adapting a box to a constant isotropic metric puts 95% of the edges in range") {
+    for (auto space : {SpaceKind::log_euclidean, SpaceKind::isotropic}) {
+      CAPTURE(to_string(space));
+      Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+      set_uniform_metric(mesh, 0.12);
+      AdaptOptions o;
+      const auto report = adapt(mesh, o, space, PrecisionKind::filtered);
+      require_valid(mesh, 1.0);
+      CHECK(report.cycles.back().conformity >= 0.95);
+      CHECK(report.cycles.back().min_quality >= 0.3);
+    }
+  }
+}
+
+TEST_SUITE("regression") {
+  TEST_CASE("UGAWG linear at a quarter of its complexity: conformity and quality bounds") {
+    const auto data = io::read_meshb(test::ugawg("cube-linear-00.meshb"));
+    Mesh mesh = build_mesh(data);
+    // Sizes x 2.5: the complexity falls by 2.5^3 (about 300 vertices).
+    const MetricFunction metric = [](const Point& p) {
+      Sym6 m = evaluate(AnalyticMetric::linear, p);
+      for (double& x : m) x /= 2.5 * 2.5;
+      return m;
+    };
+    std::vector<Sym6> f(mesh.vertex_capacity());
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) f[v] = metric(mesh.point(v));
+    assign_metric(mesh, f);
+    AdaptOptions o;
+    o.metric = &metric;
+    const auto report = adapt(mesh, o, SpaceKind::log_euclidean, PrecisionKind::filtered);
+    require_valid(mesh, 1.0);
+    const auto& last = report.cycles.back();
+    INFO("vertices " << last.vertices << " conformity " << last.conformity << " min Q " << last.min_quality);
+    CHECK(last.conformity >= 0.85);
+    CHECK(last.min_quality >= 0.3);
+    CHECK(mesh.num_vertices() > 150);
   }
 }
 

@@ -8,6 +8,7 @@ int run_check(const std::vector<std::string>& args);
 int run_convert(const std::vector<std::string>& args);
 int run_metric(const std::vector<std::string>& args);
 int run_quality(const std::vector<std::string>& args);
+int run_adapt(const std::vector<std::string>& args);
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> list{
@@ -16,6 +17,7 @@ const std::vector<Command>& commands() {
       {"check", "read a mesh and check every invariant (exit 1 with a report if invalid)", run_check},
       {"convert", "convert between .mesh, .meshb, .vtu, .su2 (and .sol <-> .solb)", run_convert},
       {"metric", "write a metric field: analytic, multiscale from a field, scaled, bounded, graded", run_metric},
+      {"adapt", "adapt a mesh to a metric (file or analytic): collapse, split, flips, smoothing", run_adapt},
       {"quality", "print the UGAWG quality report of a mesh in a metric (--csv for a table)", run_quality},
   };
   return list;

@@ -118,6 +118,13 @@ void Mesh::split_ridge(VertexId a, VertexId b, VertexId m) {
   }
 }
 
+void Mesh::merge_edge_tags(VertexId from, VertexId to, std::span<const VertexId> neighbours) {
+  for (auto* tags : {&ridges_, &feature_edges_}) {
+    for (VertexId x : neighbours)
+      if (tags->erase(edge_key(from, x)) && x != to) tags->insert(edge_key(to, x));
+  }
+}
+
 BoundingBox bounding_box(const Mesh& mesh) {
   BoundingBox b{Point::Constant(std::numeric_limits<double>::max()), Point::Constant(-std::numeric_limits<double>::max())};
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {

@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <unordered_set>
 #include <vector>
 
@@ -102,6 +103,10 @@ class Mesh {
   // Replaces ridge (and feature) edge ab by am and mb when an operator
   // puts vertex m on it, keeping the classification up to date.
   void split_ridge(VertexId a, VertexId b, VertexId m);
+  // When an edge collapse merges vertex `from` into `to`: ridge and feature
+  // edges (from, x) become (to, x) and (from, to) disappears. `neighbours`
+  // are the vertices joined to `from` by an edge.
+  void merge_edge_tags(VertexId from, VertexId to, std::span<const VertexId> neighbours);
 
   // Removes dead entities and renumbers vertices along a Morton curve and
   // tets by their vertices, so that neighbours in space are neighbours in

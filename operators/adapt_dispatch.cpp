@@ -1,0 +1,33 @@
+#include <metrica/error.hpp>
+#include <metrica/operators/adapt_dispatch.hpp>
+
+#include <fmt/core.h>
+
+namespace metrica {
+
+PrecisionKind precision_from_name(std::string_view name) {
+  if (name == "fast") return PrecisionKind::fast;
+  if (name == "filtered") return PrecisionKind::filtered;
+  if (name == "exact") return PrecisionKind::exact;
+  throw InputError(fmt::format("unknown precision '{}' (fast, filtered, exact)", name));
+}
+
+const char* to_string(PrecisionKind p) {
+  switch (p) {
+    case PrecisionKind::fast: return "fast";
+    case PrecisionKind::filtered: return "filtered";
+    case PrecisionKind::exact: return "exact";
+  }
+  return "?";
+}
+
+AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, SpaceKind space, PrecisionKind precision) {
+  switch (space) {
+    case SpaceKind::isotropic: return adapt_isotropic(mesh, options, precision);
+    case SpaceKind::anisotropic: return adapt_anisotropic(mesh, options, precision);
+    case SpaceKind::log_euclidean: return adapt_log_euclidean(mesh, options, precision);
+  }
+  throw InputError("unknown space");
+}
+
+}  // namespace metrica

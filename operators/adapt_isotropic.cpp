@@ -1,0 +1,16 @@
+// The Isotropic instantiations of the pipeline (one file per space, so that a
+// build on several cores compiles them side by side).
+#include <metrica/operators/adapt_dispatch.hpp>
+
+namespace metrica {
+
+AdaptReport adapt_isotropic(Mesh& mesh, const AdaptOptions& options, PrecisionKind precision) {
+  switch (precision) {
+    case PrecisionKind::fast: return adapt<Isotropic, Fast, Serial>(mesh, options);
+    case PrecisionKind::filtered: return adapt<Isotropic, Filtered, Serial>(mesh, options);
+    case PrecisionKind::exact: return adapt<Isotropic, Exact, Serial>(mesh, options);
+  }
+  return {};
+}
+
+}  // namespace metrica

@@ -1,0 +1,213 @@
+// The reconnection flips of the seed (section 3.1), as replacements of a
+// small cavity (cavity.hpp):
+//
+//   2-3  the face cde shared by tets abc-side a and b becomes the edge ab
+//        with three tets around it;
+//   3-2, 4-4, n -> 2n-4  (edge removal) the shell of an inner edge ab with
+//        ring v0..v(n-1) is replaced by a triangulation of the ring, each
+//        triangle joined to a and to b; n = 3 is the 3-2 flip, n = 4 the
+//        4-4 flip. The triangulations tried are the n fans of the ring
+//        (for n <= 5 these are all of them);
+//   2-2  on the boundary: a boundary edge ab whose two boundary faces lie
+//        on one surface id (not a ridge) and whose shell has two tets
+//        around ring vertex x is swapped for the edge v0 v2 (more generally
+//        an open shell of n tets, ring v0..vn, becomes the fans of the
+//        polygon v0..vn). The boundary faces must stay in their plane
+//        (normal deviation below a tolerance) so the volume is conserved.
+//
+// Each function is find (read connectivity), decide (orientation with the
+// Precision, then the Criterion) and, when it says yes, apply. Locks are
+// taken by the caller (the reconnect pass) over the cavity's vertices.
+#pragma once
+
+#include <metrica/geometry.hpp>
+#include <metrica/operators/cavity.hpp>
+#include <metrica/operators/flip_criterion.hpp>
+#include <metrica/operators/shell.hpp>
+#include <metrica/predicates/precision.hpp>
+
+namespace metrica {
+
+struct FlipOptions {
+  // Largest shell an edge removal tries (the ring's fans grow as n).
+  int max_shell = 7;
+  // Boundary faces of a 2-2 flip: largest angle between old and new
+  // normals, as 1 - cos (flat surfaces: round-off only).
+  double max_normal_deviation = 1e-9;
+};
+
+// The ring of edge ab from its shell: tet k of the shell is (a, b, v_k,
+// v_{k+1}); closed shells have as many ring vertices as tets, open ones
+// one more. Returns the orientation sign of (a, b, v0, v1).
+inline int edge_ring(const Mesh& mesh, VertexId a, VertexId b, const Shell& shell, VertexList& ring) {
+  ring.clear();
+  auto others = [&](TetId t) {
+    std::array<VertexId, 2> o{kNoId, kNoId};
+    int k = 0;
+    for (VertexId w : mesh.tet(t))
+      if (w != a && w != b) o[k++] = w;
+    return o;
+  };
+  const std::size_t n = shell.tets.size();
+  const auto o0 = others(shell.tets[0]);
+  if (n == 1) {
+    ring.push_back(o0[0]);
+    ring.push_back(o0[1]);
+  } else {
+    const auto o1 = others(shell.tets[1]);
+    const VertexId shared = (o0[0] == o1[0] || o0[0] == o1[1]) ? o0[0] : o0[1];
+    ring.push_back(shared == o0[0] ? o0[1] : o0[0]);
+    ring.push_back(shared);
+    for (std::size_t k = 1; k < n; ++k) {
+      const auto o = others(shell.tets[k]);
+      const VertexId next = (o[0] == ring.back()) ? o[1] : o[0];
+      if (k + 1 < n || !shell.closed) ring.push_back(next);
+    }
+  }
+  return permutation_sign(mesh.tet(shell.tets[0]), a, b, ring[0], ring[1]);
+}
+
+// The tets of the fan of polygon `ring` from vertex k, each triangle
+// joined to a and b, oriented positively given the ring's sign.
+inline void fan_tets(const VertexList& ring, std::size_t k, VertexId a, VertexId b, int sign, NewTets& out) {
+  out.clear();
+  const std::size_t m = ring.size();
+  for (std::size_t i = 1; i + 1 < m; ++i) {
+    const VertexId p = ring[k], q = ring[(k + i) % m], r = ring[(k + i + 1) % m];
+    if (sign > 0) {
+      out.push_back({p, q, r, b});
+      out.push_back({q, p, r, a});
+    } else {
+      out.push_back({p, q, r, a});
+      out.push_back({q, p, r, b});
+    }
+  }
+}
+
+template <Precision P>
+bool all_positive(const Mesh& mesh, std::span<const TetVertices> tets) {
+  for (const auto& t : tets)
+    if (P::orient3d(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])) <= 0) return false;
+  return true;
+}
+
+inline Eigen::Vector3d face_normal(const Mesh& mesh, VertexId p, VertexId q, VertexId r) {
+  return (mesh.point(q) - mesh.point(p)).cross(mesh.point(r) - mesh.point(p));
+}
+
+// 1 - |cos| of the angle between the lines of two normals: 0 when the
+// faces are parallel, whichever way they are oriented; 1 for a flat face.
+inline double normal_deviation(const Eigen::Vector3d& n1, const Eigen::Vector3d& n2) {
+  const double d = n1.norm() * n2.norm();
+  if (d <= 0.0) return 1.0;
+  return 1.0 - std::abs(n1.dot(n2)) / d;
+}
+
+inline void tet_vertices_of(const Mesh& mesh, std::span<const TetId> ids, NewTets& out) {
+  out.clear();
+  for (TetId t : ids) out.push_back(mesh.tet(t));
+}
+
+// What a flip attempt found, for the pass's statistics.
+enum class FlipResult { applied, rejected, not_applicable };
+
+// Scratch space of one worker, reused across calls (no allocation).
+struct FlipScratch {
+  TetList ball;
+  Shell shell;
+  VertexList ring;
+  NewTets old_tets, candidate, best;
+  CavityPlan plan;
+  TetList created;
+};
+
+// Edge removal of ab (3-2, 4-4, n -> 2n-4) or, on the boundary, the 2-2
+// flip. The shell is in s.shell (edge_shell), the vertices locked.
+template <MetricSpace S, Precision P, class Criterion>
+FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const FlipOptions& o) {
+  const Shell& shell = s.shell;
+  const std::size_t n = shell.tets.size();
+  const int ref = mesh.tet_ref(shell.tets[0]);
+  for (TetId t : shell.tets)
+    if (mesh.tet_ref(t) != ref) return FlipResult::not_applicable;
+  SurfaceId surface = 0;
+  if (shell.closed) {
+    if (n < 3 || static_cast<int>(n) > o.max_shell) return FlipResult::not_applicable;
+  } else {
+    if (n < 2 || static_cast<int>(n) + 1 > o.max_shell || mesh.is_ridge(a, b)) return FlipResult::not_applicable;
+    // The two boundary faces through ab, on one surface.
+    SurfaceId ids[2] = {0, 0};
+    int k = 0;
+    for (TetId t : {shell.tets.front(), shell.tets.back()})
+      for (int f = 0; f < 4; ++f) {
+        const VertexId opp = mesh.tet(t)[f];
+        if (opp == a || opp == b || mesh.neighbour(t, f).valid()) continue;
+        if (k < 2) ids[k] = mesh.surface_id(t, f);
+        ++k;
+      }
+    if (k != 2 || ids[0] != ids[1] || ids[0] <= 0) return FlipResult::not_applicable;
+    surface = ids[0];
+  }
+  const int sign = edge_ring(mesh, a, b, shell, s.ring);
+  tet_vertices_of(mesh, view(shell.tets), s.old_tets);
+  bool found = false;
+  for (std::size_t k = 0; k < s.ring.size(); ++k) {
+    fan_tets(s.ring, k, a, b, sign, s.candidate);
+    if (!all_positive<P>(mesh, view(s.candidate))) continue;
+    if (!shell.closed) {
+      // The new boundary faces (on the closing edge v_n v_0) must lie in
+      // the plane of the old ones.
+      const Eigen::Vector3d n_old = face_normal(mesh, a, b, s.ring.front());
+      bool flat = normal_deviation(n_old, face_normal(mesh, a, b, s.ring.back())) <= o.max_normal_deviation;
+      for (const auto& t : s.candidate)
+        for (int f = 0; f < 4 && flat; ++f) {
+          const VertexId opposite = t[f];
+          const bool closing = local_index(t, s.ring.front()) >= 0 && local_index(t, s.ring.back()) >= 0 &&
+                               opposite != s.ring.front() && opposite != s.ring.back() && opposite != a &&
+                               opposite != b;
+          if (!closing) continue;
+          const auto fv = face_vertices(t, f);
+          flat = normal_deviation(face_normal(mesh, fv[0], fv[1], fv[2]), n_old) <= o.max_normal_deviation;
+        }
+      if (!flat) continue;
+    }
+    const NewTets& reference = found ? s.best : s.old_tets;
+    if (!Criterion::template prefers<S, P>(mesh, view(reference), view(s.candidate))) continue;
+    s.best = s.candidate;
+    found = true;
+  }
+  if (!found) return FlipResult::rejected;
+  if (!plan_cavity(mesh, view(shell.tets), view(s.best), s.plan, kNoId, kNoId, surface)) return FlipResult::rejected;
+  apply_cavity(mesh, view(shell.tets), view(s.best), s.plan, ref, s.created);
+  return FlipResult::applied;
+}
+
+// The 2-3 flip of the inner face `face` of tet t: the two tets sharing it
+// become three around the edge joining their apexes.
+template <MetricSpace S, Precision P, class Criterion>
+FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s) {
+  const FaceRef nb = mesh.neighbour(t, face);
+  if (!nb.valid() || mesh.tet_ref(nb.tet()) != mesh.tet_ref(t)) return FlipResult::not_applicable;
+  const TetVertices tv = mesh.tet(t);
+  const VertexId a = tv[face];
+  const VertexId b = mesh.tet(nb.tet())[nb.face()];
+  const auto f = face_vertices(tv, face);  // outward from t, so a sees it negatively
+  // The face's normal points from a to b, so (p, q, a, b) is positive for
+  // each of its edges pq taken in the face's order.
+  s.candidate.clear();
+  for (int i = 0; i < 3; ++i) {
+    const VertexId p = f[i], q = f[(i + 1) % 3];
+    s.candidate.push_back({p, q, a, b});
+  }
+  if (!all_positive<P>(mesh, view(s.candidate))) return FlipResult::rejected;
+  const std::array<TetId, 2> old{t, nb.tet()};
+  s.old_tets.clear();
+  s.old_tets.push_back(mesh.tet(t));
+  s.old_tets.push_back(mesh.tet(nb.tet()));
+  if (!Criterion::template prefers<S, P>(mesh, view(s.old_tets), view(s.candidate))) return FlipResult::rejected;
+  if (!plan_cavity(mesh, old, view(s.candidate), s.plan)) return FlipResult::rejected;
+  apply_cavity(mesh, old, view(s.candidate), s.plan, mesh.tet_ref(t), s.created);
+  return FlipResult::applied;
+}
+
+}  // namespace metrica

@@ -1,0 +1,196 @@
+// Vertex smoothing (seed, section 3.4): a vertex of a poor tet moves to the
+// trial position that maximises the smallest mean ratio of its ball; it
+// stays where it is unless that minimum grows, and never inverts a tet.
+//
+// Trial positions, by class:
+//   interior  along the directions to the centroids of the ball's outer
+//             faces (the seed's rule), to the mean of its neighbours, and to
+//             the "optimal point": the mean of the apexes of the regular
+//             tets erected, in each tet's metric, on its outer faces;
+//   surface   (only where its boundary faces are coplanar, so the surface
+//             and the volume stay what they were) towards the midpoints of
+//             the outer edges of its boundary faces, and the optimal point
+//             projected into the plane;
+//   ridge     (only on a straight ridge) towards its two ridge neighbours;
+//   corner / required: fixed.
+#pragma once
+
+#include <metrica/operators/flips.hpp>
+#include <metrica/operators/metric_source.hpp>
+#include <metrica/operators/operator_stats.hpp>
+#include <metrica/policies/concurrency.hpp>
+#include <metrica/timer.hpp>
+
+#include <vector>
+
+namespace metrica {
+
+struct SmoothOptions {
+  // Vertices of tets with mean ratio below this are smoothed.
+  double below = 0.1;
+  // Boundary faces (and ridge edges) around a vertex count as flat when
+  // 1 - |cos| between them is below this.
+  double flat_tolerance = 1e-12;
+  // When set, a moved vertex takes this metric at its new position.
+  const MetricFunction* metric = nullptr;
+};
+
+struct SmoothScratch {
+  TetList ball;
+  VertexList neighbours;
+  boost::container::small_vector<Point, 96> trials;
+};
+
+namespace detail {
+// The apex of the regular tet on face (p, q, r) (oriented so that the
+// apex side is the positive one) in metric m: the face's centroid plus the
+// height sqrt(2/3) l along the unit normal, l the face's mean edge length,
+// all measured after mapping by L (M = L^T L).
+template <MetricSpace S>
+Point ideal_apex(const Point& p, const Point& q, const Point& r, const Sym6& m) {
+  const Matrix3 l = S::factor(m);
+  const Point pm = l * p, qm = l * q, rm = l * r;
+  const Eigen::Vector3d n = (qm - pm).cross(rm - pm);
+  const double len = ((qm - pm).norm() + (rm - qm).norm() + (pm - rm).norm()) / 3.0;
+  const double nn = n.norm();
+  if (nn <= 0.0) return (p + q + r) / 3.0;
+  const Point apex = (pm + qm + rm) / 3.0 + std::sqrt(2.0 / 3.0) * len * n / nn;
+  return l.partialPivLu().solve(apex);
+}
+}  // namespace detail
+
+// Smooths vertex v (its ball's vertices locked by the caller).
+template <MetricSpace S, Precision P>
+FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o) {
+  const VertexClass cls = mesh.vertex_class(v);
+  if (cls == VertexClass::corner || mesh.is_required(v)) return FlipResult::not_applicable;
+  vertex_ball(mesh, v, s.ball);
+  if (s.ball.empty()) return FlipResult::not_applicable;
+  const Point x = mesh.point(v);
+  s.trials.clear();
+  // The optimal point: face (t[kFaceVertex[iv]]) is oriented outwards, so
+  // the apex lies on its negative side; swap two vertices.
+  Point optimal = Point::Zero();
+  for (TetId t : s.ball) {
+    const auto& tv = mesh.tet(t);
+    const auto f = face_vertices(tv, local_index(tv, v));
+    optimal += detail::ideal_apex<S>(mesh.point(f[0]), mesh.point(f[2]), mesh.point(f[1]), S::tet_metric(mesh, tv));
+  }
+  optimal /= static_cast<double>(s.ball.size());
+  if (cls == VertexClass::interior) {
+    for (double w : {1.0, 0.5, 0.25}) s.trials.push_back(x + w * (optimal - x));
+    Point mean = Point::Zero();
+    vertex_neighbours(mesh, s.ball, v, s.neighbours);
+    for (VertexId u : s.neighbours) mean += mesh.point(u);
+    mean /= static_cast<double>(s.neighbours.size());
+    s.trials.push_back(x + 0.5 * (mean - x));
+    for (TetId t : s.ball) {
+      const auto& tv = mesh.tet(t);
+      const auto f = face_vertices(tv, local_index(tv, v));
+      const Point c = (mesh.point(f[0]) + mesh.point(f[1]) + mesh.point(f[2])) / 3.0;
+      s.trials.push_back(x + 0.25 * (c - x));
+    }
+  } else if (cls == VertexClass::surface) {
+    // Its boundary faces, which must be coplanar; trials towards the
+    // midpoints of their edges opposite v and the projected optimal point.
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (TetId t : s.ball) {
+      const auto& tv = mesh.tet(t);
+      for (int f = 0; f < 4; ++f) {
+        if (tv[f] == v || mesh.neighbour(t, f).valid()) continue;
+        const auto fv = face_vertices(tv, f);
+        const Eigen::Vector3d n = face_normal(mesh, fv[0], fv[1], fv[2]);
+        if (normal.squaredNorm() == 0.0) normal = n;
+        else if (normal_deviation(normal, n) > o.flat_tolerance) return FlipResult::not_applicable;
+        for (int k = 0; k < 3; ++k) {
+          if (fv[k] == v) {
+            const Point mid = 0.5 * (mesh.point(fv[(k + 1) % 3]) + mesh.point(fv[(k + 2) % 3]));
+            for (double w : {0.5, 0.25}) s.trials.push_back(x + w * (mid - x));
+          }
+        }
+      }
+    }
+    if (normal.squaredNorm() == 0.0) return FlipResult::not_applicable;
+    normal.normalize();
+    const Point projected = optimal - (optimal - x).dot(normal) * normal;
+    for (double w : {1.0, 0.5, 0.25}) s.trials.push_back(x + w * (projected - x));
+  } else {  // ridge: a straight one
+    VertexId ends[2] = {kNoId, kNoId};
+    int k = 0;
+    vertex_neighbours(mesh, s.ball, v, s.neighbours);
+    for (VertexId u : s.neighbours)
+      if (mesh.is_ridge(v, u)) {
+        if (k < 2) ends[k] = u;
+        ++k;
+      }
+    if (k != 2) return FlipResult::not_applicable;
+    const Eigen::Vector3d d1 = mesh.point(ends[0]) - x, d2 = mesh.point(ends[1]) - x;
+    if (normal_deviation(d1, d2) > o.flat_tolerance) return FlipResult::not_applicable;
+    for (const auto& d : {d1, d2})
+      for (double w : {0.5, 0.25, 0.1}) s.trials.push_back(x + w * d);
+  }
+  // Evaluate: the smallest mean ratio of the ball at each trial position.
+  auto min_quality_at = [&](const Point& p) {
+    double q = std::numeric_limits<double>::infinity();
+    for (TetId t : s.ball) {
+      const auto& tv = mesh.tet(t);
+      TetPoints pts = detail::tet_points(mesh, tv);
+      pts[local_index(tv, v)] = p;
+      if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return -1.0;
+      q = std::min(q, S::mean_ratio(mesh, tv, pts));
+    }
+    return q;
+  };
+  const double q_old = min_quality_at(x);
+  double q_best = q_old;
+  Point best = x;
+  for (const Point& p : s.trials) {
+    const double q = min_quality_at(p);
+    if (q > q_best) {
+      q_best = q;
+      best = p;
+    }
+  }
+  if (!improves_min_quality(q_old, q_best)) return FlipResult::rejected;
+  mesh.point(v) = best;
+  if (o.metric != nullptr && *o.metric) {
+    const Sym6 m = (*o.metric)(best);
+    mesh.set_metric(v, m, spd_log(m));
+  }
+  return FlipResult::applied;
+}
+
+// The smoothing pass over the vertices of tets below o.below.
+template <MetricSpace S, Precision P, Concurrency C>
+OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
+  Stopwatch clock;
+  OperatorStats stats;
+  std::vector<VertexId> todo;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+    if (mesh.tet_alive(t) && S::mean_ratio(mesh, mesh.tet(t)) < o.below)
+      for (VertexId v : mesh.tet(t)) todo.push_back(v);
+  std::sort(todo.begin(), todo.end());
+  todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+  SmoothScratch s;
+  VertexList cavity;
+  typename C::Locks locks;
+  for (VertexId v : todo) {
+    if (!mesh.vertex_alive(v)) continue;
+    vertex_ball(mesh, v, s.ball);
+    vertex_neighbours(mesh, s.ball, v, cavity);
+    cavity.push_back(v);
+    if (!locks.acquire(view(cavity))) {
+      ++stats.conflicts;
+      continue;
+    }
+    ++stats.tried;
+    const FlipResult r = smooth_vertex<S, P>(mesh, v, s, o);
+    locks.release();
+    if (r == FlipResult::applied) ++stats.applied;
+    else if (r == FlipResult::rejected) ++stats.rejected;
+  }
+  stats.seconds = clock.seconds();
+  return stats;
+}
+
+}  // namespace metrica
