@@ -67,6 +67,7 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
   vertex_ball(mesh, v, s.ball);
   if (s.ball.empty()) return FlipResult::not_applicable;
   const Point x = mesh.point(v);
+  vertex_neighbours(mesh, s.ball, v, s.neighbours);
   s.trials.clear();
   // The optimal point: face (t[kFaceVertex[iv]]) is oriented outwards, so
   // the apex lies on its negative side; swap two vertices.
@@ -80,7 +81,6 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
   if (cls == VertexClass::interior) {
     for (double w : {1.0, 0.5, 0.25}) s.trials.push_back(x + w * (optimal - x));
     Point mean = Point::Zero();
-    vertex_neighbours(mesh, s.ball, v, s.neighbours);
     for (VertexId u : s.neighbours) mean += mesh.point(u);
     mean /= static_cast<double>(s.neighbours.size());
     s.trials.push_back(x + 0.5 * (mean - x));
@@ -117,7 +117,6 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
   } else {  // ridge: a straight one
     VertexId ends[2] = {kNoId, kNoId};
     int k = 0;
-    vertex_neighbours(mesh, s.ball, v, s.neighbours);
     for (VertexId u : s.neighbours)
       if (mesh.is_ridge(v, u)) {
         if (k < 2) ends[k] = u;
@@ -129,7 +128,19 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
     for (const auto& d : {d1, d2})
       for (double w : {0.5, 0.25, 0.1}) s.trials.push_back(x + w * d);
   }
-  // Evaluate: the smallest mean ratio of the ball at each trial position.
+  // Evaluate: the smallest mean ratio of the ball at each trial position,
+  // and how many of v's edges leave [1/sqrt2, sqrt2] (a move for quality
+  // must not cost conformity: without this rule, smoothing every vertex
+  // for quality took 3 points of conformity on polar-1).
+  const auto& mv = S::vertex_metric(mesh, v);
+  auto out_of_range = [&](const Point& p) {
+    int n = 0;
+    for (VertexId u : s.neighbours) {
+      const double l = ugawg_length(mesh.point(u) - p, mv, S::vertex_metric(mesh, u));
+      n += (l < 1.0 / std::sqrt(2.0) || l > std::sqrt(2.0));
+    }
+    return n;
+  };
   auto min_quality_at = [&](const Point& p) {
     double q = std::numeric_limits<double>::infinity();
     for (TetId t : s.ball) {
@@ -142,11 +153,12 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
     return q;
   };
   const double q_old = min_quality_at(x);
+  const int bad_old = out_of_range(x);
   double q_best = q_old;
   Point best = x;
   for (const Point& p : s.trials) {
     const double q = min_quality_at(p);
-    if (q > q_best) {
+    if (q > q_best && out_of_range(p) <= bad_old) {
       q_best = q;
       best = p;
     }
