@@ -16,12 +16,12 @@
 // two interior ends merge at the edge's metric midpoint instead.
 #pragma once
 
-#include <metrica/mesh_edges.hpp>
 #include <metrica/operators/cavity.hpp>
+#include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/flips.hpp>
 #include <metrica/operators/metric_source.hpp>
-#include <metrica/operators/refine_edges.hpp>
 #include <metrica/operators/operator_stats.hpp>
+#include <metrica/operators/refine_edges.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
@@ -152,18 +152,7 @@ template <MetricSpace S, Precision P, Concurrency C>
 OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  struct Candidate {
-    double length;
-    VertexId a, b;
-  };
-  std::vector<Candidate> todo;
-  for (const auto& [a, b] : unique_edges(mesh)) {
-    const double l = S::edge_length(mesh, a, b);
-    if (l < o.min_length) todo.push_back({l, a, b});
-  }
-  std::sort(todo.begin(), todo.end(), [](const Candidate& x, const Candidate& y) {
-    return x.length < y.length || (x.length == y.length && (x.a < y.a || (x.a == y.a && x.b < y.b)));
-  });
+  const auto todo = edges_beyond<S>(mesh, o.min_length, EdgeOrder::shortest_first);
   CollapseScratch s;
   typename C::Locks locks;
   VertexList cavity;

@@ -41,13 +41,7 @@ struct FlipOptions {
 // one more. Returns the orientation sign of (a, b, v0, v1).
 inline int edge_ring(const Mesh& mesh, VertexId a, VertexId b, const Shell& shell, VertexList& ring) {
   ring.clear();
-  auto others = [&](TetId t) {
-    std::array<VertexId, 2> o{kNoId, kNoId};
-    int k = 0;
-    for (VertexId w : mesh.tet(t))
-      if (w != a && w != b) o[k++] = w;
-    return o;
-  };
+  auto others = [&](TetId t) { return edge_opposite(mesh.tet(t), a, b); };
   const std::size_t n = shell.tets.size();
   const auto o0 = others(shell.tets[0]);
   if (n == 1) {

@@ -6,7 +6,7 @@
 // shell, the unit of work a thread owns under Speculative.
 #pragma once
 
-#include <metrica/mesh_edges.hpp>
+#include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operator_stats.hpp>
 #include <metrica/operators/split_edge.hpp>
@@ -40,18 +40,7 @@ template <MetricSpace S, Precision P, Concurrency C>
 OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  struct Candidate {
-    double length;
-    VertexId a, b;
-  };
-  std::vector<Candidate> todo;
-  for (const auto& [a, b] : unique_edges(mesh)) {
-    const double l = S::edge_length(mesh, a, b);
-    if (l > o.max_length) todo.push_back({l, a, b});
-  }
-  std::sort(todo.begin(), todo.end(), [](const Candidate& x, const Candidate& y) {
-    return x.length > y.length || (x.length == y.length && (x.a < y.a || (x.a == y.a && x.b < y.b)));
-  });
+  const auto todo = edges_beyond<S>(mesh, o.max_length, EdgeOrder::longest_first);
   std::vector<std::uint8_t> touched(mesh.vertex_capacity(), 0);
   TetList ball;
   Shell shell;

@@ -51,6 +51,15 @@ inline void vertex_neighbours(const Mesh& mesh, const TetList& ball, VertexId v,
 // The shell of edge ab: the tets containing both, in rotation order about
 // the edge; `closed` is false when the edge is on the boundary (the shell
 // then starts and ends at boundary faces). False when no tet holds ab.
+// The two vertices of tet t other than a and b.
+inline std::array<VertexId, 2> edge_opposite(const TetVertices& t, VertexId a, VertexId b) {
+  std::array<VertexId, 2> o{kNoId, kNoId};
+  int k = 0;
+  for (VertexId w : t)
+    if (w != a && w != b) o[k++] = w;
+  return o;
+}
+
 struct Shell {
   TetList tets;
   bool closed = true;
@@ -78,13 +87,7 @@ inline bool edge_shell(const Mesh& mesh, VertexId a, VertexId b, const TetList& 
     return kNoId;
   };
   // The vertex kept in the face we cross: the one shared with the next tet.
-  auto others = [&](TetId t) {
-    std::array<VertexId, 2> o{kNoId, kNoId};
-    int k = 0;
-    for (VertexId w : mesh.tet(t))
-      if (w != a && w != b) o[k++] = w;
-    return o;
-  };
+  auto others = [&](TetId t) { return edge_opposite(mesh.tet(t), a, b); };
   shell.closed = true;
   shell.tets.push_back(start);
   VertexId kept = others(start)[0];

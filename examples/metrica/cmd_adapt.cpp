@@ -138,12 +138,16 @@ int run_adapt(const std::vector<std::string>& args) {
                  count_text(report.collapse.applied), count_text(report.refine.applied),
                  count_text(report.reconnect.applied), count_text(report.smooth.applied));
   }
+  // Flat boundaries keep the volume to round-off; on a curved discrete
+  // boundary, collapses may flatten it within their normal-deviation bound
+  // (2 degrees), which changes the volume by a few 1e-6 (cube-cylinder).
   ValidateOptions vo;
   vo.expected_volume = volume;
-  vo.volume_tolerance = 1e-6;  // curved discrete boundaries: collapses may flatten them slightly
+  vo.volume_tolerance = 1e-4;
   const auto check = mesh.validate(vo);
   if (!check.ok())
     throw InputError(fmt::format("adapt: the adapted mesh is invalid; nothing written\n{}", check.to_string()));
+  log::info("volume {:.17g}, relative change {:.3g}", mesh.volume(), std::abs(mesh.volume() - volume) / volume);
   auto data = extract_mesh_data(mesh);
   data.version = loaded.data.version;
   io::write_mesh_file(output, data, o.format_version());

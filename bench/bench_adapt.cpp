@@ -1,0 +1,77 @@
+// End-to-end adaptation: output tets per second, the time share of each
+// operator, and peak memory per output tet. The UGAWG `linear` metric on
+// the unit cube with every size multiplied by `scale` (the tet count grows
+// as scale^-3: 1 gives ~50k tets, 0.37 ~1M, 0.22 ~5M), one adaptation from
+// the 4x4x4 cube, median of `runs`.
+//
+//   bench_adapt [scale=1] [runs=3] [space=log-euclidean] [precision=filtered]
+#include "bench_common.hpp"
+
+#include <metrica/box.hpp>
+#include <metrica/metrics/analytic_metric.hpp>
+#include <metrica/metrics/metric_field.hpp>
+#include <metrica/operators/adapt_dispatch.hpp>
+
+#include <fmt/core.h>
+
+#include <fstream>
+#include <string>
+#include <thread>
+
+using namespace metrica;
+
+namespace {
+// Peak resident memory of this process (VmHWM), in bytes.
+double peak_bytes() {
+  std::ifstream in("/proc/self/status");
+  std::string key;
+  while (in >> key) {
+    if (key == "VmHWM:") {
+      double kb = 0;
+      in >> kb;
+      return kb * 1024.0;
+    }
+    std::getline(in, key);
+  }
+  return 0.0;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  const double scale = argc > 1 ? std::stod(argv[1]) : 1.0;
+  const int runs = argc > 2 ? std::stoi(argv[2]) : 3;
+  const SpaceKind space = space_from_name(argc > 3 ? argv[3] : "log-euclidean");
+  const PrecisionKind precision = precision_from_name(argc > 4 ? argv[4] : "filtered");
+  const MetricFunction metric = [scale](const Point& p) {
+    Sym6 m = evaluate(AnalyticMetric::linear, p);
+    for (double& x : m) x /= scale * scale;
+    return m;
+  };
+  fmt::print("adapt: linear x {} on {} core(s), {} space, {} predicates, serial, median of {}\n", scale,
+             std::thread::hardware_concurrency(), to_string(space), to_string(precision), runs);
+  AdaptReport last;
+  std::size_t tets = 0;
+  const double t = bench::median_seconds(runs, [&] {
+    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+    std::vector<Sym6> f(mesh.vertex_capacity());
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) f[v] = metric(mesh.point(v));
+    assign_metric(mesh, f);
+    AdaptOptions o;
+    o.metric = &metric;
+    last = adapt(mesh, o, space, precision);
+    tets = mesh.num_tets();
+  });
+  const auto& c = last.cycles.back();
+  fmt::print("output: {} vertices, {} tets; {:.2f} s (median); {:.0f} output tets/s\n", c.vertices, tets, t,
+             static_cast<double>(tets) / t);
+  fmt::print("quality: {:.2f}% of edges in range, min Q {:.3f}\n", 100.0 * c.conformity, c.min_quality);
+  const double ops = last.collapse.seconds + last.refine.seconds + last.reconnect.seconds + last.smooth.seconds;
+  fmt::print("time share (last run, {:.2f} s): collapse {:.0f}%, split {:.0f}%, flips {:.0f}%, smoothing {:.0f}%, "
+             "other (compaction, statistics) {:.0f}%\n",
+             last.seconds, 100 * last.collapse.seconds / last.seconds, 100 * last.refine.seconds / last.seconds,
+             100 * last.reconnect.seconds / last.seconds, 100 * last.smooth.seconds / last.seconds,
+             100 * (last.seconds - ops) / last.seconds);
+  fmt::print("peak memory {:.1f} MB, {:.0f} bytes per output tet\n", peak_bytes() / 1e6,
+             peak_bytes() / static_cast<double>(tets));
+  return 0;
+}
