@@ -48,7 +48,7 @@ struct CollapseOptions {
 struct CollapseScratch {
   TetList ball, ball_b;
   Shell shell;
-  VertexList neighbours;
+  VertexList neighbours, neighbours_b;  // of a, of b
   NewTets old_tets, new_tets, dragged;
   CavityPlan plan;
   TetList created;
@@ -71,7 +71,8 @@ inline bool collapse_allowed(const Mesh& mesh, VertexId a, VertexId b, bool boun
 // when `moved` is given (both ends interior), moved to that point with
 // metric `moved_metric` (the merge at the edge's metric midpoint, which
 // makes shorter edges than either end). The caller holds the locks on the
-// vertices of ball(a) and ball(b) (s.ball, s.ball_b, s.neighbours filled).
+// vertices of ball(a) and ball(b) (s.ball, s.ball_b, s.neighbours and
+// s.neighbours_b filled).
 template <MetricSpace S, Precision P>
 FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s, const CollapseOptions& o,
                          const Point* moved = nullptr, const VertexMetric* moved_metric = nullptr) {
@@ -109,9 +110,13 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
       if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0) return FlipResult::rejected;
       q_new = std::min(q_new, S::mean_ratio(mesh, t, x));
     }
-  for (VertexId x : s.neighbours)
-    if (x != a && x != b && ugawg_length(mesh.point(x) - pb, mb, S::vertex_metric(mesh, x)) > o.max_new_length)
-      return FlipResult::rejected;
+  // New edges: b to a's neighbours; when b moves, all of b's edges too.
+  for (const auto* list : {&s.neighbours, &s.neighbours_b}) {
+    if (list == &s.neighbours_b && moved == nullptr) break;
+    for (VertexId x : *list)
+      if (x != a && x != b && ugawg_length(mesh.point(x) - pb, mb, S::vertex_metric(mesh, x)) > o.max_new_length)
+        return FlipResult::rejected;
+  }
   if (mesh.vertex_class(a) != VertexClass::interior) {
     // Boundary faces through a (and not b) keep their plane.
     for (TetId t : s.ball) {
@@ -181,9 +186,7 @@ OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
       vertex_ball(mesh, from, s.ball);
       vertex_ball(mesh, to, s.ball_b);
       vertex_neighbours(mesh, s.ball, from, s.neighbours);
-      for (TetId t : s.ball_b)
-        for (VertexId v : mesh.tet(t))
-          if (std::find(s.neighbours.begin(), s.neighbours.end(), v) == s.neighbours.end()) s.neighbours.push_back(v);
+      vertex_neighbours(mesh, s.ball_b, to, s.neighbours_b);
       if (attempt < 2) {
         r = collapse_edge<S, P>(mesh, from, to, s, o);
       } else {
