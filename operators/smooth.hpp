@@ -59,15 +59,21 @@ Point ideal_apex(const Point& p, const Point& q, const Point& r, const Sym6& m) 
 }
 }  // namespace detail
 
-// Smooths vertex v (its ball's vertices locked by the caller).
+// The find step of smoothing: v's ball and neighbours into the scratch
+// (the pass locks them, then smooth_vertex reads them).
+inline void find_smoothing_cavity(const Mesh& mesh, VertexId v, SmoothScratch& s) {
+  vertex_ball(mesh, v, s.ball);
+  vertex_neighbours(mesh, s.ball, v, s.neighbours);
+}
+
+// Smooths vertex v; s holds its cavity (find_smoothing_cavity), whose
+// vertices the caller has locked.
 template <MetricSpace S, Precision P>
 FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o) {
   const VertexClass cls = mesh.vertex_class(v);
   if (cls == VertexClass::corner || mesh.is_required(v)) return FlipResult::not_applicable;
-  vertex_ball(mesh, v, s.ball);
   if (s.ball.empty()) return FlipResult::not_applicable;
   const Point x = mesh.point(v);
-  vertex_neighbours(mesh, s.ball, v, s.neighbours);
   s.trials.clear();
   // The optimal point: face (t[kFaceVertex[iv]]) is oriented outwards, so
   // the apex lies on its negative side; swap two vertices.
@@ -184,14 +190,14 @@ OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
   std::sort(todo.begin(), todo.end());
   todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
   SmoothScratch s;
-  VertexList cavity;
   typename C::Locks locks;
   for (VertexId v : todo) {
     if (!mesh.vertex_alive(v)) continue;
-    vertex_ball(mesh, v, s.ball);
-    vertex_neighbours(mesh, s.ball, v, cavity);
-    cavity.push_back(v);
-    if (!locks.acquire(view(cavity))) {
+    find_smoothing_cavity(mesh, v, s);
+    s.neighbours.push_back(v);
+    const bool locked = locks.acquire(view(s.neighbours));
+    s.neighbours.pop_back();
+    if (!locked) {
       ++stats.conflicts;
       continue;
     }

@@ -263,6 +263,7 @@ TEST_SUITE("invariant") {
       double before = 1.0, after = 1.0;
       for (TetId t : ball) before = std::min(before, S::mean_ratio(mesh, mesh.tet(t)));
       const Point x = mesh.point(v);
+      find_smoothing_cavity(mesh, v, s);
       const auto r = smooth_vertex<S, P>(mesh, v, s, so);
       for (TetId t : ball) after = std::min(after, S::mean_ratio(mesh, mesh.tet(t)));
       if (r == FlipResult::applied) {
