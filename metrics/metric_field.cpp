@@ -92,6 +92,7 @@ void assign_metric(Mesh& mesh, const std::vector<Sym6>& metrics) {
                                  mesh.vertex_capacity()));
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
     if (mesh.vertex_alive(v)) mesh.set_metric(v, metrics[v], spd_log(metrics[v]));
+  mesh.clear_quality_cache();  // every tet's quality changed
 }
 
 }  // namespace metrica

@@ -129,6 +129,19 @@ struct LogEuclidean : detail::SpaceCommon<LogEuclidean> {
   }
 };
 
+// The mean ratio of live tet t in space S through the mesh's quality
+// cache (Mesh::cached_quality): computed once per version of the tet.
+// Valid while one Space measures the mesh (adapt clears the cache first).
+template <MetricSpace S>
+double cached_mean_ratio(const Mesh& mesh, TetId t) {
+  double q = mesh.cached_quality(t);
+  if (q == Mesh::kUnknownQuality) {
+    q = S::mean_ratio(mesh, mesh.tet(t));
+    mesh.cache_quality(t, q);
+  }
+  return q;
+}
+
 static_assert(MetricSpace<Isotropic>);
 static_assert(MetricSpace<Anisotropic>);
 static_assert(MetricSpace<LogEuclidean>);

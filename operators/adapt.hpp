@@ -59,8 +59,11 @@ struct AdaptReport {
   double seconds = 0;
 };
 
+// The share of edges in [1/sqrt 2, sqrt 2] and, when asked, the smallest
+// mean ratio (through the quality cache when `cached`: only while the
+// cache is known to hold S's values, as inside adapt).
 template <MetricSpace S>
-double conformity(const Mesh& mesh, double* min_quality = nullptr) {
+double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached = false) {
   std::size_t in = 0, all = 0;
   for (const auto& [a, b] : unique_edges(mesh)) {
     const double l = S::edge_length(mesh, a, b);
@@ -70,7 +73,8 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr) {
   if (min_quality != nullptr) {
     double q = 1.0;
     for (TetId t = 0; t < mesh.tet_capacity(); ++t)
-      if (mesh.tet_alive(t)) q = std::min(q, S::mean_ratio(mesh, mesh.tet(t)));
+      if (mesh.tet_alive(t))
+        q = std::min(q, cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t)));
     *min_quality = q;
   }
   return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
@@ -81,6 +85,7 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
   Stopwatch total;
   AdaptReport report;
   AdaptOptions o = options;
+  mesh.clear_quality_cache();  // the metric or the Space may have changed
   o.refine.metric = o.metric;
   o.smooth.metric = o.metric;
   o.collapse.metric = o.metric;
@@ -88,7 +93,7 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
     mesh.compact();
     c.vertices = mesh.num_vertices();
     c.tets = mesh.num_tets();
-    c.conformity = conformity<S>(mesh, &c.min_quality);
+    c.conformity = conformity<S>(mesh, &c.min_quality, true);
     c.seconds = clock.seconds();
     report.collapse += c.collapse;
     report.refine += c.refine;
@@ -97,31 +102,45 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
     report.cycles.push_back(c);
     if (o.on_cycle) o.on_cycle(c);
   };
+  // Each pass tries only what changed since the same pass last ran
+  // (Mesh epochs; see ReconnectOptions::changed_since): later cycles cost
+  // what they change, not the size of the mesh.
+  auto run = [&mesh](auto& pass_options, auto&& pass) {
+    const Mesh::Epoch start = mesh.next_epoch();
+    OperatorStats stats = pass(pass_options);
+    pass_options.changed_since = start;
+    return stats;
+  };
+  CollapseOptions& collapse_o = o.collapse;
+  ReconnectOptions& flip_o = o.reconnect;
+  SmoothOptions& smooth_o = o.smooth;
   for (int cycle = 0; cycle < o.max_cycles; ++cycle) {
     Stopwatch clock;
     CycleReport c;
     c.cycle = cycle;
-    c.collapse = collapse_edges<S, P, C>(mesh, o.collapse);
+    c.collapse = run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
     c.refine = refine_edges<S, P, C>(mesh, o.refine);
-    c.reconnect = reconnect<S, P, C, MinQuality>(mesh, o.reconnect);
-    c.collapse += collapse_edges<S, P, C>(mesh, o.collapse);
-    c.smooth = smooth_vertices<S, P, C>(mesh, o.smooth);
+    c.reconnect = run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
+    c.collapse += run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
+    c.smooth = run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
     const std::size_t changed = c.collapse.applied + c.refine.applied;
     finish(c, clock);
     if (static_cast<double>(changed) < o.min_change * static_cast<double>(mesh.num_vertices())) break;
   }
-  SmoothOptions polish = o.smooth;
-  polish.below = o.quality_phase_smooth_below;
-  ReconnectOptions polish_flips = o.reconnect;
-  polish_flips.seed_below = o.polish_below;
-  polish_flips.max_sweeps = 4;
+  // The quality phase: flips from the poorer tets only (a subset of what
+  // the cycles tried, so their epochs carry over), smoothing of every
+  // vertex (a larger threshold than the cycles': all are tried once).
+  flip_o.seed_below = o.polish_below;
+  flip_o.max_sweeps = 4;
+  if (o.quality_phase_smooth_below > smooth_o.below) smooth_o.changed_since = 0;
+  smooth_o.below = o.quality_phase_smooth_below;
   for (int pass = 0; pass < o.quality_passes; ++pass) {
     Stopwatch clock;
     CycleReport c;
     c.cycle = static_cast<int>(report.cycles.size());
     c.quality_phase = true;
-    c.reconnect = reconnect<S, P, C, MinQuality>(mesh, polish_flips);
-    c.smooth = smooth_vertices<S, P, C>(mesh, polish);
+    c.reconnect = run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
+    c.smooth = run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
     finish(c, clock);
   }
   report.seconds = total.seconds();

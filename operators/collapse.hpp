@@ -43,6 +43,9 @@ struct CollapseOptions {
   double max_normal_deviation = 1.0 - std::cos(2.0 * 3.14159265358979323846 / 180.0);
   // When set, a vertex merged at an edge's midpoint takes this metric.
   const MetricFunction* metric = nullptr;
+  // Only edges with an end whose ball changed since this epoch are tried
+  // (0: all); a collapse reads the two balls only.
+  Mesh::Epoch changed_since = 0;
 };
 
 struct CollapseScratch {
@@ -135,8 +138,10 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
     }
   }
   if (q_new < o.quality_floor) {
-    double q_old = min_mean_ratio<S>(mesh, view(s.old_tets));
-    for (const auto& t : s.dragged) q_old = std::min(q_old, S::mean_ratio(mesh, t));
+    double q_old = std::numeric_limits<double>::infinity();
+    for (TetId t : s.ball) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, t));
+    if (moved != nullptr)
+      for (TetId t : s.ball_b) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, t));
     if (q_new < q_old) return FlipResult::rejected;
   }
   if (!plan_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, a, b)) return FlipResult::rejected;
@@ -146,6 +151,8 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
   if (moved != nullptr) {
     mesh.point(b) = pb;
     mesh.set_metric(b, moved_metric->m, moved_metric->log_m);
+    for (TetId t : s.ball_b)
+      if (mesh.tet_alive(t)) mesh.touch_tet(t);  // dragged along
   }
   return FlipResult::applied;
 }
@@ -157,7 +164,12 @@ template <MetricSpace S, Precision P, Concurrency C>
 OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  const auto todo = edges_beyond<S>(mesh, o.min_length, EdgeOrder::shortest_first);
+  auto todo = edges_beyond<S>(mesh, o.min_length, EdgeOrder::shortest_first);
+  if (o.changed_since > 0) {
+    // A collapse of ab reads the balls of a and b only.
+    const std::vector<std::uint8_t> changed = changed_vertices(mesh, o.changed_since);
+    std::erase_if(todo, [&](const EdgeCandidate& c) { return !changed[c.a] && !changed[c.b]; });
+  }
   CollapseScratch s;
   typename C::Locks locks;
   VertexList cavity;
@@ -181,12 +193,17 @@ OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
     if (mesh.vertex_class(to) < mesh.vertex_class(from)) std::swap(from, to);
     FlipResult r = FlipResult::not_applicable;
     bool rejected = false;
+    // The balls found for locking are those of the first attempt (the
+    // attempts that fail write nothing, so they stay valid for the others).
+    if (from != c.a) std::swap(s.ball, s.ball_b);
+    vertex_neighbours(mesh, s.ball, from, s.neighbours);
+    vertex_neighbours(mesh, s.ball_b, to, s.neighbours_b);
     for (int attempt = 0; attempt < 3 && r != FlipResult::applied; ++attempt) {
-      if (attempt == 1) std::swap(from, to);
-      vertex_ball(mesh, from, s.ball);
-      vertex_ball(mesh, to, s.ball_b);
-      vertex_neighbours(mesh, s.ball, from, s.neighbours);
-      vertex_neighbours(mesh, s.ball_b, to, s.neighbours_b);
+      if (attempt == 1) {
+        std::swap(from, to);
+        std::swap(s.ball, s.ball_b);
+        std::swap(s.neighbours, s.neighbours_b);
+      }
       if (attempt < 2) {
         r = collapse_edge<S, P>(mesh, from, to, s, o);
       } else {

@@ -145,6 +145,9 @@ FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const
   const int sign = edge_ring(mesh, a, b, shell, s.ring);
   tet_vertices_of(mesh, view(shell.tets), s.old_tets);
   bool found = false;
+  // Scored criteria: the shell is scored once, candidates against the best.
+  double best_score = 0.0;
+  if constexpr (ScoredCriterion<Criterion>) best_score = Criterion::template score_of<S>(mesh, view(shell.tets));
   for (std::size_t k = 0; k < s.ring.size(); ++k) {
     fan_tets(s.ring, k, a, b, sign, s.candidate);
     if (!all_positive<P>(mesh, view(s.candidate))) continue;
@@ -165,8 +168,14 @@ FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const
         }
       if (!flat) continue;
     }
-    const NewTets& reference = found ? s.best : s.old_tets;
-    if (!Criterion::template prefers<S, P>(mesh, view(reference), view(s.candidate))) continue;
+    if constexpr (ScoredCriterion<Criterion>) {
+      const double score = Criterion::template score_beating<S>(mesh, view(s.candidate), best_score);
+      if (score == -std::numeric_limits<double>::infinity()) continue;
+      best_score = score;
+    } else {
+      const NewTets& reference = found ? s.best : s.old_tets;
+      if (!Criterion::template prefers<S, P>(mesh, view(reference), view(s.candidate))) continue;
+    }
     s.best = s.candidate;
     found = true;
   }
@@ -195,10 +204,17 @@ FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s) {
   }
   if (!all_positive<P>(mesh, view(s.candidate))) return FlipResult::rejected;
   const std::array<TetId, 2> old{t, nb.tet()};
-  s.old_tets.clear();
-  s.old_tets.push_back(mesh.tet(t));
-  s.old_tets.push_back(mesh.tet(nb.tet()));
-  if (!Criterion::template prefers<S, P>(mesh, view(s.old_tets), view(s.candidate))) return FlipResult::rejected;
+  if constexpr (ScoredCriterion<Criterion>) {
+    const double before = Criterion::template score_of<S>(mesh, old);
+    if (Criterion::template score_beating<S>(mesh, view(s.candidate), before) ==
+        -std::numeric_limits<double>::infinity())
+      return FlipResult::rejected;
+  } else {
+    s.old_tets.clear();
+    s.old_tets.push_back(mesh.tet(t));
+    s.old_tets.push_back(mesh.tet(nb.tet()));
+    if (!Criterion::template prefers<S, P>(mesh, view(s.old_tets), view(s.candidate))) return FlipResult::rejected;
+  }
   if (!plan_cavity(mesh, old, view(s.candidate), s.plan)) return FlipResult::rejected;
   apply_cavity(mesh, old, view(s.candidate), s.plan, mesh.tet_ref(t), s.created);
   return FlipResult::applied;

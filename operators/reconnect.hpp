@@ -1,6 +1,6 @@
 // The reconnection pass (seed, section 3.1): flips over a work list until
-// nothing improves. Seeds are the tets whose mean ratio is below a
-// threshold (all tets with the default 1). Their edges are tried once each
+// nothing improves. Seeds are the tets changed since a given epoch whose
+// mean ratio is below a threshold (all tets with the defaults). Their edges are tried once each
 // for removal (3-2, 4-4, n -> 2n-4, boundary 2-2), in vertex order (after
 // compact() that is space order, the seed's buckets for locality), then
 // their faces for a 2-3 flip, all under one Criterion.
@@ -19,8 +19,13 @@ struct ReconnectOptions {
   FlipOptions flips;
   // Tets with mean ratio >= this are not seeds (1: every tet is).
   double seed_below = 1.0;
-  // Sweeps over the (recomputed) work list; stops early when a sweep
-  // changes less than min_change of the tets.
+  // Only tets written since this epoch are seeds (Mesh::next_epoch; 0:
+  // all). A flip's decision reads only its shell, so an edge none of whose
+  // tets changed since it was last tried would be refused again.
+  Mesh::Epoch changed_since = 0;
+  // Sweeps: the first over the seeds, each later one over the tets the
+  // previous sweep wrote; stops early when a sweep changes less than
+  // min_change of the tets.
   int max_sweeps = 4;
   double min_change = 1e-3;
   bool face_flips = true;
@@ -39,30 +44,47 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
     ++stats.conflicts;
     return false;
   };
-  std::vector<std::uint64_t> edges;
+  // An edge and a tet that held it when the work list was made (the shell
+  // walk starts there when the tet still holds it, else from a's ball).
+  struct EdgeSeed {
+    std::uint64_t key;
+    TetId tet;
+  };
+  std::vector<EdgeSeed> edges;
+  Mesh::Epoch since = o.changed_since;
   for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
+    const Mesh::Epoch sweep_epoch = mesh.next_epoch();
     seeds.clear();
     edges.clear();
     for (TetId t = 0; t < mesh.tet_capacity(); ++t)
-      if (mesh.tet_alive(t) && (o.seed_below >= 1.0 || S::mean_ratio(mesh, mesh.tet(t)) < o.seed_below)) {
+      if (mesh.tet_alive(t) && mesh.changed_since(t, since) &&
+          (o.seed_below >= 1.0 || cached_mean_ratio<S>(mesh, t) < o.seed_below)) {
         seeds.push_back(t);
         const auto& tv = mesh.tet(t);
-        for (const auto& e : kEdgeVertex) edges.push_back(edge_key(tv[e[0]], tv[e[1]]));
+        for (const auto& e : kEdgeVertex) edges.push_back({edge_key(tv[e[0]], tv[e[1]]), t});
       }
+    since = sweep_epoch;
     // Each edge once per sweep, in vertex order (space order after compact).
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    std::sort(edges.begin(), edges.end(), [](const EdgeSeed& x, const EdgeSeed& y) { return x.key < y.key; });
+    edges.erase(std::unique(edges.begin(), edges.end(),
+                            [](const EdgeSeed& x, const EdgeSeed& y) { return x.key == y.key; }),
+                edges.end());
     std::size_t applied = 0;
-    for (const std::uint64_t key : edges) {
-      const auto [a, b] = edge_from_key(key);
+    for (const EdgeSeed& e : edges) {
+      const auto [a, b] = edge_from_key(e.key);
       if (!mesh.vertex_alive(a) || !mesh.vertex_alive(b)) continue;
-      vertex_ball(mesh, a, s.ball);
-      if (!edge_shell(mesh, a, b, s.ball, s.shell)) continue;  // gone since
+      const TetVertices& held = mesh.tet(e.tet);
+      if (mesh.tet_alive(e.tet) && local_index(held, a) >= 0 && local_index(held, b) >= 0) {
+        edge_shell_from(mesh, a, b, e.tet, s.shell);
+      } else {
+        vertex_ball(mesh, a, s.ball);
+        if (!edge_shell(mesh, a, b, s.ball, s.shell)) continue;  // gone since
+      }
       cavity.clear();
       cavity.push_back(a);
       cavity.push_back(b);
       for (TetId u : s.shell.tets)
-        for (VertexId v : mesh.tet(u))
+        for (VertexId v : edge_opposite(mesh.tet(u), a, b))
           if (std::find(cavity.begin(), cavity.end(), v) == cavity.end()) cavity.push_back(v);
       if (!lock(view(cavity))) continue;
       ++stats.tried;

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <span>
+#include <vector>
 
 namespace metrica {
 
@@ -40,6 +41,16 @@ inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
   }
 }
 
+// Marks (1) the vertices of the tets written since epoch `since`: the
+// vertices whose ball changed.
+inline std::vector<std::uint8_t> changed_vertices(const Mesh& mesh, Mesh::Epoch since) {
+  std::vector<std::uint8_t> changed(mesh.vertex_capacity(), 0);
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+    if (mesh.tet_alive(t) && mesh.changed_since(t, since))
+      for (VertexId v : mesh.tet(t)) changed[v] = 1;
+  return changed;
+}
+
 // The vertices joined to v by an edge.
 inline void vertex_neighbours(const Mesh& mesh, const TetList& ball, VertexId v, VertexList& out) {
   out.clear();
@@ -65,15 +76,21 @@ struct Shell {
   bool closed = true;
 };
 
+// The shell of ab from `start`, a live tet that contains both.
+inline void edge_shell_from(const Mesh& mesh, VertexId a, VertexId b, TetId start, Shell& shell);
+
 inline bool edge_shell(const Mesh& mesh, VertexId a, VertexId b, const TetList& ball_of_a, Shell& shell) {
   shell.tets.clear();
-  TetId start = kNoId;
   for (TetId t : ball_of_a)
     if (local_index(mesh.tet(t), b) >= 0) {
-      start = t;
-      break;
+      edge_shell_from(mesh, a, b, t, shell);
+      return true;
     }
-  if (start == kNoId) return false;
+  return false;
+}
+
+inline void edge_shell_from(const Mesh& mesh, VertexId a, VertexId b, TetId start, Shell& shell) {
+  shell.tets.clear();
   // Turn one way: from t leave through the face opposite one of the two
   // other vertices; the next tet shares a, b and the remaining vertex.
   auto step = [&](TetId t, VertexId through_kept) -> TetId {
@@ -125,7 +142,6 @@ inline bool edge_shell(const Mesh& mesh, VertexId a, VertexId b, const TetList& 
     std::reverse(back.begin(), back.begin() + static_cast<std::ptrdiff_t>(nback));
     shell.tets.swap(back);
   }
-  return true;
 }
 
 }  // namespace metrica

@@ -33,12 +33,20 @@ struct SmoothOptions {
   double flat_tolerance = 1e-12;
   // When set, a moved vertex takes this metric at its new position.
   const MetricFunction* metric = nullptr;
+  // Only vertices with a tet written since this epoch are tried (0: all):
+  // smoothing v reads only v's ball, so an unchanged ball gives the same
+  // refusal as last time. Valid only when `below` is no larger than in the
+  // pass that tried them.
+  Mesh::Epoch changed_since = 0;
 };
 
 struct SmoothScratch {
   TetList ball;
   VertexList neighbours;
   boost::container::small_vector<Point, 96> trials;
+  // The metric of each ball tet (fixed while v's trial positions are
+  // measured: v keeps its metric until it moves).
+  boost::container::small_vector<Sym6, 64> metrics;
 };
 
 namespace detail {
@@ -75,13 +83,15 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
   if (s.ball.empty()) return FlipResult::not_applicable;
   const Point x = mesh.point(v);
   s.trials.clear();
+  s.metrics.clear();
+  for (TetId t : s.ball) s.metrics.push_back(S::tet_metric(mesh, mesh.tet(t)));
   // The optimal point: face (t[kFaceVertex[iv]]) is oriented outwards, so
   // the apex lies on its negative side; swap two vertices.
   Point optimal = Point::Zero();
-  for (TetId t : s.ball) {
-    const auto& tv = mesh.tet(t);
+  for (std::size_t i = 0; i < s.ball.size(); ++i) {
+    const auto& tv = mesh.tet(s.ball[i]);
     const auto f = face_vertices(tv, local_index(tv, v));
-    optimal += detail::ideal_apex<S>(mesh.point(f[0]), mesh.point(f[2]), mesh.point(f[1]), S::tet_metric(mesh, tv));
+    optimal += detail::ideal_apex<S>(mesh.point(f[0]), mesh.point(f[2]), mesh.point(f[1]), s.metrics[i]);
   }
   optimal /= static_cast<double>(s.ball.size());
   if (cls == VertexClass::interior) {
@@ -147,23 +157,27 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
     }
     return n;
   };
-  auto min_quality_at = [&](const Point& p) {
+  // The smallest mean ratio of the ball with v at p; stops at the first
+  // tet at or below `floor` (that trial cannot win).
+  auto min_quality_at = [&](const Point& p, double floor) {
     double q = std::numeric_limits<double>::infinity();
-    for (TetId t : s.ball) {
-      const auto& tv = mesh.tet(t);
+    for (std::size_t i = 0; i < s.ball.size(); ++i) {
+      const auto& tv = mesh.tet(s.ball[i]);
       TetPoints pts = detail::tet_points(mesh, tv);
       pts[local_index(tv, v)] = p;
       if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return -1.0;
-      q = std::min(q, S::mean_ratio(mesh, tv, pts));
+      q = std::min(q, mean_ratio(pts, s.metrics[i]));
+      if (q <= floor) break;
     }
     return q;
   };
-  const double q_old = min_quality_at(x);
+  double q_old = std::numeric_limits<double>::infinity();
+  for (TetId t : s.ball) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, t));
   const int bad_old = out_of_range(x);
   double q_best = q_old;
   Point best = x;
   for (const Point& p : s.trials) {
-    const double q = min_quality_at(p);
+    const double q = min_quality_at(p, q_best);
     if (q > q_best && out_of_range(p) <= bad_old) {
       q_best = q;
       best = p;
@@ -171,6 +185,7 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
   }
   if (!improves_min_quality(q_old, q_best)) return FlipResult::rejected;
   mesh.point(v) = best;
+  for (TetId t : s.ball) mesh.touch_tet(t);
   if (o.metric != nullptr && *o.metric) {
     const Sym6 m = (*o.metric)(best);
     mesh.set_metric(v, m, spd_log(m));
@@ -183,10 +198,12 @@ template <MetricSpace S, Precision P, Concurrency C>
 OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
+  const std::vector<std::uint8_t> changed = changed_vertices(mesh, o.changed_since);
   std::vector<VertexId> todo;
   for (TetId t = 0; t < mesh.tet_capacity(); ++t)
-    if (mesh.tet_alive(t) && S::mean_ratio(mesh, mesh.tet(t)) < o.below)
-      for (VertexId v : mesh.tet(t)) todo.push_back(v);
+    if (mesh.tet_alive(t) && cached_mean_ratio<S>(mesh, t) < o.below)
+      for (VertexId v : mesh.tet(t))
+        if (changed[v]) todo.push_back(v);
   std::sort(todo.begin(), todo.end());
   todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
   SmoothScratch s;

@@ -79,6 +79,8 @@ void Mesh::compact() {
   permute(tet2tets_, tet_order);
   permute(face_surface_, tet_order);
   permute(tet_ref_, tet_order);
+  permute(tet_stamp_, tet_order);
+  permute(tet_quality_, tet_order);
   for (auto& tv : tets_)
     for (auto& v : tv) v = new_vertex[v];
   for (auto& adj : tet2tets_)

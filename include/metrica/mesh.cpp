@@ -29,6 +29,8 @@ void Mesh::reserve(std::size_t vertices, std::size_t tets) {
   tet2tets_.reserve(tets);
   face_surface_.reserve(tets);
   tet_ref_.reserve(tets);
+  tet_stamp_.reserve(tets);
+  tet_quality_.reserve(tets);
 }
 
 VertexId Mesh::add_vertex(const Point& p, int ref) {
@@ -90,6 +92,8 @@ TetId Mesh::add_tet(const TetVertices& vertices, int ref) {
     tet2tets_[t] = kNoNeighbours;
     face_surface_[t] = kInterior;
     tet_ref_[t] = ref;
+    tet_stamp_[t] = epoch_;
+    tet_quality_[t] = kUnknownQuality;
     return t;
   }
   const auto t = static_cast<TetId>(tets_.size());
@@ -97,6 +101,8 @@ TetId Mesh::add_tet(const TetVertices& vertices, int ref) {
   tet2tets_.push_back(kNoNeighbours);
   face_surface_.push_back(kInterior);
   tet_ref_.push_back(ref);
+  tet_stamp_.push_back(epoch_);
+  tet_quality_.push_back(kUnknownQuality);
   return t;
 }
 

@@ -15,6 +15,7 @@
 #include <metrica/ids.hpp>
 #include <metrica/tet_topology.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -70,6 +71,37 @@ class Mesh {
   SurfaceId surface_id(TetId t, int face) const { return face_surface_[t][face]; }
   Point tet_point(TetId t, int i) const { return points_[tets_[t][i]]; }
 
+  // --- change stamps -----------------------------------------------------
+  // Every tet carries the epoch in which it was last written (created,
+  // re-vertexed, or touched because one of its vertices moved). A pass
+  // that starts a new epoch can later ask which tets changed since: an
+  // operator whose decision depends only on a cavity's tets need not try
+  // a cavity again when none of them changed (the same inputs give the
+  // same answer), so later cycles work where the mesh still changes.
+  using Epoch = std::uint32_t;
+  Epoch epoch() const { return epoch_; }
+  // Starts a new epoch and returns it: tets written from now on carry it.
+  Epoch next_epoch() { return ++epoch_; }
+  Epoch tet_stamp(TetId t) const { return tet_stamp_[t]; }
+  bool changed_since(TetId t, Epoch e) const { return tet_stamp_[t] >= e; }
+  // Marks t as changed now (e.g. a vertex of t moved).
+  void touch_tet(TetId t) {
+    tet_stamp_[t] = epoch_;
+    tet_quality_[t] = kUnknownQuality;
+  }
+
+  // --- quality cache -------------------------------------------------------
+  // One number per tet that a measuring policy may keep (the mean ratio of
+  // the Space an adaptation runs in: cached_mean_ratio in space.hpp),
+  // forgotten whenever the tet is written or touched. Whoever moves a
+  // vertex or changes its metric touches its ball (the operators do);
+  // whoever changes the metric of the whole mesh or measures in another
+  // Space clears the cache.
+  static constexpr double kUnknownQuality = -2.0;  // mean ratios lie in [-1, 1]
+  double cached_quality(TetId t) const { return tet_quality_[t]; }
+  void cache_quality(TetId t, double q) const { tet_quality_[t] = q; }
+  void clear_quality_cache() { std::fill(tet_quality_.begin(), tet_quality_.end(), kUnknownQuality); }
+
   // --- ridges ------------------------------------------------------------
   // Ridge edges: between faces of two different surface ids, plus the
   // feature edges the input gave (Edges / Ridges keywords).
@@ -90,7 +122,10 @@ class Mesh {
   // Adds a tet with no neighbours and interior faces; the caller links it.
   TetId add_tet(const TetVertices& vertices, int ref = 0);
   void remove_tet(TetId t);
-  void set_tet_vertices(TetId t, const TetVertices& vertices) { tets_[t] = vertices; }
+  void set_tet_vertices(TetId t, const TetVertices& vertices) {
+    tets_[t] = vertices;
+    touch_tet(t);
+  }
   // Makes a and b neighbours of each other (both slots written).
   void link(FaceRef a, FaceRef b) {
     tet2tets_[a.tet()][a.face()] = b;
@@ -136,6 +171,11 @@ class Mesh {
   std::vector<std::array<FaceRef, 4>> tet2tets_;
   std::vector<std::array<SurfaceId, 4>> face_surface_;
   std::vector<int> tet_ref_;
+  std::vector<Epoch> tet_stamp_;
+  // Written through const access (a cache), one writer per tet at a time:
+  // the holder of the tet's vertices' locks.
+  mutable std::vector<double> tet_quality_;
+  Epoch epoch_ = 0;
 
   std::vector<VertexId> free_vertices_;
   std::vector<TetId> free_tets_;
