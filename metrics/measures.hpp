@@ -44,6 +44,20 @@ inline double mean_ratio(const TetPoints& p, const Sym6& m) {
   return vol < 0.0 ? -q : q;
 }
 
+// The cube of mean_ratio (sign kept), without its cube root: for finding
+// the smallest of many mean ratios, which is the cube root of the
+// smallest cube (the root was 7% of an adaptation in smoothing).
+inline double mean_ratio_cubed(const TetPoints& p, const Sym6& m) {
+  const double vol = metric_volume(p, m);
+  double sum = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) sum += metric_norm2(m, p[j] - p[i]);
+  if (!(sum > 0.0)) return 0.0;
+  static const double kNorm3 = 36.0 * 36.0 * 36.0 / 3.0;
+  const double q3 = kNorm3 * vol * vol / (sum * sum * sum);
+  return vol < 0.0 ? -q3 : q3;
+}
+
 inline Point centroid(const TetPoints& p) { return 0.25 * (p[0] + p[1] + p[2] + p[3]); }
 
 }  // namespace metrica

@@ -106,12 +106,12 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
     x[local_index(t, b)] = pb;
     return x;
   };
-  double q_new = std::numeric_limits<double>::infinity();
+  // The checks run cheapest first; the mean ratios (a tensor exponential
+  // each in the log-Euclidean space) come last.
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
       const TetPoints x = points_of(t);
       if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0) return FlipResult::rejected;
-      q_new = std::min(q_new, S::mean_ratio(mesh, t, x));
     }
   // New edges: b to a's neighbours; when b moves, all of b's edges too.
   for (const auto* list : {&s.neighbours, &s.neighbours_b}) {
@@ -137,14 +137,22 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
       }
     }
   }
-  if (q_new < o.quality_floor) {
-    double q_old = std::numeric_limits<double>::infinity();
-    for (TetId t : s.ball) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, t));
-    if (moved != nullptr)
-      for (TetId t : s.ball_b) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, t));
-    if (q_new < q_old) return FlipResult::rejected;
-  }
   if (!plan_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, a, b)) return FlipResult::rejected;
+  // Refused when the worst new tet is below the floor and below the worst
+  // old one: when some new tet is below both.
+  double q_old = Mesh::kUnknownQuality;
+  for (const auto* list : {&s.new_tets, &s.dragged})
+    for (const auto& t : *list) {
+      const double q = S::mean_ratio(mesh, t, points_of(t));
+      if (q >= o.quality_floor) continue;
+      if (q_old == Mesh::kUnknownQuality) {
+        q_old = std::numeric_limits<double>::infinity();
+        for (TetId u : s.ball) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, u));
+        if (moved != nullptr)
+          for (TetId u : s.ball_b) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, u));
+      }
+      if (q < q_old) return FlipResult::rejected;
+    }
   apply_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, ref, s.created);
   mesh.merge_edge_tags(a, b, view(s.neighbours));
   mesh.remove_vertex(a);

@@ -7,14 +7,15 @@
 // true when the new configuration is better. Both configurations cover
 // the same region and are positively oriented (the operator checked).
 //
-// A criterion that is a score to maximise (MinQuality, MaxMinEdgeWeight)
-// also offers the ScoredCriterion interface, so an operator that compares
-// several candidates with one reference scores the reference once and
-// stops scoring a candidate as soon as it cannot win:
+// A criterion that is the smallest of a per-tet score, to maximise
+// (MinQuality, MaxMinEdgeWeight), also offers the ScoredCriterion
+// interface, so an operator comparing several candidates with one
+// reference scores the reference once, reuses a tet's score across
+// candidates, and stops scoring a candidate as soon as it cannot win:
 //
-//   static double score(mesh, tets);           // of new tets (vertices)
-//   static double score_of(mesh, tet ids);     // of live tets (may be cached)
-//   static double score_beating(mesh, tets, reference);  // -inf if it does not
+//   static double tet_score<S>(mesh, tet vertices);
+//   static double tet_score_of<S>(mesh, live tet id);   // may be cached
+//   static double bar(double reference);   // a candidate must exceed it
 //
 //   MinQuality       the smallest mean ratio grows (by a relative margin);
 //   MaxMinEdgeWeight the smallest Laplacian edge weight grows (Barth;
@@ -37,31 +38,42 @@
 namespace metrica {
 
 template <class C>
-concept ScoredCriterion = requires(const Mesh& mesh, std::span<const TetVertices> tets,
-                                   std::span<const TetId> ids) {
-  { C::template score<Isotropic>(mesh, tets) } -> std::same_as<double>;
-  { C::template score_of<Isotropic>(mesh, ids) } -> std::same_as<double>;
-  { C::template score_beating<Isotropic>(mesh, tets, 0.0) } -> std::same_as<double>;
+concept ScoredCriterion = requires(const Mesh& mesh, const TetVertices& tet, TetId id) {
+  { C::template tet_score<Isotropic>(mesh, tet) } -> std::same_as<double>;
+  { C::template tet_score_of<Isotropic>(mesh, id) } -> std::same_as<double>;
+  { C::bar(0.0) } -> std::same_as<double>;
 };
+
+// The smallest score of `ids` (live tets) and of `tets` (new ones); the
+// latter stops at the first tet at or below `floor`.
+template <class C, MetricSpace S>
+double min_score_of(const Mesh& mesh, std::span<const TetId> ids) {
+  double q = std::numeric_limits<double>::infinity();
+  for (TetId t : ids) q = std::min(q, C::template tet_score_of<S>(mesh, t));
+  return q;
+}
+template <class C, MetricSpace S>
+double min_score(const Mesh& mesh, std::span<const TetVertices> tets,
+                 double floor = -std::numeric_limits<double>::infinity()) {
+  double q = std::numeric_limits<double>::infinity();
+  for (const auto& t : tets) {
+    q = std::min(q, C::template tet_score<S>(mesh, t));
+    if (q <= floor) break;
+  }
+  return q;
+}
 
 struct MinQuality {
   static constexpr std::string_view name = "quality";
   template <MetricSpace S>
-  static double score(const Mesh& mesh, std::span<const TetVertices> tets) {
-    return min_mean_ratio<S>(mesh, tets);
+  static double tet_score(const Mesh& mesh, const TetVertices& t) {
+    return S::mean_ratio(mesh, t);
   }
   template <MetricSpace S>
-  static double score_of(const Mesh& mesh, std::span<const TetId> ids) {
-    double q = std::numeric_limits<double>::infinity();
-    for (TetId t : ids) q = std::min(q, cached_mean_ratio<S>(mesh, t));
-    return q;
+  static double tet_score_of(const Mesh& mesh, TetId t) {
+    return cached_mean_ratio<S>(mesh, t);
   }
-  template <MetricSpace S>
-  static double score_beating(const Mesh& mesh, std::span<const TetVertices> tets, double reference) {
-    const double bar = improvement_bar(reference);
-    const double q = min_mean_ratio_above<S>(mesh, tets, bar);
-    return q > bar ? q : -std::numeric_limits<double>::infinity();
-  }
+  static double bar(double reference) { return improvement_bar(reference); }
   template <MetricSpace S, Precision P>
   static bool prefers(const Mesh& mesh, std::span<const TetVertices> old_tets, std::span<const TetVertices> new_tets) {
     return improves_min_quality(min_mean_ratio<S>(mesh, old_tets), min_mean_ratio<S>(mesh, new_tets));
@@ -71,36 +83,17 @@ struct MinQuality {
 struct MaxMinEdgeWeight {
   static constexpr std::string_view name = "edge-weight";
   template <MetricSpace S>
-  static double min_weight(const Mesh& mesh, std::span<const TetVertices> tets,
-                           double floor = -std::numeric_limits<double>::infinity()) {
-    double w = std::numeric_limits<double>::infinity();
-    for (const auto& t : tets) {
-      w = std::min(w, min_edge_weight(detail::tet_points(mesh, t), S::tet_metric(mesh, t)));
-      if (w <= floor) break;
-    }
-    return w;
+  static double tet_score(const Mesh& mesh, const TetVertices& t) {
+    return min_edge_weight(detail::tet_points(mesh, t), S::tet_metric(mesh, t));
   }
   template <MetricSpace S>
-  static double score(const Mesh& mesh, std::span<const TetVertices> tets) {
-    return min_weight<S>(mesh, tets);
+  static double tet_score_of(const Mesh& mesh, TetId t) {
+    return tet_score<S>(mesh, mesh.tet(t));
   }
-  template <MetricSpace S>
-  static double score_of(const Mesh& mesh, std::span<const TetId> ids) {
-    double w = std::numeric_limits<double>::infinity();
-    for (TetId t : ids)
-      w = std::min(w, min_edge_weight(detail::tet_points(mesh, mesh.tet(t)), S::tet_metric(mesh, mesh.tet(t))));
-    return w;
-  }
-  template <MetricSpace S>
-  static double score_beating(const Mesh& mesh, std::span<const TetVertices> tets, double reference) {
-    const double bar = reference + kQualityMargin * std::abs(reference);
-    const double w = min_weight<S>(mesh, tets, bar);
-    return w > bar ? w : -std::numeric_limits<double>::infinity();
-  }
+  static double bar(double reference) { return reference + kQualityMargin * std::abs(reference); }
   template <MetricSpace S, Precision P>
   static bool prefers(const Mesh& mesh, std::span<const TetVertices> old_tets, std::span<const TetVertices> new_tets) {
-    const double before = min_weight<S>(mesh, old_tets), after = min_weight<S>(mesh, new_tets);
-    return after > before + kQualityMargin * std::abs(before);
+    return min_score<MaxMinEdgeWeight, S>(mesh, new_tets) > bar(min_score<MaxMinEdgeWeight, S>(mesh, old_tets));
   }
 };
 

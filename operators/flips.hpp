@@ -26,6 +26,11 @@
 #include <metrica/operators/shell.hpp>
 #include <metrica/predicates/precision.hpp>
 
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
 namespace metrica {
 
 struct FlipOptions {
@@ -113,6 +118,24 @@ struct FlipScratch {
   NewTets old_tets, candidate, best;
   CavityPlan plan;
   TetList created;
+  // Edge removal: orientation (0 unknown, 1 positive, -1 not) and score
+  // (NaN unknown) of ring triangle x joined to apex slot j, at 2 x + j,
+  // for rings of up to kMemoRing vertices.
+  static constexpr std::size_t kMemoRing = 8;
+  static constexpr std::size_t kTriangles = kMemoRing * (kMemoRing - 1) * (kMemoRing - 2) / 6;
+  std::array<std::int8_t, 2 * kTriangles> memo_orientation{};
+  std::array<double, 2 * kTriangles> memo_score{};
+  void clear_memo() {
+    memo_orientation.fill(0);
+    memo_score.fill(std::numeric_limits<double>::quiet_NaN());
+  }
+  // The combinatorial number of the set {p, q, r} of ring positions.
+  static std::size_t triangle_index(std::size_t p, std::size_t q, std::size_t r) {
+    if (p > q) std::swap(p, q);
+    if (q > r) std::swap(q, r);
+    if (p > q) std::swap(p, q);
+    return r * (r - 1) * (r - 2) / 6 + q * (q - 1) / 2 + p;
+  }
 };
 
 // Edge removal of ab (3-2, 4-4, n -> 2n-4) or, on the boundary, the 2-2
@@ -143,14 +166,44 @@ FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const
     surface = ids[0];
   }
   const int sign = edge_ring(mesh, a, b, shell, s.ring);
-  tet_vertices_of(mesh, view(shell.tets), s.old_tets);
-  bool found = false;
-  // Scored criteria: the shell is scored once, candidates against the best.
+  const std::size_t m = s.ring.size();
+  // For a triangle of 3 or 4 ring vertices the fans repeat (the 3 fans of a
+  // triangle are one, fans k and k + 2 of a quad are one).
+  const std::size_t fans = m == 3 ? 1 : m == 4 ? 2 : m;
+  // Scored criteria: the shell is scored once; each new tet (a ring
+  // triangle joined to a or b, shared by several fans) is oriented and
+  // scored at most once, in s.memo, by the triangle's combinatorial index.
+  constexpr bool scored = ScoredCriterion<Criterion>;
+  const bool memo = scored && m <= FlipScratch::kMemoRing;
   double best_score = 0.0;
-  if constexpr (ScoredCriterion<Criterion>) best_score = Criterion::template score_of<S>(mesh, view(shell.tets));
-  for (std::size_t k = 0; k < s.ring.size(); ++k) {
+  if constexpr (scored) {
+    best_score = min_score_of<Criterion, S>(mesh, view(shell.tets));
+    if (memo) s.clear_memo();
+  } else {
+    tet_vertices_of(mesh, view(shell.tets), s.old_tets);
+  }
+  bool found = false;
+  for (std::size_t k = 0; k < fans; ++k) {
     fan_tets(s.ring, k, a, b, sign, s.candidate);
-    if (!all_positive<P>(mesh, view(s.candidate))) continue;
+    // Tet c of the candidate is triangle (k, k + i, k + i + 1), i = 1 + c / 2,
+    // joined to the apex of slot c % 2 (fan_tets' order).
+    auto slot = [&](std::size_t c) {
+      const std::size_t i = 1 + c / 2;
+      return 2 * FlipScratch::triangle_index(k, (k + i) % m, (k + i + 1) % m) + c % 2;
+    };
+    bool positive = true;
+    for (std::size_t c = 0; c < s.candidate.size() && positive; ++c) {
+      const auto& t = s.candidate[c];
+      auto orient = [&] { return P::orient3d(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])); };
+      if (memo) {
+        auto& o8 = s.memo_orientation[slot(c)];
+        if (o8 == 0) o8 = orient() > 0 ? 1 : -1;
+        positive = o8 > 0;
+      } else {
+        positive = orient() > 0;
+      }
+    }
+    if (!positive) continue;
     if (!shell.closed) {
       // The new boundary faces (on the closing edge v_n v_0) must lie in
       // the plane of the old ones.
@@ -168,10 +221,20 @@ FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const
         }
       if (!flat) continue;
     }
-    if constexpr (ScoredCriterion<Criterion>) {
-      const double score = Criterion::template score_beating<S>(mesh, view(s.candidate), best_score);
-      if (score == -std::numeric_limits<double>::infinity()) continue;
-      best_score = score;
+    if constexpr (scored) {
+      const double bar = Criterion::bar(best_score);
+      double q = std::numeric_limits<double>::infinity();
+      for (std::size_t c = 0; c < s.candidate.size() && q > bar; ++c) {
+        if (memo) {
+          double& score = s.memo_score[slot(c)];
+          if (std::isnan(score)) score = Criterion::template tet_score<S>(mesh, s.candidate[c]);
+          q = std::min(q, score);
+        } else {
+          q = std::min(q, Criterion::template tet_score<S>(mesh, s.candidate[c]));
+        }
+      }
+      if (q <= bar) continue;
+      best_score = q;
     } else {
       const NewTets& reference = found ? s.best : s.old_tets;
       if (!Criterion::template prefers<S, P>(mesh, view(reference), view(s.candidate))) continue;
@@ -205,10 +268,8 @@ FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s) {
   if (!all_positive<P>(mesh, view(s.candidate))) return FlipResult::rejected;
   const std::array<TetId, 2> old{t, nb.tet()};
   if constexpr (ScoredCriterion<Criterion>) {
-    const double before = Criterion::template score_of<S>(mesh, old);
-    if (Criterion::template score_beating<S>(mesh, view(s.candidate), before) ==
-        -std::numeric_limits<double>::infinity())
-      return FlipResult::rejected;
+    const double bar = Criterion::bar(min_score_of<Criterion, S>(mesh, old));
+    if (min_score<Criterion, S>(mesh, view(s.candidate), bar) <= bar) return FlipResult::rejected;
   } else {
     s.old_tets.clear();
     s.old_tets.push_back(mesh.tet(t));

@@ -9,6 +9,8 @@
 #include <boost/container/small_vector.hpp>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -25,10 +27,29 @@ std::span<const T> view(const boost::container::small_vector<T, N>& v) {
 }
 
 // The tets containing v, by a walk over faces through v from its hint.
+// Each ball tet is reached from up to three neighbours; a small
+// open-addressing table on the stack says which were seen (a linear search
+// of the list cost 10% of an adaptation), with the search kept for the
+// rare balls too large for it.
 inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
   ball.clear();
   const TetId start = mesh.vert2tet(v);
   if (start == kNoId || !mesh.tet_alive(start)) return;
+  constexpr std::size_t kSlots = 256, kMaxLoad = 128;
+  std::array<TetId, kSlots> seen;
+  seen.fill(kNoId);
+  // True when t was not seen before (and records it).
+  auto first_visit = [&](TetId t) {
+    if (ball.size() >= kMaxLoad) return std::find(ball.begin(), ball.end(), t) == ball.end();
+    std::size_t h = (static_cast<std::uint32_t>(t) * 2654435761u) >> 24;
+    while (seen[h] != kNoId) {
+      if (seen[h] == t) return false;
+      h = (h + 1) & (kSlots - 1);
+    }
+    seen[h] = t;
+    return true;
+  };
+  first_visit(start);
   ball.push_back(start);
   for (std::size_t k = 0; k < ball.size(); ++k) {
     const TetId t = ball[k];
@@ -36,7 +57,7 @@ inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
     for (int f = 0; f < 4; ++f) {
       if (f == iv) continue;  // the face opposite v does not contain it
       const FaceRef n = mesh.neighbour(t, f);
-      if (n.valid() && std::find(ball.begin(), ball.end(), n.tet()) == ball.end()) ball.push_back(n.tet());
+      if (n.valid() && first_visit(n.tet())) ball.push_back(n.tet());
     }
   }
 }

@@ -159,17 +159,19 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
   };
   // The smallest mean ratio of the ball with v at p; stops at the first
   // tet at or below `floor` (that trial cannot win).
+  // Compared as cubes (one cube root per trial, not per tet).
   auto min_quality_at = [&](const Point& p, double floor) {
-    double q = std::numeric_limits<double>::infinity();
+    const double floor3 = floor * floor * floor;
+    double q3 = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < s.ball.size(); ++i) {
       const auto& tv = mesh.tet(s.ball[i]);
       TetPoints pts = detail::tet_points(mesh, tv);
       pts[local_index(tv, v)] = p;
       if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return -1.0;
-      q = std::min(q, mean_ratio(pts, s.metrics[i]));
-      if (q <= floor) break;
+      q3 = std::min(q3, mean_ratio_cubed(pts, s.metrics[i]));
+      if (q3 <= floor3) break;
     }
-    return q;
+    return std::cbrt(q3);
   };
   double q_old = std::numeric_limits<double>::infinity();
   for (TetId t : s.ball) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, t));

@@ -5,18 +5,37 @@
 
 namespace metrica {
 
+// A bucket sort by the lower vertex (one counting pass, one filling pass),
+// then each vertex's short list of higher neighbours sorted and made
+// unique: the same order as sorting the edge keys, about four times
+// faster than std::sort on 6 keys per tet (it ran in every operator pass).
 std::vector<EdgeVertices> unique_edges(const Mesh& mesh) {
-  std::vector<std::uint64_t> keys;
-  keys.reserve(6 * mesh.num_tets());
+  const std::size_t nv = mesh.vertex_capacity();
+  std::vector<std::uint32_t> start(nv + 1, 0);
   for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
     if (!mesh.tet_alive(t)) continue;
     const auto& v = mesh.tet(t);
-    for (const auto& e : kEdgeVertex) keys.push_back(edge_key(v[e[0]], v[e[1]]));
+    for (const auto& e : kEdgeVertex) ++start[std::min(v[e[0]], v[e[1]]) + 1];
   }
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  std::vector<EdgeVertices> edges(keys.size());
-  std::transform(keys.begin(), keys.end(), edges.begin(), edge_from_key);
+  for (std::size_t i = 0; i < nv; ++i) start[i + 1] += start[i];
+  std::vector<VertexId> upper(start[nv]);
+  std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const auto& v = mesh.tet(t);
+    for (const auto& e : kEdgeVertex) {
+      const VertexId a = v[e[0]], b = v[e[1]];
+      upper[cursor[std::min(a, b)]++] = std::max(a, b);
+    }
+  }
+  std::vector<EdgeVertices> edges;
+  edges.reserve(upper.size() / 4);
+  for (VertexId a = 0; a < nv; ++a) {
+    const auto first = upper.begin() + start[a], last = upper.begin() + start[a + 1];
+    std::sort(first, last);
+    for (auto it = first; it != last; ++it)
+      if (it == first || *it != *(it - 1)) edges.push_back({a, *it});
+  }
   return edges;
 }
 
