@@ -11,6 +11,7 @@
 
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/reconnect.hpp>
+#include <metrica/operators/refine_centroids.hpp>
 #include <metrica/operators/refine_edges.hpp>
 #include <metrica/operators/smooth.hpp>
 
@@ -29,8 +30,14 @@ struct CycleReport {
   double seconds = 0;     // of this cycle
 };
 
+// How new points are made (seed, section 3.2): split the long edges at
+// their metric midpoints (Mmg, Omega_h, refine), or insert the centroids of
+// the tets with a long edge with the encroachment rules (the seed's).
+enum class PointRule { edge, centroid };
+
 struct AdaptOptions {
   int max_cycles = 15;
+  PointRule points = PointRule::edge;
   // Stop cycling when a cycle splits and collapses fewer than this share
   // of the vertices.
   double min_change = 0.002;
@@ -119,8 +126,16 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
     CycleReport c;
     c.cycle = cycle;
     c.collapse = run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
-    c.refine = refine_edges<S, P, C>(mesh, o.refine);
-    c.reconnect = run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
+    c.refine = o.points == PointRule::edge ? refine_edges<S, P, C>(mesh, o.refine)
+                                           : refine_centroids<S, P, C>(mesh, o.refine);
+    if (o.points == PointRule::centroid) {
+      // A centroid leaves its tet's long edge in place; metric Delaunay
+      // flips remove it (the seed pairs the rule with them).
+      ReconnectOptions delaunay = flip_o;
+      delaunay.changed_since = 0;
+      c.reconnect = reconnect<S, P, C, MetricDelaunay>(mesh, delaunay);
+    }
+    c.reconnect += run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
     c.collapse += run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
     c.smooth = run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
     const std::size_t changed = c.collapse.applied + c.refine.applied;

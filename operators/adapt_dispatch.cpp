@@ -5,6 +5,14 @@
 
 namespace metrica {
 
+PointRule point_rule_from_name(std::string_view name) {
+  if (name == "edge") return PointRule::edge;
+  if (name == "centroid") return PointRule::centroid;
+  throw InputError(fmt::format("unknown point creation rule '{}' (edge, centroid)", name));
+}
+
+const char* to_string(PointRule r) { return r == PointRule::edge ? "edge" : "centroid"; }
+
 PrecisionKind precision_from_name(std::string_view name) {
   if (name == "fast") return PrecisionKind::fast;
   if (name == "filtered") return PrecisionKind::filtered;

@@ -14,6 +14,8 @@ enum class PrecisionKind { fast, filtered, exact };
 // "fast", "filtered", "exact"; InputError otherwise.
 PrecisionKind precision_from_name(std::string_view name);
 const char* to_string(PrecisionKind p);
+PointRule point_rule_from_name(std::string_view name);
+const char* to_string(PointRule r);
 
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, SpaceKind space, PrecisionKind precision);
 

@@ -30,6 +30,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 namespace metrica {
 
@@ -39,7 +40,31 @@ struct FlipOptions {
   // Boundary faces of a 2-2 flip: largest angle between old and new
   // normals, as 1 - cos (flat surfaces: round-off only).
   double max_normal_deviation = 1e-9;
+  // Criteria other than MinQuality (metric Delaunay, edge weight) do not
+  // see shape: a flip under them may not make a tet below this mean ratio
+  // (unless the old tets had a worse one). Without it, Delaunay flips on a
+  // flat boundary made tets of Q ~ 1e-11 whose four vertices lie in the
+  // boundary plane up to round-off: positive for the exact predicate, a
+  // fold of the surface for everything else.
+  double min_quality = 1e-3;
 };
+
+// Does a flip under `Criterion` keep every new tet above the floor (or the
+// worst old tet)? Always true for MinQuality, which compares exactly that.
+template <MetricSpace S, class Criterion>
+bool keeps_shape(const Mesh& mesh, std::span<const TetId> old_tets, std::span<const TetVertices> new_tets,
+                 const FlipOptions& o) {
+  if constexpr (std::is_same_v<Criterion, MinQuality>) {
+    return true;
+  } else {
+    double worst_old = std::numeric_limits<double>::infinity();
+    for (TetId t : old_tets) worst_old = std::min(worst_old, cached_mean_ratio<S>(mesh, t));
+    const double floor = std::min(o.min_quality, worst_old);
+    for (const auto& t : new_tets)
+      if (S::mean_ratio(mesh, t) < floor) return false;
+    return true;
+  }
+}
 
 // The ring of edge ab from its shell: tet k of the shell is (a, b, v_k,
 // v_{k+1}); closed shells have as many ring vertices as tets, open ones
@@ -239,10 +264,18 @@ FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const
       const NewTets& reference = found ? s.best : s.old_tets;
       if (!Criterion::template prefers<S, P>(mesh, view(reference), view(s.candidate))) continue;
     }
+    if (!keeps_shape<S, Criterion>(mesh, view(shell.tets), view(s.candidate), o)) continue;
     s.best = s.candidate;
     found = true;
   }
   if (!found) return FlipResult::rejected;
+  if (!shell.closed) {
+    // The new boundary edge must not exist already (it can only on a
+    // surface folded by round-off, but then the flip would double a face).
+    vertex_ball(mesh, s.ring.front(), s.ball);
+    for (TetId t : s.ball)
+      if (local_index(mesh.tet(t), s.ring.back()) >= 0) return FlipResult::rejected;
+  }
   if (!plan_cavity(mesh, view(shell.tets), view(s.best), s.plan, kNoId, kNoId, surface)) return FlipResult::rejected;
   apply_cavity(mesh, view(shell.tets), view(s.best), s.plan, ref, s.created);
   return FlipResult::applied;
@@ -251,7 +284,7 @@ FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const
 // The 2-3 flip of the inner face `face` of tet t: the two tets sharing it
 // become three around the edge joining their apexes.
 template <MetricSpace S, Precision P, class Criterion>
-FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s) {
+FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptions& o = {}) {
   const FaceRef nb = mesh.neighbour(t, face);
   if (!nb.valid() || mesh.tet_ref(nb.tet()) != mesh.tet_ref(t)) return FlipResult::not_applicable;
   const TetVertices tv = mesh.tet(t);
@@ -275,6 +308,7 @@ FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s) {
     s.old_tets.push_back(mesh.tet(t));
     s.old_tets.push_back(mesh.tet(nb.tet()));
     if (!Criterion::template prefers<S, P>(mesh, view(s.old_tets), view(s.candidate))) return FlipResult::rejected;
+    if (!keeps_shape<S, Criterion>(mesh, old, view(s.candidate), o)) return FlipResult::rejected;
   }
   if (!plan_cavity(mesh, old, view(s.candidate), s.plan)) return FlipResult::rejected;
   apply_cavity(mesh, old, view(s.candidate), s.plan, mesh.tet_ref(t), s.created);

@@ -103,7 +103,7 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
         const std::array<VertexId, 5> five{tv[0], tv[1], tv[2], tv[3], mesh.tet(nb.tet())[nb.face()]};
         if (!lock(five)) continue;
         ++stats.tried;
-        const FlipResult r = flip23<S, P, Criterion>(mesh, t, f, s);
+        const FlipResult r = flip23<S, P, Criterion>(mesh, t, f, s, o.flips);
         locks.release();
         if (r == FlipResult::applied) {
           ++applied;

@@ -66,6 +66,9 @@ int run_adapt(const std::vector<std::string>& args) {
       "metric interpolation: log-euclidean, anisotropic, isotropic")(
       "precision", po::value<std::string>()->default_value("filtered")->value_name("P"),
       "predicates: filtered (exact when it matters), exact, fast (plain double)")(
+      "points", po::value<std::string>()->default_value("edge")->value_name("RULE"),
+      "point creation: edge (split long edges at their metric midpoint) or centroid (the centroids of\n"
+      "tets with a long edge, moved to a boundary face or ridge they encroach)")(
       "cycles", po::value<int>()->default_value(15)->value_name("N"), "most adaptation cycles per adaptation")(
       "quality-passes", po::value<int>()->default_value(4)->value_name("N"), "flip + smooth passes at the end")(
       "max-length", po::value<double>()->value_name("L"), "split edges longer than L (default sqrt 2)")(
@@ -92,6 +95,7 @@ int run_adapt(const std::vector<std::string>& args) {
 
   AdaptOptions ao;
   ao.max_cycles = o.get<int>("cycles");
+  ao.points = point_rule_from_name(o.get<std::string>("points"));
   ao.quality_passes = o.get<int>("quality-passes");
   if (o.has("max-length")) ao.refine.max_length = o.get<double>("max-length");
   if (o.has("min-length")) ao.collapse.min_length = o.get<double>("min-length");
@@ -129,9 +133,9 @@ int run_adapt(const std::vector<std::string>& args) {
     }
     assign_metric(mesh, field);
     if (talk)
-      fmt::print("{}adapting {} vertices, {} tets ({} space, {} predicates, serial)\n",
+      fmt::print("{}adapting {} vertices, {} tets ({} space, {} predicates, {} points, serial)\n",
                  iterations > 1 ? fmt::format("iteration {}: ", it + 1) : "", count_text(mesh.num_vertices()),
-                 count_text(mesh.num_tets()), to_string(space), to_string(precision));
+                 count_text(mesh.num_tets()), to_string(space), to_string(precision), to_string(ao.points));
     const auto report = adapt(mesh, ao, space, precision);
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,

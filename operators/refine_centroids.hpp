@@ -1,0 +1,200 @@
+// Point creation by centroids (seed, section 3.2, and its figure of
+// encroachment rules): every tet with an edge longer than max_length
+// proposes its centroid. Near the boundary the candidate moves, as in
+// constrained Delaunay refinement (Shewchuk 1998), but measured in the
+// metric:
+//
+//   - if it encroaches a boundary face of its tet (lies inside the face's
+//     diametral sphere: closer to the face's circumcentre than the
+//     circumradius), it becomes that face's centroid;
+//   - if the candidate then encroaches a ridge edge of its tet (closer to
+//     the edge's midpoint than half its length), it becomes the edge's
+//     metric midpoint.
+//
+// A candidate closer than min_new_distance (in the metric of each vertex)
+// to a vertex of its tet, or to the candidate of a neighbouring tet, is
+// dropped; one candidate per edge. Candidates are stored with their
+// containing element (the tet, its boundary face, or its ridge edge), so
+// insertion needs no point location: the tet splits 1 -> 4, the face
+// 1 -> 3, the edge's shell in two. Two passes: all candidates are made
+// from the unchanged mesh (pure reads: what a thread does without locks
+// under Speculative), then inserted; a candidate whose tet an earlier
+// insertion changed waits for the next cycle (Mesh epochs say which).
+#pragma once
+
+#include <metrica/operators/metric_source.hpp>
+#include <metrica/operators/operator_stats.hpp>
+#include <metrica/operators/refine_edges.hpp>
+#include <metrica/operators/split_cell.hpp>
+#include <metrica/operators/split_edge.hpp>
+#include <metrica/policies/concurrency.hpp>
+#include <metrica/timer.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace metrica {
+
+// Where a candidate lies, so that it is inserted without a search.
+struct PointCandidate {
+  Point p;
+  TetId tet = kNoId;
+  int face = -1;                 // >= 0: on this boundary face of tet
+  VertexId a = kNoId, b = kNoId; // != kNoId: on ridge edge ab (of tet)
+  double t = 0.5;                // position on ab (a + t (b - a))
+};
+
+namespace detail {
+// Squared distance of p to q in metric m.
+inline double metric_distance2(const Sym6& m, const Point& p, const Point& q) { return metric_norm2(m, p - q); }
+
+// Does p lie strictly inside the diametral sphere of triangle (x0, x1, x2)
+// measured in metric m? Computed after mapping by L (M = L^T L).
+inline bool encroaches_face(const Matrix3& l, const Point& p, const Point& x0, const Point& x1, const Point& x2) {
+  const Eigen::Vector3d a = l * x0, u = l * x1 - a, v = l * x2 - a;
+  const Eigen::Vector3d w = u.cross(v);
+  const double w2 = w.squaredNorm();
+  if (!(w2 > 0.0)) return false;
+  const Eigen::Vector3d to_centre = (u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u)) / (2.0 * w2);
+  const Eigen::Vector3d centre = a + to_centre;
+  return (l * p - centre).squaredNorm() < to_centre.squaredNorm();
+}
+}  // namespace detail
+
+// The candidates of the centroid rule, from the mesh as it is (reads only).
+template <MetricSpace S>
+std::vector<PointCandidate> centroid_candidates(const Mesh& mesh, const RefineOptions& o,
+                                                std::vector<std::uint32_t>& candidate_of_tet) {
+  std::vector<PointCandidate> out;
+  candidate_of_tet.assign(mesh.tet_capacity(), kNoId);
+  std::vector<std::uint64_t> edges_taken;
+  const double min2 = o.min_new_distance * o.min_new_distance;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const auto& v = mesh.tet(t);
+    bool long_edge = false;
+    for (const auto& e : kEdgeVertex) long_edge = long_edge || S::edge_length(mesh, v[e[0]], v[e[1]]) > o.max_length;
+    if (!long_edge) continue;
+    PointCandidate c;
+    c.tet = t;
+    c.p = 0.25 * (mesh.point(v[0]) + mesh.point(v[1]) + mesh.point(v[2]) + mesh.point(v[3]));
+    // Encroached boundary face: its centroid instead.
+    for (int f = 0; f < 4 && c.face < 0; ++f) {
+      if (mesh.neighbour(t, f).valid()) continue;
+      const auto fv = face_vertices(v, f);
+      const std::array<double, 3> w{1.0 / 3, 1.0 / 3, 1.0 / 3};
+      const Matrix3 l = S::factor(S::metric_at(mesh, std::span<const VertexId>(fv), w));
+      if (detail::encroaches_face(l, c.p, mesh.point(fv[0]), mesh.point(fv[1]), mesh.point(fv[2]))) {
+        c.face = f;
+        c.p = (mesh.point(fv[0]) + mesh.point(fv[1]) + mesh.point(fv[2])) / 3.0;
+      }
+    }
+    // Encroached ridge edge (of the face when on one): its metric midpoint.
+    for (const auto& e : kEdgeVertex) {
+      const VertexId a = v[e[0]], b = v[e[1]];
+      if (c.face >= 0 && (v[c.face] == a || v[c.face] == b)) continue;  // not an edge of the face
+      if (!mesh.is_ridge(a, b)) continue;
+      const std::array<VertexId, 2> ends{a, b};
+      const std::array<double, 2> half{0.5, 0.5};
+      const Sym6 m = S::metric_at(mesh, ends, half);
+      const Point mid = 0.5 * (mesh.point(a) + mesh.point(b));
+      if (4.0 * detail::metric_distance2(m, c.p, mid) >= detail::metric_distance2(m, mesh.point(a), mesh.point(b)))
+        continue;
+      const Eigen::Vector3d d = mesh.point(b) - mesh.point(a);
+      c.a = a;
+      c.b = b;
+      c.t = metric_midpoint(std::sqrt(metric_norm2(S::vertex_metric(mesh, a), d)),
+                            std::sqrt(metric_norm2(S::vertex_metric(mesh, b), d)));
+      c.p = mesh.point(a) + c.t * d;
+      c.face = -1;
+      break;
+    }
+    // Proximity: the tet's vertices, the neighbours' candidates, one per edge.
+    bool close = false;
+    auto near_vertex = [&](VertexId x) {
+      return x != c.a && x != c.b && detail::metric_distance2(S::vertex_metric(mesh, x), c.p, mesh.point(x)) < min2;
+    };
+    for (int f = 0; f < 4 && !close; ++f) {
+      close = near_vertex(v[f]);
+      // and the apex of the neighbour across each face
+      const FaceRef n = mesh.neighbour(t, f);
+      if (n.valid()) close = close || near_vertex(mesh.tet(n.tet())[n.face()]);
+    }
+    for (int f = 0; f < 4 && !close; ++f) {
+      const FaceRef n = mesh.neighbour(t, f);
+      if (!n.valid() || candidate_of_tet[n.tet()] == kNoId) continue;
+      const PointCandidate& other = out[candidate_of_tet[n.tet()]];
+      close = detail::metric_distance2(S::tet_metric(mesh, v), c.p, other.p) < min2;
+    }
+    if (c.a != kNoId) {
+      const std::uint64_t key = edge_key(c.a, c.b);
+      close = close || std::find(edges_taken.begin(), edges_taken.end(), key) != edges_taken.end();
+      if (!close) edges_taken.push_back(key);
+    }
+    if (close) continue;
+    candidate_of_tet[t] = static_cast<std::uint32_t>(out.size());
+    out.push_back(c);
+  }
+  return out;
+}
+
+template <MetricSpace S, Precision P, Concurrency C>
+OperatorStats refine_centroids(Mesh& mesh, const RefineOptions& o = {}) {
+  Stopwatch clock;
+  OperatorStats stats;
+  std::vector<std::uint32_t> candidate_of_tet;
+  const Mesh::Epoch start = mesh.next_epoch();
+  const auto candidates = centroid_candidates<S>(mesh, o, candidate_of_tet);
+  CellSplitScratch cell;
+  TetList ball;
+  Shell shell;
+  VertexList cavity;
+  typename C::Locks locks;
+  for (const PointCandidate& c : candidates) {
+    ++stats.tried;
+    // Its tet must be as it was when the candidate was made.
+    if (!mesh.tet_alive(c.tet) || mesh.changed_since(c.tet, start)) {
+      ++stats.deferred;
+      continue;
+    }
+    const TetVertices v = mesh.tet(c.tet);
+    cavity.assign(v.begin(), v.end());
+    if (c.a != kNoId) {
+      edge_shell_from(mesh, c.a, c.b, c.tet, shell);
+      cavity.clear();
+      for (TetId t : shell.tets)
+        for (VertexId x : mesh.tet(t))
+          if (std::find(cavity.begin(), cavity.end(), x) == cavity.end()) cavity.push_back(x);
+    }
+    if (!locks.acquire(view(cavity))) {
+      ++stats.conflicts;
+      continue;
+    }
+    VertexId n = kNoId;
+    if (c.a != kNoId) {
+      if (split_is_valid<P>(mesh, shell, c.a, c.b, c.p)) {
+        const std::array<VertexId, 2> ends{c.a, c.b};
+        const std::array<double, 2> w{1.0 - c.t, c.t};
+        n = split_edge(mesh, shell, c.a, c.b, c.p, new_vertex_metric<S>(mesh, o.metric, ends, w, c.p));
+      }
+    } else if (cell_split_is_valid<P>(mesh, c.tet, c.face, c.p)) {
+      std::array<VertexId, 4> ids{};
+      std::array<double, 4> w{};
+      std::size_t k = 0;
+      for (int i = 0; i < 4; ++i)
+        if (i != c.face) ids[k++] = v[i];
+      std::fill(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(k), 1.0 / static_cast<double>(k));
+      const VertexMetric m = new_vertex_metric<S>(mesh, o.metric, std::span<const VertexId>(ids.data(), k),
+                                                  std::span<const double>(w.data(), k), c.p);
+      n = split_cell(mesh, c.tet, c.face, c.p, m, cell);
+    }
+    locks.release();
+    if (n == kNoId) ++stats.rejected;
+    else ++stats.applied;
+  }
+  stats.seconds = clock.seconds();
+  return stats;
+}
+
+}  // namespace metrica

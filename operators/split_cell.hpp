@@ -1,0 +1,72 @@
+// Insertion of a vertex inside a tet (1 -> 4) or on a boundary face of a
+// tet (1 -> 3, the face cut in three that keep its surface id): the
+// insertions of the centroid rule (seed, section 3.2; the third, on an
+// edge, is split_edge.hpp). Both are cavity replacements (cavity.hpp) of
+// the one tet that contains the point, so they share its checks: the plan
+// refuses anything but a re-triangulation of the same region.
+//
+// decide (pure, Precision): every child is positively oriented;
+// apply: add the vertex, replace the tet.
+#pragma once
+
+#include <metrica/metrics/space.hpp>
+#include <metrica/operators/cavity.hpp>
+#include <metrica/operators/shell.hpp>
+#include <metrica/predicates/precision.hpp>
+
+namespace metrica {
+
+// The children of tet t with p (to become vertex n) in place of each of
+// its vertices; on a face split the vertex opposite the face is kept (its
+// child would be flat).
+inline void cell_children(const TetVertices& t, VertexId n, int kept_vertex, NewTets& out) {
+  out.clear();
+  for (int i = 0; i < 4; ++i) {
+    if (i == kept_vertex) continue;
+    TetVertices c = t;
+    c[i] = n;
+    out.push_back(c);
+  }
+}
+
+// Decide: the children of t with p inside (face < 0) or on boundary face
+// `face` are all positively oriented.
+template <Precision P>
+bool cell_split_is_valid(const Mesh& mesh, TetId t, int face, const Point& p) {
+  const auto& v = mesh.tet(t);
+  for (int i = 0; i < 4; ++i) {
+    if (i == face) continue;
+    std::array<Point, 4> x{mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3])};
+    x[i] = p;
+    if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0) return false;
+  }
+  return true;
+}
+
+struct CellSplitScratch {
+  NewTets children;
+  CavityPlan plan;
+  TetList created;
+};
+
+// Apply: inserts a vertex at p with metric m inside t (face < 0) or on
+// its boundary face `face`, and returns it (kNoId when the plan refuses,
+// nothing written then).
+inline VertexId split_cell(Mesh& mesh, TetId t, int face, const Point& p, const VertexMetric& m,
+                           CellSplitScratch& s) {
+  const SurfaceId surface = face >= 0 ? mesh.surface_id(t, face) : 0;
+  if (face >= 0 && (mesh.neighbour(t, face).valid() || surface <= 0)) return kNoId;
+  const VertexId v = mesh.add_vertex(p);
+  cell_children(mesh.tet(t), v, face, s.children);
+  const std::array<TetId, 1> old{t};
+  if (!plan_cavity(mesh, old, view(s.children), s.plan, kNoId, kNoId, surface)) {
+    mesh.remove_vertex(v);  // (a 1-4 or 1-3 split always plans; kept for safety)
+    return kNoId;
+  }
+  mesh.set_metric(v, m.m, m.log_m);
+  apply_cavity(mesh, old, view(s.children), s.plan, mesh.tet_ref(t), s.created);
+  mesh.set_vertex_class(v, face >= 0 ? VertexClass::surface : VertexClass::interior);
+  return v;
+}
+
+}  // namespace metrica
