@@ -121,6 +121,7 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
   CollapseOptions& collapse_o = o.collapse;
   ReconnectOptions& flip_o = o.reconnect;
   SmoothOptions& smooth_o = o.smooth;
+  ReconnectOptions delaunay_o = o.reconnect;
   for (int cycle = 0; cycle < o.max_cycles; ++cycle) {
     Stopwatch clock;
     CycleReport c;
@@ -130,10 +131,10 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
                                            : refine_centroids<S, P, C>(mesh, o.refine);
     if (o.points == PointRule::centroid) {
       // A centroid leaves its tet's long edge in place; metric Delaunay
-      // flips remove it (the seed pairs the rule with them).
-      ReconnectOptions delaunay = flip_o;
-      delaunay.changed_since = 0;
-      c.reconnect = reconnect<S, P, C, MetricDelaunay>(mesh, delaunay);
+      // flips remove it (the seed pairs the rule with them). Sweeping only
+      // around the new points was a third faster and lost 2.5 points of
+      // conformity (polar-1 87.5% -> 85.0%, linear 96.5% -> 94.9%).
+      c.reconnect = run(delaunay_o, [&](auto& x) { return reconnect<S, P, C, MetricDelaunay>(mesh, x); });
     }
     c.reconnect += run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
     c.collapse += run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });

@@ -154,6 +154,13 @@ TEST_SUITE("regression") {
                                "--quality-passes 1 -o " + (dir / "p.meshb"));
     CHECK(l.code == 0);
     CHECK(has(l, "iteration 2:"));
+    // The centroid point-creation rule.
+    const auto c = metrica_cli("adapt " + (dir / "c.meshb") + " --analytic linear --points centroid --cycles 3 " +
+                               "--quality-passes 1 -o " + (dir / "q.meshb"));
+    INFO(c.output);
+    CHECK(c.code == 0);
+    CHECK(has(c, "centroid points"));
+    CHECK(metrica_cli("check " + (dir / "q.meshb")).code == 0);
   }
 
   TEST_CASE("adapt on bad input: exit 1 with the reason - nothing written") {
@@ -187,6 +194,7 @@ TEST_SUITE("regression") {
     }
     CHECK(metrica_cli("adapt " + (dir / "c.meshb") + " -o " + (dir / "a.meshb")).code == 2);  // no metric
     CHECK(metrica_cli("adapt " + (dir / "c.meshb") + " --analytic linear --space curved -o " + (dir / "a.meshb")).code == 1);
+    CHECK(metrica_cli("adapt " + (dir / "c.meshb") + " --analytic linear --points random -o " + (dir / "a.meshb")).code == 1);
     CHECK_FALSE(std::filesystem::exists(dir / "a.meshb"));
   }
 

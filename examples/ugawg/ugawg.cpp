@@ -3,7 +3,7 @@
 // Grid Adaptation Working Group" benchmark cases linear, polar-1, polar-2).
 // One table row per iteration; a CSV with --csv.
 //
-//   build/examples/ugawg/ugawg [--iterations N] [--csv FILE] [--space S] [CASE...]
+//   build/examples/ugawg/ugawg [--iterations N] [--csv FILE] [--space S] [--points RULE] [CASE...]
 //   CASE: linear, polar-1, polar-2 (default: all three)
 #include <metrica/box.hpp>
 #include <metrica/error.hpp>
@@ -25,20 +25,22 @@ using namespace metrica;
 
 int main(int argc, char** argv) try {
   int iterations = 8;
-  std::string csv_path, space_name = "log-euclidean";
+  std::string csv_path, space_name = "log-euclidean", points = "edge";
   std::vector<std::string> cases;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--iterations" && i + 1 < argc) iterations = std::stoi(argv[++i]);
     else if (a == "--csv" && i + 1 < argc) csv_path = argv[++i];
     else if (a == "--space" && i + 1 < argc) space_name = argv[++i];
+    else if (a == "--points" && i + 1 < argc) points = argv[++i];
     else if (a == "-h" || a == "--help") {
-      fmt::print("usage: ugawg [--iterations N] [--csv FILE] [--space S] [linear polar-1 polar-2]\n");
+      fmt::print("usage: ugawg [--iterations N] [--csv FILE] [--space S] [--points edge|centroid] [linear polar-1 polar-2]\n");
       return 0;
     } else cases.push_back(a);
   }
   if (cases.empty()) cases = {"linear", "polar-1", "polar-2"};
   const SpaceKind space = space_from_name(space_name);
+  const PointRule rule = point_rule_from_name(points);
   std::string csv = "case,iteration,vertices,tets,seconds,conformity,min_q,mean_q,vertices_per_complexity\n";
   for (const auto& name : cases) {
     const AnalyticMetric kind = analytic_metric_from_name(name);
@@ -53,6 +55,7 @@ int main(int argc, char** argv) try {
       assign_metric(mesh, field);
       AdaptOptions o;
       o.metric = &metric;
+      o.points = rule;
       Stopwatch clock;
       adapt(mesh, o, space, PrecisionKind::filtered);
       const double seconds = clock.seconds();

@@ -1,0 +1,108 @@
+// Helpers of the operator tests: meshes with work to do, the invariant
+// check after every pass, and the policy combinations every operator test
+// runs under.
+#pragma once
+
+#include "test_support.hpp"
+
+#include <metrica/box.hpp>
+#include <metrica/mesh_edges.hpp>
+#include <metrica/metrics/metric_field.hpp>
+#include <metrica/operators/flip_criterion.hpp>
+#include <metrica/policies/concurrency.hpp>
+#include <metrica/predicates/precision.hpp>
+#include <metrica/validate.hpp>
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <span>
+#include <vector>
+
+namespace metrica::test {
+
+inline void set_uniform_metric(Mesh& mesh, double h) {
+  std::vector<Sym6> f(mesh.vertex_capacity(), isotropic_metric(h));
+  assign_metric(mesh, f);
+}
+
+inline void require_valid(const Mesh& mesh, double volume) {
+  ValidateOptions o;
+  o.expected_volume = volume;
+  const auto report = mesh.validate(o);
+  INFO(report.to_string());
+  REQUIRE(report.ok());
+}
+
+template <class S>
+double longest(const Mesh& mesh) {
+  double l = 0.0;
+  for (const auto& [a, b] : unique_edges(mesh)) l = std::max(l, S::edge_length(mesh, a, b));
+  return l;
+}
+
+// A box whose interior vertices are moved at random by up to `amount` of
+// the spacing: tets of every shape, flips and smoothing have work to do.
+inline Mesh jittered_box(int n, double amount, std::uint64_t stream) {
+  Mesh mesh = make_box({.nx = n, .ny = n, .nz = n});
+  auto r = test::rng(stream);
+  std::uniform_real_distribution<double> u(-amount / n, amount / n);
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_class(v) == VertexClass::interior) mesh.point(v) += Point(u(r), u(r), u(r));
+  return mesh;
+}
+
+// Accepts every valid configuration: exercises the topology alone.
+struct AlwaysFlip {
+  template <MetricSpace S, Precision P>
+  static bool prefers(const Mesh&, std::span<const TetVertices>, std::span<const TetVertices>) {
+    return true;
+  }
+};
+
+inline std::vector<TetVertices> sorted_tets(const Mesh& mesh) {
+  std::vector<TetVertices> out;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+    if (mesh.tet_alive(t)) {
+      TetVertices v = mesh.tet(t);
+      std::sort(v.begin(), v.end());
+      out.push_back(v);
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+template <class S>
+double worst_quality(const Mesh& mesh) {
+  double q = 1.0;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+    if (mesh.tet_alive(t)) q = std::min(q, S::mean_ratio(mesh, mesh.tet(t)));
+  return q;
+}
+
+// Area of the boundary faces of each surface id.
+inline std::map<SurfaceId, double> surface_areas(const Mesh& mesh) {
+  std::map<SurfaceId, double> area;
+  for_each_boundary_face(mesh, [&](TetId t, int f) {
+    const auto v = face_vertices(mesh.tet(t), f);
+    area[mesh.surface_id(t, f)] +=
+        0.5 * (mesh.point(v[1]) - mesh.point(v[0])).cross(mesh.point(v[2]) - mesh.point(v[0])).norm();
+  });
+  return area;
+}
+
+template <class S, class P, class C>
+struct Policies {
+  using Space = S;
+  using Precision = P;
+  using Concurrency = C;
+};
+
+}  // namespace metrica::test
+
+#define METRICA_POLICY_COMBINATIONS                                                                       \
+  metrica::test::Policies<LogEuclidean, Filtered, Serial>, metrica::test::Policies<Anisotropic, Filtered, Serial>,                     \
+      metrica::test::Policies<Isotropic, Filtered, Serial>, metrica::test::Policies<LogEuclidean, Exact, Serial>,                        \
+      metrica::test::Policies<LogEuclidean, Fast, Serial>
