@@ -94,12 +94,15 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
     optimal += detail::ideal_apex<S>(mesh.point(f[0]), mesh.point(f[2]), mesh.point(f[1]), s.metrics[i]);
   }
   optimal /= static_cast<double>(s.ball.size());
+  // Trials from `secondary` on are tried only when none before improved.
+  std::size_t secondary = std::numeric_limits<std::size_t>::max();
   if (cls == VertexClass::interior) {
     for (double w : {1.0, 0.5, 0.25}) s.trials.push_back(x + w * (optimal - x));
     Point mean = Point::Zero();
     for (VertexId u : s.neighbours) mean += mesh.point(u);
     mean /= static_cast<double>(s.neighbours.size());
     s.trials.push_back(x + 0.5 * (mean - x));
+    secondary = s.trials.size();
     for (TetId t : s.ball) {
       const auto& tv = mesh.tet(t);
       const auto f = face_vertices(tv, local_index(tv, v));
@@ -178,7 +181,9 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
   const int bad_old = out_of_range(x);
   double q_best = q_old;
   Point best = x;
-  for (const Point& p : s.trials) {
+  for (std::size_t i = 0; i < s.trials.size(); ++i) {
+    if (i == secondary && improves_min_quality(q_old, q_best)) break;
+    const Point& p = s.trials[i];
     const double q = min_quality_at(p, q_best);
     if (q > q_best && out_of_range(p) <= bad_old) {
       q_best = q;
