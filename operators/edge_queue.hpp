@@ -24,7 +24,7 @@ template <MetricSpace S>
 std::vector<EdgeCandidate> edges_beyond(const Mesh& mesh, double bound, EdgeOrder order) {
   std::vector<EdgeCandidate> out;
   const bool longer = order == EdgeOrder::longest_first;
-  for (const auto& [a, b] : unique_edges(mesh)) {
+  for (const auto& [a, b] : unique_edges_unordered(mesh)) {
     const double l = S::edge_length(mesh, a, b);
     if (longer ? l > bound : l < bound) out.push_back({l, a, b});
   }

@@ -26,30 +26,39 @@ std::span<const T> view(const boost::container::small_vector<T, N>& v) {
   return {v.data(), v.size()};
 }
 
+// A set of ids for the cavity walks: an open-addressing table on the
+// stack (no allocation, O(1) membership), with a linear search of the
+// caller's list kept for the rare cavities too large for it. Linear
+// searches of the lists cost 10% of an adaptation.
+class SmallIdSet {
+ public:
+  SmallIdSet() { slots_.fill(kNoId); }
+  // True when id was not in the set (and adds it). `list` holds every id
+  // added so far (the caller's output list).
+  template <class List>
+  bool insert(std::uint32_t id, const List& list) {
+    if (list.size() >= kMaxLoad) return std::find(list.begin(), list.end(), id) == list.end();
+    std::size_t h = (id * 2654435761u) >> 24;
+    while (slots_[h] != kNoId) {
+      if (slots_[h] == id) return false;
+      h = (h + 1) & (kSlots - 1);
+    }
+    slots_[h] = id;
+    return true;
+  }
+
+ private:
+  static constexpr std::size_t kSlots = 256, kMaxLoad = 128;
+  std::array<std::uint32_t, kSlots> slots_;
+};
+
 // The tets containing v, by a walk over faces through v from its hint.
-// Each ball tet is reached from up to three neighbours; a small
-// open-addressing table on the stack says which were seen (a linear search
-// of the list cost 10% of an adaptation), with the search kept for the
-// rare balls too large for it.
 inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
   ball.clear();
   const TetId start = mesh.vert2tet(v);
   if (start == kNoId || !mesh.tet_alive(start)) return;
-  constexpr std::size_t kSlots = 256, kMaxLoad = 128;
-  std::array<TetId, kSlots> seen;
-  seen.fill(kNoId);
-  // True when t was not seen before (and records it).
-  auto first_visit = [&](TetId t) {
-    if (ball.size() >= kMaxLoad) return std::find(ball.begin(), ball.end(), t) == ball.end();
-    std::size_t h = (static_cast<std::uint32_t>(t) * 2654435761u) >> 24;
-    while (seen[h] != kNoId) {
-      if (seen[h] == t) return false;
-      h = (h + 1) & (kSlots - 1);
-    }
-    seen[h] = t;
-    return true;
-  };
-  first_visit(start);
+  SmallIdSet seen;
+  seen.insert(start, ball);
   ball.push_back(start);
   for (std::size_t k = 0; k < ball.size(); ++k) {
     const TetId t = ball[k];
@@ -57,7 +66,7 @@ inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
     for (int f = 0; f < 4; ++f) {
       if (f == iv) continue;  // the face opposite v does not contain it
       const FaceRef n = mesh.neighbour(t, f);
-      if (n.valid() && first_visit(n.tet())) ball.push_back(n.tet());
+      if (n.valid() && seen.insert(n.tet(), ball)) ball.push_back(n.tet());
     }
   }
 }
@@ -75,9 +84,10 @@ inline std::vector<std::uint8_t> changed_vertices(const Mesh& mesh, Mesh::Epoch 
 // The vertices joined to v by an edge.
 inline void vertex_neighbours(const Mesh& mesh, const TetList& ball, VertexId v, VertexList& out) {
   out.clear();
+  SmallIdSet seen;
   for (TetId t : ball)
     for (VertexId w : mesh.tet(t))
-      if (w != v && std::find(out.begin(), out.end(), w) == out.end()) out.push_back(w);
+      if (w != v && seen.insert(w, out)) out.push_back(w);
 }
 
 // The shell of edge ab: the tets containing both, in rotation order about

@@ -5,20 +5,19 @@
 
 namespace metrica {
 
-// A bucket sort by the lower vertex (one counting pass, one filling pass),
-// then each vertex's short list of higher neighbours sorted and made
-// unique: the same order as sorting the edge keys, about four times
-// faster than std::sort on 6 keys per tet (it ran in every operator pass).
-std::vector<EdgeVertices> unique_edges(const Mesh& mesh) {
+namespace {
+// The higher ends of the edges, bucketed by lower end (with repeats): a
+// counting pass then a filling pass over the tets.
+void edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& start, std::vector<VertexId>& upper) {
   const std::size_t nv = mesh.vertex_capacity();
-  std::vector<std::uint32_t> start(nv + 1, 0);
+  start.assign(nv + 1, 0);
   for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
     if (!mesh.tet_alive(t)) continue;
     const auto& v = mesh.tet(t);
     for (const auto& e : kEdgeVertex) ++start[std::min(v[e[0]], v[e[1]]) + 1];
   }
   for (std::size_t i = 0; i < nv; ++i) start[i + 1] += start[i];
-  std::vector<VertexId> upper(start[nv]);
+  upper.resize(start[nv]);
   std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
   for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
     if (!mesh.tet_alive(t)) continue;
@@ -28,6 +27,36 @@ std::vector<EdgeVertices> unique_edges(const Mesh& mesh) {
       upper[cursor[std::min(a, b)]++] = std::max(a, b);
     }
   }
+}
+}  // namespace
+
+std::vector<EdgeVertices> unique_edges_unordered(const Mesh& mesh) {
+  std::vector<std::uint32_t> start;
+  std::vector<VertexId> upper;
+  edges_by_lower_vertex(mesh, start, upper);
+  // last[b] == a: edge ab already listed (no sort: one mark per vertex).
+  std::vector<VertexId> last(mesh.vertex_capacity(), kNoId);
+  std::vector<EdgeVertices> edges;
+  edges.reserve(upper.size() / 4);
+  for (VertexId a = 0; a + 1 < start.size(); ++a)
+    for (std::uint32_t i = start[a]; i < start[a + 1]; ++i) {
+      const VertexId b = upper[i];
+      if (last[b] == a) continue;
+      last[b] = a;
+      edges.push_back({a, b});
+    }
+  return edges;
+}
+
+// A bucket sort by the lower vertex (one counting pass, one filling pass),
+// then each vertex's short list of higher neighbours sorted and made
+// unique: the same order as sorting the edge keys, about four times
+// faster than std::sort on 6 keys per tet (it ran in every operator pass).
+std::vector<EdgeVertices> unique_edges(const Mesh& mesh) {
+  const std::size_t nv = mesh.vertex_capacity();
+  std::vector<std::uint32_t> start;
+  std::vector<VertexId> upper;
+  edges_by_lower_vertex(mesh, start, upper);
   std::vector<EdgeVertices> edges;
   edges.reserve(upper.size() / 4);
   for (VertexId a = 0; a < nv; ++a) {

@@ -9,5 +9,8 @@
 namespace metrica {
 
 std::vector<EdgeVertices> unique_edges(const Mesh& mesh);
+// The same edges, ordered by lower vertex only (cheaper: no sort); for
+// consumers whose result does not depend on the order.
+std::vector<EdgeVertices> unique_edges_unordered(const Mesh& mesh);
 
 }  // namespace metrica
