@@ -144,9 +144,11 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
     finish(c, clock);
     if (static_cast<double>(changed) < o.min_change * static_cast<double>(mesh.num_vertices())) break;
   }
-  // The quality phase: flips from the poorer tets only (a subset of what
-  // the cycles tried, so their epochs carry over), smoothing of every
-  // vertex (a larger threshold than the cycles': all are tried once).
+  // The quality phase: flips from the tets below polish_below, smoothing
+  // of every vertex. A pass whose threshold is larger than in the cycles
+  // tries everything once (tets the cycles skipped for their quality
+  // were never tried), then only what changed.
+  if (o.polish_below > flip_o.seed_below) flip_o.changed_since = 0;
   flip_o.seed_below = o.polish_below;
   flip_o.max_sweeps = 4;
   if (o.quality_phase_smooth_below > smooth_o.below) smooth_o.changed_since = 0;

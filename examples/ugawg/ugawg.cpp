@@ -17,11 +17,26 @@
 #include <fmt/core.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
 using namespace metrica;
+
+namespace {
+// Peak resident memory of this process so far (VmHWM), in MB.
+double peak_mb() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (f == nullptr) return 0.0;
+  char line[256];
+  double kb = 0.0;
+  while (std::fgets(line, sizeof line, f) != nullptr)
+    if (std::strncmp(line, "VmHWM:", 6) == 0) kb = std::atof(line + 6);
+  std::fclose(f);
+  return kb / 1024.0;
+}
+}  // namespace
 
 int main(int argc, char** argv) try {
   int iterations = 8;
@@ -41,13 +56,13 @@ int main(int argc, char** argv) try {
   if (cases.empty()) cases = {"linear", "polar-1", "polar-2"};
   const SpaceKind space = space_from_name(space_name);
   const PointRule rule = point_rule_from_name(points);
-  std::string csv = "case,iteration,vertices,tets,seconds,conformity,min_q,mean_q,vertices_per_complexity\n";
+  std::string csv = "case,iteration,vertices,tets,seconds,conformity,min_q,mean_q,vertices_per_complexity,peak_mb\n";
   for (const auto& name : cases) {
     const AnalyticMetric kind = analytic_metric_from_name(name);
     const MetricFunction metric = [kind](const Point& p) { return evaluate(kind, p); };
     Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});  // the UGAWG start mesh, cube-linear-00
-    fmt::print("{}\n  {:>4} {:>9} {:>10} {:>8} {:>9} {:>7} {:>7} {:>8}\n", name, "iter", "vertices", "tets", "seconds",
-               "in range", "min Q", "mean Q", "N/C");
+    fmt::print("{}\n  {:>4} {:>9} {:>10} {:>8} {:>9} {:>7} {:>7} {:>8} {:>8}\n", name, "iter", "vertices", "tets",
+               "seconds", "in range", "min Q", "mean Q", "N/C", "peak MB");
     for (int it = 1; it <= iterations; ++it) {
       std::vector<Sym6> field(mesh.vertex_capacity(), isotropic_metric(1.0));
       for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
@@ -60,11 +75,11 @@ int main(int argc, char** argv) try {
       adapt(mesh, o, space, PrecisionKind::filtered);
       const double seconds = clock.seconds();
       const auto r = quality_report(mesh, space);
-      fmt::print("  {:>4} {:>9} {:>10} {:>8.2f} {:>8.2f}% {:>7.3f} {:>7.3f} {:>8.3f}\n", it, r.vertices, r.tets, seconds,
-                 100.0 * r.unit_length_share, r.quality.min, r.quality.mean, r.vertices_per_complexity);
+      fmt::print("  {:>4} {:>9} {:>10} {:>8.2f} {:>8.2f}% {:>7.3f} {:>7.3f} {:>8.3f} {:>8.1f}\n", it, r.vertices, r.tets,
+                 seconds, 100.0 * r.unit_length_share, r.quality.min, r.quality.mean, r.vertices_per_complexity, peak_mb());
       std::fflush(stdout);
-      csv += fmt::format("{},{},{},{},{:.3f},{:.5f},{:.5f},{:.5f},{:.4f}\n", name, it, r.vertices, r.tets, seconds,
-                         r.unit_length_share, r.quality.min, r.quality.mean, r.vertices_per_complexity);
+      csv += fmt::format("{},{},{},{},{:.3f},{:.5f},{:.5f},{:.5f},{:.4f},{:.1f}\n", name, it, r.vertices, r.tets, seconds,
+                         r.unit_length_share, r.quality.min, r.quality.mean, r.vertices_per_complexity, peak_mb());
     }
   }
   if (!csv_path.empty()) io::write_file_atomically(csv_path, csv);
