@@ -147,7 +147,6 @@ OperatorStats refine_centroids(Mesh& mesh, const RefineOptions& o = {}) {
   const Mesh::Epoch start = mesh.next_epoch();
   const auto candidates = centroid_candidates<S>(mesh, o, candidate_of_tet);
   CellSplitScratch cell;
-  TetList ball;
   Shell shell;
   VertexList cavity;
   typename C::Locks locks;
