@@ -55,7 +55,8 @@ int run_adapt(const std::vector<std::string>& args) {
             "time (the UGAWG loop). The output is checked with validate() before it is written.\n\n"
             "Examples:\n"
             "  metrica adapt cube-linear-00.meshb -m cube-linear-00.solb -o adapted.meshb\n"
-            "  metrica adapt cube.meshb --analytic polar-1 --iterations 5 -o polar1.meshb --vtu polar1.vtu");
+            "  metrica adapt cube.meshb --analytic polar-1 --iterations 5 -o polar1.meshb --vtu polar1.vtu\n"
+            "  metrica adapt cube.meshb --analytic polar-2 --points centroid -o polar2.meshb");
   o.input("mesh (.mesh, .meshb)");
   o.output("adapted mesh (.mesh, .meshb, .vtu, .su2)");
   o.add()("metric,m", po::value<std::string>()->value_name("FILE"), "metric at the input's vertices (.sol, .solb)")(
@@ -67,17 +68,17 @@ int run_adapt(const std::vector<std::string>& args) {
       "precision", po::value<std::string>()->default_value("filtered")->value_name("P"),
       "predicates: filtered (exact when it matters), exact, fast (plain double)")(
       "points", po::value<std::string>()->default_value("edge")->value_name("RULE"),
-      "point creation: edge (split long edges at their metric midpoint) or centroid (the centroids of\n"
-      "tets with a long edge, moved to a boundary face or ridge they encroach)")(
+      "point creation: edge (split long edges at their metric midpoint) or centroid (the centroids "
+      "of tets with a long edge, moved to a boundary face or ridge they encroach)")(
       "cycles", po::value<int>()->default_value(15)->value_name("N"), "most adaptation cycles per adaptation")(
       "quality-passes", po::value<int>()->default_value(4)->value_name("N"), "flip + smooth passes at the end")(
       "max-length", po::value<double>()->value_name("L"), "split edges longer than L (default sqrt 2)")(
       "min-length", po::value<double>()->value_name("L"), "collapse edges shorter than L (default 1/sqrt 2)")(
       "collapse-max-length", po::value<double>()->value_name("L"),
       "a collapse may not make an edge longer than L (default 1.5)")(
-      "quality-floor", po::value<double>()->default_value(0.1)->value_name("Q"),
+      "quality-floor", po::value<double>()->default_value(0.1, "0.1")->value_name("Q"),
       "a collapse may not make a tet worse than Q (unless the ball was already worse)")(
-      "smooth-below", po::value<double>()->default_value(0.3)->value_name("Q"),
+      "smooth-below", po::value<double>()->default_value(0.3, "0.3")->value_name("Q"),
       "smooth the vertices of tets with mean ratio below Q during the cycles")(
       "metric-out", po::value<std::string>()->value_name("FILE"), "also write the metric at the output's vertices")(
       "vtu", po::value<std::string>()->value_name("FILE"), "also write the adapted mesh for ParaView");
