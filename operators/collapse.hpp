@@ -190,9 +190,7 @@ OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
     vertex_neighbours(mesh, s.ball, c.a, cavity);
     if (std::find(cavity.begin(), cavity.end(), c.b) == cavity.end()) continue;  // edge gone
     vertex_ball(mesh, c.b, s.ball_b);
-    for (TetId t : s.ball_b)
-      for (VertexId v : mesh.tet(t))
-        if (std::find(cavity.begin(), cavity.end(), v) == cavity.end()) cavity.push_back(v);
+    append_vertices(mesh, s.ball_b, cavity);
     if (!locks.acquire(view(cavity))) {
       ++stats.conflicts;
       continue;

@@ -34,22 +34,24 @@ class SmallIdSet {
  public:
   SmallIdSet() { slots_.fill(kNoId); }
   // True when id was not in the set (and adds it). `list` holds every id
-  // added so far (the caller's output list).
+  // added so far (the caller's list, searched once the table is half full).
   template <class List>
   bool insert(std::uint32_t id, const List& list) {
-    if (list.size() >= kMaxLoad) return std::find(list.begin(), list.end(), id) == list.end();
+    if (count_ >= kMaxLoad) return std::find(list.begin(), list.end(), id) == list.end();
     std::size_t h = (id * 2654435761u) >> 24;
     while (slots_[h] != kNoId) {
       if (slots_[h] == id) return false;
       h = (h + 1) & (kSlots - 1);
     }
     slots_[h] = id;
+    ++count_;
     return true;
   }
 
  private:
   static constexpr std::size_t kSlots = 256, kMaxLoad = 128;
   std::array<std::uint32_t, kSlots> slots_;
+  std::size_t count_ = 0;
 };
 
 // The tets containing v, by a walk over faces through v from its hint.
@@ -69,6 +71,17 @@ inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
       if (n.valid() && seen.insert(n.tet(), ball)) ball.push_back(n.tet());
     }
   }
+}
+
+// Appends to `list` the vertices of `tets` it does not hold yet (the
+// vertex set of a cavity, to lock).
+template <class Tets>
+void append_vertices(const Mesh& mesh, const Tets& tets, VertexList& list) {
+  SmallIdSet seen;
+  for (VertexId v : list) seen.insert(v, list);  // (all already in the list)
+  for (TetId t : tets)
+    for (VertexId v : mesh.tet(t))
+      if (seen.insert(v, list)) list.push_back(v);
 }
 
 // Marks (1) the vertices of the tets written since epoch `since`: the

@@ -236,6 +236,21 @@ TEST_SUITE("regression") {
 }
 
 TEST_SUITE("unit") {
+  TEST_CASE("the cavity id set says each id is new once - past its table too") {
+    for (std::uint32_t n : {10u, 200u, 1000u}) {
+      CAPTURE(n);
+      SmallIdSet seen;
+      std::vector<std::uint32_t> list;
+      for (std::uint32_t i = 0; i < n; ++i) {
+        const std::uint32_t id = (i * 7919u) % 100003u;
+        REQUIRE(seen.insert(id, list));
+        list.push_back(id);
+        REQUIRE_FALSE(seen.insert(id, list));
+      }
+      for (std::uint32_t id : list) CHECK_FALSE(seen.insert(id, list));
+    }
+  }
+
   TEST_CASE("edge shells: closed around interior edges and open between boundary faces") {
     const Mesh mesh = make_box({.nx = 2, .ny = 2, .nz = 2});
     TetList ball;
