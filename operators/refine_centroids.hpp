@@ -32,6 +32,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
 #include <vector>
 
 namespace metrica {
@@ -68,7 +69,7 @@ std::vector<PointCandidate> centroid_candidates(const Mesh& mesh, const RefineOp
                                                 std::vector<std::uint32_t>& candidate_of_tet) {
   std::vector<PointCandidate> out;
   candidate_of_tet.assign(mesh.tet_capacity(), kNoId);
-  std::vector<std::uint64_t> edges_taken;
+  std::unordered_set<std::uint64_t> edges_taken;  // ridge edges with a candidate
   const double min2 = o.min_new_distance * o.min_new_distance;
   for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
     if (!mesh.tet_alive(t)) continue;
@@ -129,8 +130,8 @@ std::vector<PointCandidate> centroid_candidates(const Mesh& mesh, const RefineOp
     }
     if (c.a != kNoId) {
       const std::uint64_t key = edge_key(c.a, c.b);
-      close = close || std::find(edges_taken.begin(), edges_taken.end(), key) != edges_taken.end();
-      if (!close) edges_taken.push_back(key);
+      close = close || edges_taken.count(key) != 0;
+      if (!close) edges_taken.insert(key);
     }
     if (close) continue;
     candidate_of_tet[t] = static_cast<std::uint32_t>(out.size());
