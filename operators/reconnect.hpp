@@ -83,9 +83,7 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
       cavity.clear();
       cavity.push_back(a);
       cavity.push_back(b);
-      for (TetId u : s.shell.tets)
-        for (VertexId v : edge_opposite(mesh.tet(u), a, b))
-          if (std::find(cavity.begin(), cavity.end(), v) == cavity.end()) cavity.push_back(v);
+      append_vertices(mesh, s.shell.tets, cavity);
       if (!lock(view(cavity))) continue;
       ++stats.tried;
       const FlipResult r = remove_edge<S, P, Criterion>(mesh, a, b, s, o.flips);

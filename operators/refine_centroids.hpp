@@ -162,10 +162,7 @@ OperatorStats refine_centroids(Mesh& mesh, const RefineOptions& o = {}) {
     cavity.assign(v.begin(), v.end());
     if (c.a != kNoId) {
       edge_shell_from(mesh, c.a, c.b, c.tet, shell);
-      cavity.clear();
-      for (TetId t : shell.tets)
-        for (VertexId x : mesh.tet(t))
-          if (std::find(cavity.begin(), cavity.end(), x) == cavity.end()) cavity.push_back(x);
+      append_vertices(mesh, shell.tets, cavity);
     }
     if (!locks.acquire(view(cavity))) {
       ++stats.conflicts;

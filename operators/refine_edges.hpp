@@ -51,9 +51,7 @@ OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}) {
     vertex_ball(mesh, c.a, ball);
     if (!edge_shell(mesh, c.a, c.b, ball, shell)) continue;
     cavity.clear();
-    for (TetId t : shell.tets)
-      for (VertexId v : mesh.tet(t))
-        if (std::find(cavity.begin(), cavity.end(), v) == cavity.end()) cavity.push_back(v);
+    append_vertices(mesh, shell.tets, cavity);
     if (!locks.acquire(std::span<const VertexId>(cavity.data(), cavity.size()))) {
       ++stats.conflicts;
       continue;

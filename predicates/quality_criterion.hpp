@@ -23,19 +23,6 @@ inline double improvement_bar(double before, double margin = kQualityMargin) {
   return before + margin * std::max(std::abs(before), 1e-300);
 }
 
-// The smallest mean ratio of `tets`, stopping at the first one at or below
-// `floor` (then that one's value is returned): enough to know that the
-// set does not beat `floor`, at a fraction of the cost when it fails early.
-template <MetricSpace S>
-double min_mean_ratio_above(const Mesh& mesh, std::span<const TetVertices> tets, double floor) {
-  double q = std::numeric_limits<double>::infinity();
-  for (const auto& t : tets) {
-    q = std::min(q, S::mean_ratio(mesh, t));
-    if (q <= floor) break;
-  }
-  return q;
-}
-
 template <MetricSpace S>
 double min_mean_ratio(const Mesh& mesh, std::span<const TetVertices> tets) {
   double q = std::numeric_limits<double>::infinity();
