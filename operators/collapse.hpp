@@ -178,23 +178,27 @@ OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
     const std::vector<std::uint8_t> changed = changed_vertices(mesh, o.changed_since);
     std::erase_if(todo, [&](const EdgeCandidate& c) { return !changed[c.a] && !changed[c.b]; });
   }
-  CollapseScratch s;
-  typename C::Locks locks;
-  VertexList cavity;
-  for (const auto& c : todo) {
-    if (!mesh.vertex_alive(c.a) || !mesh.vertex_alive(c.b)) continue;
-    ++stats.tried;
-    // Both balls: the endpoint collapses change ball(from), the merge at
-    // the midpoint moves b too.
+  struct Scratch {
+    CollapseScratch s;
+    VertexList cavity;
+  };
+  std::vector<PerThread<Scratch>> threads(static_cast<std::size_t>(C::threads()));
+  auto work = [&](const EdgeCandidate& c, int thread, typename C::Locks& locks) {
+    auto& [x, st] = threads[static_cast<std::size_t>(thread)];
+    CollapseScratch& s = x.s;
+    VertexList& cavity = x.cavity;
+    // The two ends first (their balls may then be read), then both balls:
+    // the endpoint collapses change ball(from), the merge at the midpoint
+    // moves b too.
+    if (!locks.acquire({c.a, c.b})) return Attempt::conflict;
+    if (!mesh.vertex_alive(c.a) || !mesh.vertex_alive(c.b)) return Attempt::done;
     vertex_ball(mesh, c.a, s.ball);
     vertex_neighbours(mesh, s.ball, c.a, cavity);
-    if (std::find(cavity.begin(), cavity.end(), c.b) == cavity.end()) continue;  // edge gone
+    if (std::find(cavity.begin(), cavity.end(), c.b) == cavity.end()) return Attempt::done;  // edge gone
     vertex_ball(mesh, c.b, s.ball_b);
     append_vertices(mesh, s.ball_b, cavity);
-    if (!locks.acquire(view(cavity))) {
-      ++stats.conflicts;
-      continue;
-    }
+    if (!locks.acquire(view(cavity))) return Attempt::conflict;
+    ++st.tried;
     VertexId from = c.a, to = c.b;
     if (mesh.vertex_class(to) < mesh.vertex_class(from)) std::swap(from, to);
     FlipResult r = FlipResult::not_applicable;
@@ -226,10 +230,13 @@ OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
       }
       rejected = rejected || r == FlipResult::rejected;
     }
-    locks.release();
-    if (r == FlipResult::applied) ++stats.applied;
-    else if (rejected) ++stats.rejected;
-  }
+    if (r == FlipResult::applied) ++st.applied;
+    else if (rejected) ++st.rejected;
+    return Attempt::done;
+  };
+  // A collapse frees tets (net); a thread reuses its own at once.
+  stats.add(C::for_each(mesh, std::span<const EdgeCandidate>(todo), PassRoom{.vertices_per_item = 0, .tets_per_item = 0}, work));
+  add_thread_counts(stats, threads);
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -1,24 +1,58 @@
 // What an operator pass reports: attempts, changes, rejections by the
 // geometric criterion, conflicts with other threads (Speculative only),
 // and time. Printed per cycle by the pipeline.
+//
+// Per-thread state of a pass (scratch and counts) sits in PerThread<T>:
+// one cache-line-aligned slot per thread, so threads never share a line.
 #pragma once
 
+#include <metrica/policies/concurrency.hpp>
+
 #include <cstddef>
+#include <vector>
 
 namespace metrica {
 
 struct OperatorStats {
   std::size_t tried = 0, applied = 0, rejected = 0, deferred = 0, conflicts = 0;
+  // Speculative: items replayed in a later round, items left to one thread.
+  std::size_t replays = 0, serial_tail = 0;
   double seconds = 0.0;
+  // Counts of one thread's share of a pass.
+  void add_counts(const OperatorStats& o) {
+    tried += o.tried;
+    applied += o.applied;
+    rejected += o.rejected;
+    deferred += o.deferred;
+  }
+  void add(const PassTally& t) {
+    conflicts += t.conflicts;
+    replays += t.replays;
+    serial_tail += t.serial_tail;
+  }
   OperatorStats& operator+=(const OperatorStats& o) {
     tried += o.tried;
     applied += o.applied;
     rejected += o.rejected;
     deferred += o.deferred;
     conflicts += o.conflicts;
+    replays += o.replays;
+    serial_tail += o.serial_tail;
     seconds += o.seconds;
     return *this;
   }
 };
+
+template <class T>
+struct alignas(64) PerThread {
+  T scratch;
+  OperatorStats stats;
+};
+
+// Sums the threads' counts into `total`.
+template <class T>
+void add_thread_counts(OperatorStats& total, const std::vector<PerThread<T>>& threads) {
+  for (const auto& t : threads) total.add_counts(t.stats);
+}
 
 }  // namespace metrica

@@ -35,15 +35,7 @@ template <MetricSpace S, Precision P, Concurrency C, class Criterion>
 OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  FlipScratch s;
-  VertexList cavity;
-  typename C::Locks locks;
   std::vector<TetId> seeds;
-  auto lock = [&](std::span<const VertexId> vertices) {
-    if (locks.acquire(vertices)) return true;
-    ++stats.conflicts;
-    return false;
-  };
   // An edge and a tet that held it when the work list was made (the shell
   // walk starts there when the tet still holds it, else from a's ball).
   struct EdgeSeed {
@@ -51,6 +43,58 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
     TetId tet;
   };
   std::vector<EdgeSeed> edges;
+  struct Scratch {
+    FlipScratch s;
+    VertexList cavity;
+  };
+  std::vector<PerThread<Scratch>> threads(static_cast<std::size_t>(C::threads()));
+  auto remove = [&](const EdgeSeed& e, int thread, typename C::Locks& locks) {
+    auto& [x, st] = threads[static_cast<std::size_t>(thread)];
+    FlipScratch& s = x.s;
+    const auto [a, b] = edge_from_key(e.key);
+    if (!locks.acquire({a, b})) return Attempt::conflict;
+    if (!mesh.vertex_alive(a) || !mesh.vertex_alive(b)) return Attempt::done;
+    // Holding a, a tet that shows a and b holds them for good (a writer
+    // would hold a), so its peeked vertices are its vertices.
+    const TetVertices held = mesh.peek_tet(e.tet);
+    if (local_index(held, a) >= 0 && local_index(held, b) >= 0) {
+      edge_shell_from(mesh, a, b, e.tet, s.shell);
+    } else {
+      vertex_ball(mesh, a, s.ball);
+      if (!edge_shell(mesh, a, b, s.ball, s.shell)) return Attempt::done;  // gone since
+    }
+    x.cavity.clear();
+    x.cavity.push_back(a);
+    x.cavity.push_back(b);
+    append_vertices(mesh, s.shell.tets, x.cavity);
+    if (!locks.acquire(view(x.cavity))) return Attempt::conflict;
+    ++st.tried;
+    const FlipResult r = remove_edge<S, P, Criterion>(mesh, a, b, s, o.flips);
+    if (r == FlipResult::applied) ++st.applied;
+    else if (r == FlipResult::rejected) ++st.rejected;
+    return Attempt::done;
+  };
+  // 2-3 flips across the faces of a seed still there.
+  auto flip_faces = [&](TetId t, int thread, typename C::Locks& locks) {
+    auto& [x, st] = threads[static_cast<std::size_t>(thread)];
+    const TetVertices tv = mesh.peek_tet(t);
+    if (tv[0] == kNoId || tv[1] == kNoId || tv[2] == kNoId || tv[3] == kNoId) return Attempt::done;
+    if (!locks.acquire(std::span<const VertexId>(tv))) return Attempt::conflict;
+    if (mesh.tet(t) != tv) return Attempt::done;  // changed since the list was made
+    for (int f = 0; f < 4; ++f) {
+      const FaceRef nb = mesh.neighbour(t, f);
+      if (!nb.valid()) continue;
+      if (!locks.acquire({mesh.tet(nb.tet())[nb.face()]})) return Attempt::conflict;
+      ++st.tried;
+      const FlipResult r = flip23<S, P, Criterion>(mesh, t, f, x.s, o.flips);
+      if (r == FlipResult::applied) {
+        ++st.applied;
+        break;  // t is gone
+      }
+      if (r == FlipResult::rejected) ++st.rejected;
+    }
+    return Attempt::done;
+  };
   Mesh::Epoch since = o.changed_since;
   for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
     const Mesh::Epoch sweep_epoch = mesh.next_epoch();
@@ -69,48 +113,14 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
     edges.erase(std::unique(edges.begin(), edges.end(),
                             [](const EdgeSeed& x, const EdgeSeed& y) { return x.key == y.key; }),
                 edges.end());
-    std::size_t applied = 0;
-    for (const EdgeSeed& e : edges) {
-      const auto [a, b] = edge_from_key(e.key);
-      if (!mesh.vertex_alive(a) || !mesh.vertex_alive(b)) continue;
-      const TetVertices& held = mesh.tet(e.tet);
-      if (mesh.tet_alive(e.tet) && local_index(held, a) >= 0 && local_index(held, b) >= 0) {
-        edge_shell_from(mesh, a, b, e.tet, s.shell);
-      } else {
-        vertex_ball(mesh, a, s.ball);
-        if (!edge_shell(mesh, a, b, s.ball, s.shell)) continue;  // gone since
-      }
-      cavity.clear();
-      cavity.push_back(a);
-      cavity.push_back(b);
-      append_vertices(mesh, s.shell.tets, cavity);
-      if (!lock(view(cavity))) continue;
-      ++stats.tried;
-      const FlipResult r = remove_edge<S, P, Criterion>(mesh, a, b, s, o.flips);
-      locks.release();
-      if (r == FlipResult::applied) ++applied;
-      else if (r == FlipResult::rejected) ++stats.rejected;
-    }
-    // 2-3 flips across the faces of the seeds still there.
-    for (TetId t : seeds) {
-      if (!o.face_flips || !mesh.tet_alive(t)) continue;
-      for (int f = 0; f < 4; ++f) {
-        const FaceRef nb = mesh.neighbour(t, f);
-        if (!nb.valid()) continue;
-        const TetVertices tv = mesh.tet(t);
-        const std::array<VertexId, 5> five{tv[0], tv[1], tv[2], tv[3], mesh.tet(nb.tet())[nb.face()]};
-        if (!lock(five)) continue;
-        ++stats.tried;
-        const FlipResult r = flip23<S, P, Criterion>(mesh, t, f, s, o.flips);
-        locks.release();
-        if (r == FlipResult::applied) {
-          ++applied;
-          break;  // t is gone
-        }
-        if (r == FlipResult::rejected) ++stats.rejected;
-      }
-    }
-    stats.applied += applied;
+    const std::size_t applied_before = stats.applied;
+    for (auto& t : threads) t.stats = {};
+    // An edge removal of n tets makes 2n - 4 (a 2-3 flip one more).
+    const PassRoom room{.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 1.0};
+    stats.add(C::for_each(mesh, std::span<const EdgeSeed>(edges), room, remove));
+    if (o.face_flips) stats.add(C::for_each(mesh, std::span<const TetId>(seeds), room, flip_faces));
+    add_thread_counts(stats, threads);
+    const std::size_t applied = stats.applied - applied_before;
     if (static_cast<double>(applied) <= o.min_change * static_cast<double>(mesh.num_tets())) break;
   }
   stats.seconds = clock.seconds();

@@ -17,9 +17,11 @@
 // containing element (the tet, its boundary face, or its ridge edge), so
 // insertion needs no point location: the tet splits 1 -> 4, the face
 // 1 -> 3, the edge's shell in two. Two passes: all candidates are made
-// from the unchanged mesh (pure reads: what a thread does without locks
-// under Speculative), then inserted; a candidate whose tet an earlier
-// insertion changed waits for the next cycle (Mesh epochs say which).
+// from the unchanged mesh (pure reads, on one thread: the proximity test
+// against the neighbours' candidates depends on their order), then
+// inserted, in parallel under Speculative; a candidate whose tet an
+// earlier insertion changed waits for the next cycle (Mesh epochs say
+// which).
 #pragma once
 
 #include <metrica/operators/metric_source.hpp>
@@ -147,33 +149,38 @@ OperatorStats refine_centroids(Mesh& mesh, const RefineOptions& o = {}) {
   std::vector<std::uint32_t> candidate_of_tet;
   const Mesh::Epoch start = mesh.next_epoch();
   const auto candidates = centroid_candidates<S>(mesh, o, candidate_of_tet);
-  CellSplitScratch cell;
-  Shell shell;
-  VertexList cavity;
-  typename C::Locks locks;
-  for (const PointCandidate& c : candidates) {
-    ++stats.tried;
+  struct Scratch {
+    CellSplitScratch cell;
+    Shell shell;
+    VertexList cavity;
+  };
+  std::vector<PerThread<Scratch>> threads(static_cast<std::size_t>(C::threads()));
+  auto work = [&](const PointCandidate& c, int thread, typename C::Locks& locks) {
+    auto& [x, st] = threads[static_cast<std::size_t>(thread)];
     // Its tet must be as it was when the candidate was made.
-    if (!mesh.tet_alive(c.tet) || mesh.changed_since(c.tet, start)) {
-      ++stats.deferred;
-      continue;
+    const TetVertices v = mesh.peek_tet(c.tet);
+    if (std::find(v.begin(), v.end(), kNoId) != v.end()) {
+      ++st.deferred;
+      return Attempt::done;
     }
-    const TetVertices v = mesh.tet(c.tet);
-    cavity.assign(v.begin(), v.end());
+    if (!locks.acquire(std::span<const VertexId>(v))) return Attempt::conflict;
+    if (mesh.tet(c.tet) != v || mesh.changed_since(c.tet, start)) {
+      ++st.deferred;
+      return Attempt::done;
+    }
+    ++st.tried;
     if (c.a != kNoId) {
-      edge_shell_from(mesh, c.a, c.b, c.tet, shell);
-      append_vertices(mesh, shell.tets, cavity);
-    }
-    if (!locks.acquire(view(cavity))) {
-      ++stats.conflicts;
-      continue;
+      edge_shell_from(mesh, c.a, c.b, c.tet, x.shell);
+      x.cavity.clear();
+      append_vertices(mesh, x.shell.tets, x.cavity);
+      if (!locks.acquire(view(x.cavity))) return Attempt::conflict;
     }
     VertexId n = kNoId;
     if (c.a != kNoId) {
-      if (split_is_valid<P>(mesh, shell, c.a, c.b, c.p)) {
+      if (split_is_valid<P>(mesh, x.shell, c.a, c.b, c.p)) {
         const std::array<VertexId, 2> ends{c.a, c.b};
         const std::array<double, 2> w{1.0 - c.t, c.t};
-        n = split_edge(mesh, shell, c.a, c.b, c.p, new_vertex_metric<S>(mesh, o.metric, ends, w, c.p));
+        n = split_edge(mesh, x.shell, c.a, c.b, c.p, new_vertex_metric<S>(mesh, o.metric, ends, w, c.p));
       }
     } else if (cell_split_is_valid<P>(mesh, c.tet, c.face, c.p)) {
       std::array<VertexId, 4> ids{};
@@ -184,12 +191,15 @@ OperatorStats refine_centroids(Mesh& mesh, const RefineOptions& o = {}) {
       std::fill(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(k), 1.0 / static_cast<double>(k));
       const VertexMetric m = new_vertex_metric<S>(mesh, o.metric, std::span<const VertexId>(ids.data(), k),
                                                   std::span<const double>(w.data(), k), c.p);
-      n = split_cell(mesh, c.tet, c.face, c.p, m, cell);
+      n = split_cell(mesh, c.tet, c.face, c.p, m, x.cell);
     }
-    locks.release();
-    if (n == kNoId) ++stats.rejected;
-    else ++stats.applied;
-  }
+    if (n == kNoId) ++st.rejected;
+    else ++st.applied;
+    return Attempt::done;
+  };
+  stats.add(C::for_each(mesh, std::span<const PointCandidate>(candidates),
+                        PassRoom{.vertices_per_item = 1.0, .tets_per_item = 4.0}, work));
+  add_thread_counts(stats, threads);
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -41,52 +41,52 @@ OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
   const auto todo = edges_beyond<S>(mesh, o.max_length, EdgeOrder::longest_first);
-  std::vector<std::uint8_t> touched(mesh.vertex_capacity(), 0);
-  TetList ball;
-  Shell shell;
-  VertexList cavity;
-  typename C::Locks locks;
-  for (const auto& c : todo) {
-    ++stats.tried;
-    vertex_ball(mesh, c.a, ball);
-    if (!edge_shell(mesh, c.a, c.b, ball, shell)) continue;
-    cavity.clear();
-    append_vertices(mesh, shell.tets, cavity);
-    if (!locks.acquire(std::span<const VertexId>(cavity.data(), cavity.size()))) {
-      ++stats.conflicts;
-      continue;
-    }
+  // Vertices stamped with this epoch or later were created by this pass.
+  const Mesh::Epoch pass_epoch = mesh.next_epoch();
+  struct Scratch {
+    TetList ball;
+    Shell shell;
+    VertexList cavity;
+  };
+  std::vector<PerThread<Scratch>> threads(static_cast<std::size_t>(C::threads()));
+  auto work = [&](const EdgeCandidate& c, int thread, typename C::Locks& locks) {
+    auto& [x, st] = threads[static_cast<std::size_t>(thread)];
+    if (!locks.acquire({c.a, c.b})) return Attempt::conflict;
+    if (!mesh.vertex_alive(c.a) || !mesh.vertex_alive(c.b)) return Attempt::done;
+    vertex_ball(mesh, c.a, x.ball);
+    if (!edge_shell(mesh, c.a, c.b, x.ball, x.shell)) return Attempt::done;  // edge gone
+    x.cavity.clear();
+    append_vertices(mesh, x.shell.tets, x.cavity);
+    if (!locks.acquire(view(x.cavity))) return Attempt::conflict;
+    ++st.tried;
     const Eigen::Vector3d e = mesh.point(c.b) - mesh.point(c.a);
     const auto& ma = S::vertex_metric(mesh, c.a);
     const auto& mb = S::vertex_metric(mesh, c.b);
     const double t = metric_midpoint(std::sqrt(metric_norm2(ma, e)), std::sqrt(metric_norm2(mb, e)));
     const Point p = mesh.point(c.a) + t * e;
-    bool crowded = false;
-    for (VertexId v : cavity) {
-      if (v >= touched.size() || !touched[v]) continue;
+    for (VertexId v : x.cavity) {
+      if (mesh.vertex_stamp(v) < pass_epoch) continue;
       const auto& mv = S::vertex_metric(mesh, v);
-      const Eigen::Vector3d d = p - mesh.point(v);
-      crowded = crowded || std::sqrt(metric_norm2(mv, d)) < o.min_new_distance;
+      if (std::sqrt(metric_norm2(mv, p - mesh.point(v))) < o.min_new_distance) {
+        ++st.deferred;  // too close to a point of this pass: next pass
+        return Attempt::done;
+      }
     }
-    if (crowded) {
-      ++stats.deferred;
-      locks.release();
-      continue;
-    }
-    if (!split_is_valid<P>(mesh, shell, c.a, c.b, p)) {
-      ++stats.rejected;
-      locks.release();
-      continue;
+    if (!split_is_valid<P>(mesh, x.shell, c.a, c.b, p)) {
+      ++st.rejected;
+      return Attempt::done;
     }
     const std::array<VertexId, 2> ends{c.a, c.b};
     const std::array<double, 2> w{1.0 - t, t};
     const VertexMetric m = new_vertex_metric<S>(mesh, o.metric, ends, w, p);
-    const VertexId n = split_edge(mesh, shell, c.a, c.b, p, m);
-    locks.release();
-    ++stats.applied;
-    if (touched.size() <= n) touched.resize(n + 1, 0);
-    touched[n] = 1;  // created in this pass
-  }
+    split_edge(mesh, x.shell, c.a, c.b, p, m);
+    ++st.applied;
+    return Attempt::done;
+  };
+  // A split of a shell of n tets makes 2n (n of them reuse the old ids).
+  stats.add(C::for_each(mesh, std::span<const EdgeCandidate>(todo),
+                        PassRoom{.vertices_per_item = 1.0, .tets_per_item = 8.0}, work));
+  add_thread_counts(stats, threads);
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -213,24 +213,23 @@ OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
         if (changed[v]) todo.push_back(v);
   std::sort(todo.begin(), todo.end());
   todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
-  SmoothScratch s;
-  typename C::Locks locks;
-  for (VertexId v : todo) {
-    if (!mesh.vertex_alive(v)) continue;
+  std::vector<PerThread<SmoothScratch>> threads(static_cast<std::size_t>(C::threads()));
+  auto work = [&](VertexId v, int thread, typename C::Locks& locks) {
+    auto& [s, st] = threads[static_cast<std::size_t>(thread)];
+    if (!locks.acquire({v})) return Attempt::conflict;
+    if (!mesh.vertex_alive(v)) return Attempt::done;
     find_smoothing_cavity(mesh, v, s);
-    s.neighbours.push_back(v);
-    const bool locked = locks.acquire(view(s.neighbours));
-    s.neighbours.pop_back();
-    if (!locked) {
-      ++stats.conflicts;
-      continue;
-    }
-    ++stats.tried;
+    if (!locks.acquire(view(s.neighbours))) return Attempt::conflict;
+    ++st.tried;
     const FlipResult r = smooth_vertex<S, P>(mesh, v, s, o);
-    locks.release();
-    if (r == FlipResult::applied) ++stats.applied;
-    else if (r == FlipResult::rejected) ++stats.rejected;
-  }
+    if (r == FlipResult::applied) ++st.applied;
+    else if (r == FlipResult::rejected) ++st.rejected;
+    return Attempt::done;
+  };
+  stats.add(C::for_each(mesh, std::span<const VertexId>(todo), PassRoom{.max_vertices = 0, .max_tets = 0,
+                                                                         .vertices_per_item = 0, .tets_per_item = 0},
+                        work));
+  add_thread_counts(stats, threads);
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -1,27 +1,60 @@
 // The Concurrency policy: how work is found and protected (DESIGN.md).
-// An operator acquires the vertices of the cavity it will change before
-// it decides or writes anything, and releases them when done:
 //
-//   typename C::Locks locks;            // one per worker
-//   if (!locks.acquire(vertices)) ...   // all or nothing; false = conflict
-//   ...decide, apply...
-//   locks.release();
+// A pass hands its work list to C::for_each with a work function
 //
-// Serial makes acquisition free and always successful; Speculative (issue
-// 5) try-locks per-vertex owner words. Operators are written once for both.
+//   Attempt work(const Item& item, int thread, typename C::Locks& locks)
+//
+// which, for one item, locks vertices before it reads what they guard
+// (locks.acquire: all or nothing, false = another thread holds one),
+// finds its cavity, locks the cavity's vertices, then decides and writes.
+// It returns Attempt::conflict when an acquisition failed (before any
+// write: the item is replayed later) and Attempt::done otherwise. The
+// policy releases the locks after each item. What a thread may read:
+//   - the tets containing a vertex it holds (their vertices), and the
+//     neighbour across a face one of whose vertices it holds: so the ball
+//     of a held vertex and the shell of an edge with a held end;
+//   - a tet all of whose vertices it holds, entirely (points, metrics);
+//   - any tet's vertices through Mesh::peek_tet (a seed), to lock them
+//     and check again.
+// Serial runs the items in order on one thread and never conflicts;
+// Speculative (speculative.hpp) runs them on all threads with per-vertex
+// owner words. Operators are written once for both.
 #pragma once
 
 #include <metrica/ids.hpp>
+#include <metrica/mesh.hpp>
 
 #include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
 #include <span>
 #include <string_view>
 
 namespace metrica {
 
+enum class Attempt : std::uint8_t { done, conflict };
+
+// The ids one item may create at most (a thread's pool is topped up to
+// this before each item), and on average (sizes the shared reserve).
+struct PassRoom {
+  std::size_t max_vertices = 8;
+  std::size_t max_tets = 512;
+  double vertices_per_item = 1.0;
+  double tets_per_item = 8.0;
+};
+
+// What running a work list cost the policy: items that met a conflict
+// (their locks released, nothing written), items replayed in a later
+// round, rounds, and items left to one thread when rounds stalled.
+struct PassTally {
+  std::size_t conflicts = 0, replays = 0, rounds = 0, serial_tail = 0;
+};
+
 template <class C>
 concept Concurrency = requires(typename C::Locks& locks, std::span<const VertexId> vertices) {
   { C::name } -> std::convertible_to<std::string_view>;
+  { C::threads() } -> std::same_as<int>;
   { locks.acquire(vertices) } -> std::same_as<bool>;
   { locks.release() } -> std::same_as<void>;
 };
@@ -30,8 +63,19 @@ struct Serial {
   static constexpr std::string_view name = "serial";
   struct Locks {
     bool acquire(std::span<const VertexId>) { return true; }
+    bool acquire(std::initializer_list<VertexId>) { return true; }
     void release() {}
   };
+  static int threads() { return 1; }
+
+  template <class Item, class Work>
+  static PassTally for_each(Mesh&, std::span<const Item> items, const PassRoom&, Work&& work) {
+    Locks locks;
+    PassTally tally;
+    tally.rounds = items.empty() ? 0 : 1;
+    for (const Item& item : items) work(item, 0, locks);
+    return tally;
+  }
 };
 
 static_assert(Concurrency<Serial>);

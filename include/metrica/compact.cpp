@@ -73,6 +73,7 @@ void Mesh::compact() {
   permute(vertex_flags_, vertex_order);
   permute(metric_, vertex_order);
   permute(log_metric_, vertex_order);
+  permute(vertex_stamp_, vertex_order);
   for (auto& t : vert2tet_) t = t < new_tet.size() ? new_tet[t] : kNoId;
 
   permute(tets_, tet_order);
@@ -101,6 +102,8 @@ void Mesh::compact() {
   feature_edges_ = remap(feature_edges_);
   free_vertices_.clear();
   free_tets_.clear();
+  live_vertices_ = vertex_order.size();
+  live_tets_ = tet_order.size();
 }
 
 }  // namespace metrica

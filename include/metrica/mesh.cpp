@@ -1,7 +1,11 @@
 #include <metrica/geometry.hpp>
 #include <metrica/mesh.hpp>
 
+#include <functional>
 #include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <tuple>
 
 namespace metrica {
 
@@ -15,12 +19,20 @@ const char* to_string(VertexClass c) {
   return "?";
 }
 
+namespace {
+// The pool of the calling thread while a parallel pass runs.
+thread_local Mesh::AllocationPool* tls_pool = nullptr;
+}  // namespace
+
+void Mesh::bind_pool(AllocationPool* pool) { tls_pool = pool; }
+
 void Mesh::reserve(std::size_t vertices, std::size_t tets) {
   points_.reserve(vertices);
   vertex_ref_.reserve(vertices);
   vert2tet_.reserve(vertices);
   vertex_class_.reserve(vertices);
   vertex_flags_.reserve(vertices);
+  vertex_stamp_.reserve(vertices);
   if (has_metric()) {
     metric_.reserve(vertices);
     log_metric_.reserve(vertices);
@@ -33,16 +45,29 @@ void Mesh::reserve(std::size_t vertices, std::size_t tets) {
   tet_quality_.reserve(tets);
 }
 
+void Mesh::init_vertex(VertexId v, const Point& p, int ref) {
+  points_[v] = p;
+  vertex_ref_[v] = ref;
+  vert2tet_[v] = kNoId;
+  vertex_class_[v] = VertexClass::interior;
+  vertex_flags_[v] = kAlive;
+  vertex_stamp_[v] = epoch_;
+}
+
 VertexId Mesh::add_vertex(const Point& p, int ref) {
+  if (AllocationPool* pool = tls_pool) {
+    if (pool->vertices.empty() && !fill_pool(*pool, 1, 0)) throw std::length_error("Mesh: parallel vertex reserve exhausted");
+    const VertexId v = pool->vertices.back();
+    pool->vertices.pop_back();
+    ++pool->vertex_delta;
+    init_vertex(v, p, ref);
+    return v;
+  }
   ++live_vertices_;
   if (!free_vertices_.empty()) {
     const VertexId v = free_vertices_.back();
     free_vertices_.pop_back();
-    points_[v] = p;
-    vertex_ref_[v] = ref;
-    vert2tet_[v] = kNoId;
-    vertex_class_[v] = VertexClass::interior;
-    vertex_flags_[v] = kAlive;
+    init_vertex(v, p, ref);
     return v;
   }
   const auto v = static_cast<VertexId>(points_.size());
@@ -51,6 +76,7 @@ VertexId Mesh::add_vertex(const Point& p, int ref) {
   vert2tet_.push_back(kNoId);
   vertex_class_.push_back(VertexClass::interior);
   vertex_flags_.push_back(kAlive);
+  vertex_stamp_.push_back(epoch_);
   if (has_metric()) {
     metric_.push_back(Sym6{});
     log_metric_.push_back(Sym6{});
@@ -61,6 +87,11 @@ VertexId Mesh::add_vertex(const Point& p, int ref) {
 void Mesh::remove_vertex(VertexId v) {
   vertex_flags_[v] = 0;
   vert2tet_[v] = kNoId;
+  if (AllocationPool* pool = tls_pool) {
+    pool->removed_vertices.push_back(v);
+    --pool->vertex_delta;
+    return;
+  }
   free_vertices_.push_back(v);
   --live_vertices_;
 }
@@ -81,25 +112,35 @@ void Mesh::set_metric(VertexId v, const Sym6& m, const Sym6& log_m) {
   log_metric_[v] = log_m;
 }
 
+void Mesh::init_tet(TetId t, const TetVertices& vertices, int ref) {
+  store_tet(t, vertices);
+  tet2tets_[t] = {};
+  face_surface_[t] = {0, 0, 0, 0};
+  tet_ref_[t] = ref;
+  tet_stamp_[t] = epoch_;
+  cache_quality(t, kUnknownQuality);
+}
+
 TetId Mesh::add_tet(const TetVertices& vertices, int ref) {
+  if (AllocationPool* pool = tls_pool) {
+    if (pool->tets.empty() && !fill_pool(*pool, 0, 1)) throw std::length_error("Mesh: parallel tet reserve exhausted");
+    const TetId t = pool->tets.back();
+    pool->tets.pop_back();
+    ++pool->tet_delta;
+    init_tet(t, vertices, ref);
+    return t;
+  }
   ++live_tets_;
-  constexpr std::array<FaceRef, 4> kNoNeighbours{};
-  constexpr std::array<SurfaceId, 4> kInterior{0, 0, 0, 0};
   if (!free_tets_.empty()) {
     const TetId t = free_tets_.back();
     free_tets_.pop_back();
-    tets_[t] = vertices;
-    tet2tets_[t] = kNoNeighbours;
-    face_surface_[t] = kInterior;
-    tet_ref_[t] = ref;
-    tet_stamp_[t] = epoch_;
-    tet_quality_[t] = kUnknownQuality;
+    init_tet(t, vertices, ref);
     return t;
   }
   const auto t = static_cast<TetId>(tets_.size());
   tets_.push_back(vertices);
-  tet2tets_.push_back(kNoNeighbours);
-  face_surface_.push_back(kInterior);
+  tet2tets_.push_back({});
+  face_surface_.push_back({0, 0, 0, 0});
   tet_ref_.push_back(ref);
   tet_stamp_.push_back(epoch_);
   tet_quality_.push_back(kUnknownQuality);
@@ -107,13 +148,109 @@ TetId Mesh::add_tet(const TetVertices& vertices, int ref) {
 }
 
 void Mesh::remove_tet(TetId t) {
-  tets_[t] = {kNoId, kNoId, kNoId, kNoId};
+  store_tet(t, {kNoId, kNoId, kNoId, kNoId});
   tet2tets_[t] = {};
+  if (AllocationPool* pool = tls_pool) {
+    // A tet id may be reused at once by this thread: whoever still holds
+    // it as a seed peeks it, locks, and checks it again.
+    pool->tets.push_back(t);
+    --pool->tet_delta;
+    return;
+  }
   free_tets_.push_back(t);
   --live_tets_;
 }
 
+// --- parallel passes -------------------------------------------------------
+
+bool Mesh::Reserve::take(std::vector<std::uint32_t>& out, std::size_t want) {
+  // Whole chunks: one atomic step per few thousand allocations.
+  constexpr std::size_t kChunk = 1024;
+  const std::size_t n = std::max(want, kChunk);
+  const std::size_t first = cursor.fetch_add(n, std::memory_order_relaxed);
+  if (first >= ids.size()) return false;
+  const std::size_t last = std::min(first + n, ids.size());
+  out.insert(out.end(), ids.begin() + static_cast<std::ptrdiff_t>(first), ids.begin() + static_cast<std::ptrdiff_t>(last));
+  return last - first >= want;
+}
+
+void Mesh::Reserve::drain_into(std::vector<std::uint32_t>& out) {
+  const std::size_t first = std::min(cursor.load(), ids.size());
+  out.insert(out.end(), ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end());
+  ids.clear();
+  cursor = 0;
+}
+
+void Mesh::append_dead(std::size_t vertex_room, std::size_t tet_room) {
+  const std::size_t nv = points_.size(), nt = tets_.size();
+  points_.resize(nv + vertex_room, Point::Zero());
+  vertex_ref_.resize(nv + vertex_room, 0);
+  vert2tet_.resize(nv + vertex_room, kNoId);
+  vertex_class_.resize(nv + vertex_room, VertexClass::interior);
+  vertex_flags_.resize(nv + vertex_room, 0);
+  vertex_stamp_.resize(nv + vertex_room, 0);
+  if (has_metric()) {
+    metric_.resize(nv + vertex_room, Sym6{});
+    log_metric_.resize(nv + vertex_room, Sym6{});
+  }
+  tets_.resize(nt + tet_room, {kNoId, kNoId, kNoId, kNoId});
+  tet2tets_.resize(nt + tet_room);
+  face_surface_.resize(nt + tet_room, {0, 0, 0, 0});
+  tet_ref_.resize(nt + tet_room, 0);
+  tet_stamp_.resize(nt + tet_room, 0);
+  tet_quality_.resize(nt + tet_room, kUnknownQuality);
+  // Unused reserve first, then the new ids.
+  for (auto [reserve, first, room] : {std::tuple{&vertex_reserve_, nv, vertex_room}, std::tuple{&tet_reserve_, nt, tet_room}}) {
+    std::vector<std::uint32_t> ids;
+    reserve->drain_into(ids);
+    for (std::size_t i = 0; i < room; ++i) ids.push_back(static_cast<std::uint32_t>(first + i));
+    reserve->ids = std::move(ids);
+  }
+}
+
+void Mesh::begin_parallel(std::size_t vertex_room, std::size_t tet_room) {
+  if (parallel_) throw std::logic_error("Mesh::begin_parallel: a parallel pass is already running");
+  parallel_ = true;
+  // The free lists first, then as many new ids as they lack.
+  vertex_reserve_.ids.assign(free_vertices_.rbegin(), free_vertices_.rend());
+  tet_reserve_.ids.assign(free_tets_.rbegin(), free_tets_.rend());
+  vertex_reserve_.cursor = 0;
+  tet_reserve_.cursor = 0;
+  const std::size_t free_v = free_vertices_.size(), free_t = free_tets_.size();
+  free_vertices_.clear();
+  free_tets_.clear();
+  append_dead(vertex_room > free_v ? vertex_room - free_v : 0, tet_room > free_t ? tet_room - free_t : 0);
+}
+
+void Mesh::grow_parallel(std::size_t vertex_room, std::size_t tet_room) { append_dead(vertex_room, tet_room); }
+
+bool Mesh::fill_pool(AllocationPool& pool, std::size_t vertices, std::size_t tets) {
+  bool ok = true;
+  if (pool.vertices.size() < vertices) ok = vertex_reserve_.take(pool.vertices, vertices - pool.vertices.size()) && ok;
+  if (pool.tets.size() < tets) ok = tet_reserve_.take(pool.tets, tets - pool.tets.size()) && ok;
+  return ok;
+}
+
+void Mesh::end_parallel(std::span<AllocationPool> pools) {
+  for (AllocationPool& p : pools) {
+    free_vertices_.insert(free_vertices_.end(), p.vertices.begin(), p.vertices.end());
+    free_vertices_.insert(free_vertices_.end(), p.removed_vertices.begin(), p.removed_vertices.end());
+    free_tets_.insert(free_tets_.end(), p.tets.begin(), p.tets.end());
+    live_vertices_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(live_vertices_) + p.vertex_delta);
+    live_tets_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(live_tets_) + p.tet_delta);
+    p = AllocationPool{};
+  }
+  vertex_reserve_.drain_into(free_vertices_);
+  tet_reserve_.drain_into(free_tets_);
+  // Lowest ids last: the serial path pops from the back, so it reuses the
+  // low ids first (the arrays' tail stays dead until compact drops it).
+  std::sort(free_vertices_.begin(), free_vertices_.end(), std::greater<>());
+  std::sort(free_tets_.begin(), free_tets_.end(), std::greater<>());
+  parallel_ = false;
+}
+
 void Mesh::split_ridge(VertexId a, VertexId b, VertexId m) {
+  std::lock_guard guard(tags_lock_);
   if (ridges_.erase(edge_key(a, b))) {
     ridges_.insert(edge_key(a, m));
     ridges_.insert(edge_key(m, b));
@@ -125,6 +262,7 @@ void Mesh::split_ridge(VertexId a, VertexId b, VertexId m) {
 }
 
 void Mesh::merge_edge_tags(VertexId from, VertexId to, std::span<const VertexId> neighbours) {
+  std::lock_guard guard(tags_lock_);
   for (auto* tags : {&ridges_, &feature_edges_}) {
     for (VertexId x : neighbours)
       if (tags->erase(edge_key(from, x)) && x != to) tags->insert(edge_key(to, x));

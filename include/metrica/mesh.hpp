@@ -13,9 +13,11 @@
 #pragma once
 
 #include <metrica/ids.hpp>
+#include <metrica/spin_lock.hpp>
 #include <metrica/tet_topology.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -42,6 +44,16 @@ class Mesh {
 
   bool vertex_alive(VertexId v) const { return (vertex_flags_[v] & kAlive) != 0; }
   bool tet_alive(TetId t) const { return tets_[t][0] != kNoId; }
+  // The vertices of t read without holding any of them (a parallel pass's
+  // seed, before it locks them): each id is read atomically, the four
+  // together may mix two versions. The caller locks what it read and
+  // reads again (tet()) to check that t still holds those vertices.
+  TetVertices peek_tet(TetId t) const {
+    TetVertices v;
+    for (int i = 0; i < 4; ++i)
+      v[i] = std::atomic_ref<VertexId>(const_cast<VertexId&>(tets_[t][i])).load(std::memory_order_relaxed);
+    return v;
+  }
 
   // --- vertices ----------------------------------------------------------
   const Point& point(VertexId v) const { return points_[v]; }
@@ -87,8 +99,11 @@ class Mesh {
   // Marks t as changed now (e.g. a vertex of t moved).
   void touch_tet(TetId t) {
     tet_stamp_[t] = epoch_;
-    tet_quality_[t] = kUnknownQuality;
+    cache_quality(t, kUnknownQuality);
   }
+  // The epoch in which vertex v was created (a pass asks which of its
+  // cavity's vertices it made itself: the proximity filter).
+  Epoch vertex_stamp(VertexId v) const { return vertex_stamp_[v]; }
 
   // --- quality cache -------------------------------------------------------
   // One number per tet that a measuring policy may keep (the mean ratio of
@@ -98,14 +113,30 @@ class Mesh {
   // whoever changes the metric of the whole mesh or measures in another
   // Space clears the cache.
   static constexpr double kUnknownQuality = -2.0;  // mean ratios lie in [-1, 1]
-  double cached_quality(TetId t) const { return tet_quality_[t]; }
-  void cache_quality(TetId t, double q) const { tet_quality_[t] = q; }
+  // Atomic (relaxed) so that two threads each holding a different vertex
+  // of t may both measure it and store the same number.
+  double cached_quality(TetId t) const {
+    return std::atomic_ref<double>(tet_quality_[t]).load(std::memory_order_relaxed);
+  }
+  void cache_quality(TetId t, double q) const {
+    std::atomic_ref<double>(tet_quality_[t]).store(q, std::memory_order_relaxed);
+  }
   void clear_quality_cache() { std::fill(tet_quality_.begin(), tet_quality_.end(), kUnknownQuality); }
 
   // --- ridges ------------------------------------------------------------
   // Ridge edges: between faces of two different surface ids, plus the
   // feature edges the input gave (Edges / Ridges keywords).
-  bool is_ridge(VertexId a, VertexId b) const { return ridges_.count(edge_key(a, b)) != 0; }
+  // Safe in a parallel pass for a caller holding a and b (both ends of a
+  // ridge edge are ridge or corner vertices, so most calls never reach the
+  // shared set; the others take a spin lock).
+  bool is_ridge(VertexId a, VertexId b) const {
+    if (vertex_class_[a] < VertexClass::ridge || vertex_class_[b] < VertexClass::ridge) return false;
+    tags_lock_.lock();
+    const bool ridge = ridges_.count(edge_key(a, b)) != 0;
+    tags_lock_.unlock();
+    return ridge;
+  }
+  // The sets themselves: only outside parallel passes.
   const std::unordered_set<std::uint64_t>& ridge_edges() const { return ridges_; }
   const std::unordered_set<std::uint64_t>& feature_edges() const { return feature_edges_; }
   void add_feature_edge(VertexId a, VertexId b) { feature_edges_.insert(edge_key(a, b)); }
@@ -123,7 +154,7 @@ class Mesh {
   TetId add_tet(const TetVertices& vertices, int ref = 0);
   void remove_tet(TetId t);
   void set_tet_vertices(TetId t, const TetVertices& vertices) {
-    tets_[t] = vertices;
+    store_tet(t, vertices);
     touch_tet(t);
   }
   // Makes a and b neighbours of each other (both slots written).
@@ -143,6 +174,36 @@ class Mesh {
   // are the vertices joined to `from` by an edge.
   void merge_edge_tags(VertexId from, VertexId to, std::span<const VertexId> neighbours);
 
+  // --- parallel passes -----------------------------------------------------
+  // While a parallel pass runs (policies/speculative.hpp), every thread
+  // creates vertices and tets from its own pool of dead ids, so that
+  // add_vertex / add_tet / remove_tet / remove_vertex take no lock and
+  // never reallocate under running threads. The arrays grow only between
+  // rounds (begin_parallel, grow_parallel), when no thread runs. Vertices
+  // removed during the pass are recycled only after it (end_parallel): a
+  // thread may still hold a removed vertex's id in its work list.
+  struct AllocationPool {
+    std::vector<VertexId> vertices;
+    std::vector<TetId> tets;
+    std::vector<VertexId> removed_vertices;
+    std::ptrdiff_t vertex_delta = 0, tet_delta = 0;
+  };
+  // Moves the free lists and `vertex_room` / `tet_room` new dead ids to
+  // the shared reserve the pools draw from.
+  void begin_parallel(std::size_t vertex_room, std::size_t tet_room);
+  // Adds more room between rounds (no thread in a pass).
+  void grow_parallel(std::size_t vertex_room, std::size_t tet_room);
+  // Tops `pool` up to at least the given numbers of ids from the reserve
+  // (lock-free); false when the reserve cannot: the caller waits for the
+  // next round.
+  bool fill_pool(AllocationPool& pool, std::size_t vertices, std::size_t tets);
+  // Returns every unused and removed id to the free lists and counts the
+  // pools' creations and removals.
+  void end_parallel(std::span<AllocationPool> pools);
+  // The pool the calling thread allocates from (null: the serial free
+  // lists).
+  static void bind_pool(AllocationPool* pool);
+
   // Removes dead entities and renumbers vertices along a Morton curve and
   // tets by their vertices, so that neighbours in space are neighbours in
   // memory (compact.cpp). Invalidates every id held outside.
@@ -159,6 +220,13 @@ class Mesh {
   static constexpr std::uint8_t kAlive = 1;
   static constexpr std::uint8_t kRequired = 2;
 
+  void store_tet(TetId t, const TetVertices& v) {
+    for (int i = 0; i < 4; ++i) std::atomic_ref<VertexId>(tets_[t][i]).store(v[i], std::memory_order_relaxed);
+  }
+  void init_vertex(VertexId v, const Point& p, int ref);
+  void init_tet(TetId t, const TetVertices& vertices, int ref);
+  void append_dead(std::size_t vertex_room, std::size_t tet_room);
+
   std::vector<Point> points_;
   std::vector<int> vertex_ref_;
   std::vector<TetId> vert2tet_;
@@ -166,6 +234,7 @@ class Mesh {
   std::vector<std::uint8_t> vertex_flags_;
   std::vector<Sym6> metric_;
   std::vector<Sym6> log_metric_;
+  std::vector<Epoch> vertex_stamp_;
 
   std::vector<TetVertices> tets_;
   std::vector<std::array<FaceRef, 4>> tet2tets_;
@@ -184,6 +253,25 @@ class Mesh {
 
   std::unordered_set<std::uint64_t> ridges_;
   std::unordered_set<std::uint64_t> feature_edges_;
+  mutable SpinLock tags_lock_;  // guards the two sets in parallel passes
+
+  // The reserve of a parallel pass: ids handed out from `cursor` on.
+  struct Reserve {
+    std::vector<std::uint32_t> ids;
+    std::atomic<std::size_t> cursor{0};
+    Reserve() = default;
+    Reserve(const Reserve& o) : ids(o.ids), cursor(o.cursor.load()) {}
+    Reserve& operator=(const Reserve& o) {
+      ids = o.ids;
+      cursor = o.cursor.load();
+      return *this;
+    }
+    bool take(std::vector<std::uint32_t>& out, std::size_t want);
+    void drain_into(std::vector<std::uint32_t>& out);
+  };
+  Reserve vertex_reserve_, tet_reserve_;
+  std::vector<VertexId> graveyard_;  // vertices removed in this parallel pass
+  bool parallel_ = false;
 
   friend class MeshCompactor;
 };

@@ -1,0 +1,193 @@
+// The Speculative concurrency policy (seed, sections 3.1-3.3 and 5.6):
+// threads take items of the work list directly, each locks the vertices
+// of its cavity with try-locks on per-vertex owner words; on the first
+// failure it releases everything it holds, the item is deferred, and the
+// thread moves on. No domain decomposition, no colouring, no lock held
+// while waiting (nothing ever waits).
+//
+// Rounds: the deferred items of all threads form the next round's list;
+// when a round clears less than a tenth of its list (the same few
+// cavities keep colliding) the rest runs on one thread, which cannot
+// conflict. Allocation: each thread creates vertices and tets from its own
+// pool (Mesh::AllocationPool), topped up from a shared reserve by one
+// atomic step per chunk; the reserve grows between rounds only, so no
+// array is reallocated under a running thread.
+//
+// Memory order: a successful acquisition is an acquire, a release a
+// release, so whoever locks a vertex sees every write made by its
+// previous holders.
+#pragma once
+
+#include <metrica/policies/concurrency.hpp>
+#include <metrica/policies/threads.hpp>
+
+#include <boost/container/small_vector.hpp>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <vector>
+
+namespace metrica {
+
+struct Speculative {
+  static constexpr std::string_view name = "speculative";
+
+  // One owner word per vertex id: 0 when free, else 1 + the owner thread.
+  class OwnerTable {
+   public:
+    void resize(std::size_t n) {
+      if (n <= size_) return;
+      words_ = std::make_unique<std::atomic<std::uint32_t>[]>(n);  // value-initialised: 0
+      size_ = n;
+    }
+    std::atomic<std::uint32_t>* data() { return words_.get(); }
+
+   private:
+    std::unique_ptr<std::atomic<std::uint32_t>[]> words_;
+    std::size_t size_ = 0;
+  };
+
+  class Locks {
+   public:
+    Locks(std::atomic<std::uint32_t>* owners, std::uint32_t me) : owners_(owners), me_(me) {}
+    Locks(const Locks&) = delete;
+    Locks& operator=(const Locks&) = delete;
+    ~Locks() { release(); }
+
+    // All of `vertices` (those already held are skipped), or none: on
+    // the first one held by another thread everything this thread holds
+    // is released.
+    bool acquire(std::span<const VertexId> vertices) {
+      for (VertexId v : vertices) {
+        std::atomic<std::uint32_t>& word = owners_[v];
+        std::uint32_t owner = word.load(std::memory_order_relaxed);
+        if (owner == me_) continue;
+        if (owner != 0 || !word.compare_exchange_strong(owner, me_, std::memory_order_acquire,
+                                                        std::memory_order_relaxed)) {
+          release();
+          return false;
+        }
+        held_.push_back(v);
+      }
+      return true;
+    }
+    bool acquire(std::initializer_list<VertexId> vertices) {
+      return acquire(std::span<const VertexId>(vertices.begin(), vertices.size()));
+    }
+    void release() {
+      for (VertexId v : held_) owners_[v].store(0, std::memory_order_release);
+      held_.clear();
+    }
+    std::size_t held() const { return held_.size(); }
+
+   private:
+    std::atomic<std::uint32_t>* owners_;
+    std::uint32_t me_;
+    boost::container::small_vector<VertexId, 128> held_;
+  };
+
+  static int threads() { return thread_count(); }
+
+  template <class Item, class Work>
+  static PassTally for_each(Mesh& mesh, std::span<const Item> items, const PassRoom& room, Work&& work) {
+    PassTally tally;
+    if (items.empty()) return tally;
+    const int nt = std::max(1, threads());
+    // Room for the list, plus a chunk per thread and the per-item margin.
+    auto room_for = [&](std::size_t n, int threads_now) {
+      const auto slack = static_cast<std::size_t>(threads_now) * 2048;
+      auto need = [&](double per_item, std::size_t max) {
+        return max == 0 ? std::size_t{0} : static_cast<std::size_t>(std::ceil(per_item * double(n))) + slack + max;
+      };
+      return std::pair{need(room.vertices_per_item, room.max_vertices), need(room.tets_per_item, room.max_tets)};
+    };
+    const auto [v0, t0] = room_for(items.size(), nt);
+    mesh.begin_parallel(v0, t0);
+    std::vector<Mesh::AllocationPool> pools(static_cast<std::size_t>(nt));
+    struct alignas(64) PerThread {
+      std::vector<Item> deferred;
+      std::size_t conflicts = 0;
+      bool out_of_room = false;
+      std::exception_ptr error;
+    };
+    std::vector<PerThread> per(static_cast<std::size_t>(nt));
+    OwnerTable owners;
+    std::vector<Item> list, next;
+    std::span<const Item> current = items;
+    int threads_now = nt;
+    for (;;) {
+      owners.resize(mesh.vertex_capacity());
+      ++tally.rounds;
+      if (threads_now == 1 && nt > 1) tally.serial_tail += current.size();
+      // Chunks of the list: large enough to keep a thread in one region
+      // of the mesh (the lists come in vertex or length order), small
+      // enough to balance.
+      const auto chunk = static_cast<long>(std::clamp<std::size_t>(current.size() / (static_cast<std::size_t>(threads_now) * 32), 16, 1024));
+      const long n = static_cast<long>(current.size());
+#pragma omp parallel num_threads(threads_now)
+      {
+        const int tid = omp_get_thread_num();
+        PerThread& mine = per[static_cast<std::size_t>(tid)];
+        Mesh::AllocationPool& pool = pools[static_cast<std::size_t>(tid)];
+        Mesh::bind_pool(&pool);
+        Locks locks(owners.data(), static_cast<std::uint32_t>(tid) + 1);
+#pragma omp for schedule(dynamic, chunk) nowait
+        for (long i = 0; i < n; ++i) {
+          const Item& item = current[static_cast<std::size_t>(i)];
+          if (mine.error || !mesh.fill_pool(pool, room.max_vertices, room.max_tets)) {
+            mine.out_of_room = mine.out_of_room || !mine.error;
+            mine.deferred.push_back(item);
+            continue;
+          }
+          try {
+            if (work(item, tid, locks) == Attempt::conflict) {
+              ++mine.conflicts;
+              mine.deferred.push_back(item);
+            }
+          } catch (...) {
+            mine.error = std::current_exception();
+          }
+          locks.release();
+        }
+        Mesh::bind_pool(nullptr);
+      }
+      next.clear();
+      bool out_of_room = false;
+      std::size_t round_conflicts = 0;
+      for (PerThread& p : per) {
+        if (p.error) {
+          mesh.end_parallel(pools);
+          std::rethrow_exception(p.error);
+        }
+        next.insert(next.end(), p.deferred.begin(), p.deferred.end());
+        p.deferred.clear();
+        round_conflicts += p.conflicts;
+        p.conflicts = 0;
+        out_of_room = out_of_room || p.out_of_room;
+        p.out_of_room = false;
+      }
+      tally.conflicts += round_conflicts;
+      if (next.empty()) break;
+      tally.replays += next.size();
+      // Conflicts on more than nine items in ten: the rest on one thread.
+      if (10 * round_conflicts > 9 * current.size()) threads_now = 1;
+      if (out_of_room) {
+        const auto [v, t] = room_for(next.size(), threads_now);
+        mesh.grow_parallel(v, t);
+      }
+      std::swap(list, next);
+      current = std::span<const Item>(list);
+    }
+    mesh.end_parallel(pools);
+    return tally;
+  }
+};
+
+static_assert(Concurrency<Speculative>);
+
+}  // namespace metrica
