@@ -1,16 +1,8 @@
-// The Anisotropic instantiations of the pipeline (one file per space, so that a
-// build on several cores compiles them side by side).
+// The Anisotropic x Serial instantiations of the pipeline (adapt_dispatch.hpp).
 #include <metrica/operators/adapt_dispatch.hpp>
 
 namespace metrica {
 
-AdaptReport adapt_anisotropic(Mesh& mesh, const AdaptOptions& options, PrecisionKind precision) {
-  switch (precision) {
-    case PrecisionKind::fast: return adapt<Anisotropic, Fast, Serial>(mesh, options);
-    case PrecisionKind::filtered: return adapt<Anisotropic, Filtered, Serial>(mesh, options);
-    case PrecisionKind::exact: return adapt<Anisotropic, Exact, Serial>(mesh, options);
-  }
-  return {};
-}
+template AdaptReport adapt_with<Anisotropic, Serial>(Mesh&, const AdaptOptions&, PrecisionKind);
 
 }  // namespace metrica

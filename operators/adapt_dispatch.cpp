@@ -29,11 +29,27 @@ const char* to_string(PrecisionKind p) {
   return "?";
 }
 
-AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, SpaceKind space, PrecisionKind precision) {
+ConcurrencyKind concurrency_from_name(std::string_view name) {
+  if (name == "serial") return ConcurrencyKind::serial;
+  if (name == "speculative") return ConcurrencyKind::speculative;
+  throw InputError(fmt::format("unknown concurrency '{}' (serial, speculative)", name));
+}
+
+const char* to_string(ConcurrencyKind c) { return c == ConcurrencyKind::serial ? "serial" : "speculative"; }
+
+AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, SpaceKind space, PrecisionKind precision,
+                  ConcurrencyKind concurrency) {
+  const bool serial = concurrency == ConcurrencyKind::serial;
   switch (space) {
-    case SpaceKind::isotropic: return adapt_isotropic(mesh, options, precision);
-    case SpaceKind::anisotropic: return adapt_anisotropic(mesh, options, precision);
-    case SpaceKind::log_euclidean: return adapt_log_euclidean(mesh, options, precision);
+    case SpaceKind::isotropic:
+      return serial ? adapt_with<Isotropic, Serial>(mesh, options, precision)
+                    : adapt_with<Isotropic, Speculative>(mesh, options, precision);
+    case SpaceKind::anisotropic:
+      return serial ? adapt_with<Anisotropic, Serial>(mesh, options, precision)
+                    : adapt_with<Anisotropic, Speculative>(mesh, options, precision);
+    case SpaceKind::log_euclidean:
+      return serial ? adapt_with<LogEuclidean, Serial>(mesh, options, precision)
+                    : adapt_with<LogEuclidean, Speculative>(mesh, options, precision);
   }
   throw InputError("unknown space");
 }

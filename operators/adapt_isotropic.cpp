@@ -1,16 +1,8 @@
-// The Isotropic instantiations of the pipeline (one file per space, so that a
-// build on several cores compiles them side by side).
+// The Isotropic x Serial instantiations of the pipeline (adapt_dispatch.hpp).
 #include <metrica/operators/adapt_dispatch.hpp>
 
 namespace metrica {
 
-AdaptReport adapt_isotropic(Mesh& mesh, const AdaptOptions& options, PrecisionKind precision) {
-  switch (precision) {
-    case PrecisionKind::fast: return adapt<Isotropic, Fast, Serial>(mesh, options);
-    case PrecisionKind::filtered: return adapt<Isotropic, Filtered, Serial>(mesh, options);
-    case PrecisionKind::exact: return adapt<Isotropic, Exact, Serial>(mesh, options);
-  }
-  return {};
-}
+template AdaptReport adapt_with<Isotropic, Serial>(Mesh&, const AdaptOptions&, PrecisionKind);
 
 }  // namespace metrica

@@ -1,16 +1,8 @@
-// The LogEuclidean instantiations of the pipeline (one file per space, so that a
-// build on several cores compiles them side by side).
+// The LogEuclidean x Serial instantiations of the pipeline (adapt_dispatch.hpp).
 #include <metrica/operators/adapt_dispatch.hpp>
 
 namespace metrica {
 
-AdaptReport adapt_log_euclidean(Mesh& mesh, const AdaptOptions& options, PrecisionKind precision) {
-  switch (precision) {
-    case PrecisionKind::fast: return adapt<LogEuclidean, Fast, Serial>(mesh, options);
-    case PrecisionKind::filtered: return adapt<LogEuclidean, Filtered, Serial>(mesh, options);
-    case PrecisionKind::exact: return adapt<LogEuclidean, Exact, Serial>(mesh, options);
-  }
-  return {};
-}
+template AdaptReport adapt_with<LogEuclidean, Serial>(Mesh&, const AdaptOptions&, PrecisionKind);
 
 }  // namespace metrica

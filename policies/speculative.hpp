@@ -34,7 +34,10 @@
 
 namespace metrica {
 
-struct Speculative {
+// Threads: `Threads` when positive (tests pin 1, 2 and 8), else
+// thread_count() (--threads, OMP_NUM_THREADS, or one per core).
+template <int Threads = 0>
+struct SpeculativeThreads {
   static constexpr std::string_view name = "speculative";
 
   // One owner word per vertex id: 0 when free, else 1 + the owner thread.
@@ -91,7 +94,7 @@ struct Speculative {
     boost::container::small_vector<VertexId, 128> held_;
   };
 
-  static int threads() { return thread_count(); }
+  static int threads() { return Threads > 0 ? Threads : thread_count(); }
 
   template <class Item, class Work>
   static PassTally for_each(Mesh& mesh, std::span<const Item> items, const PassRoom& room, Work&& work) {
@@ -187,6 +190,8 @@ struct Speculative {
     return tally;
   }
 };
+
+using Speculative = SpeculativeThreads<0>;
 
 static_assert(Concurrency<Speculative>);
 

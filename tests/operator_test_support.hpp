@@ -3,6 +3,8 @@
 // runs under.
 #pragma once
 
+#include <metrica/policies/speculative.hpp>
+
 #include "test_support.hpp"
 
 #include <metrica/box.hpp>
@@ -102,7 +104,12 @@ struct Policies {
 
 }  // namespace metrica::test
 
+// Every Space and Precision under Serial; the Speculative policy with 1,
+// 2 and 8 threads (8 on a 2-core machine forces interleavings).
 #define METRICA_POLICY_COMBINATIONS                                                                       \
-  metrica::test::Policies<LogEuclidean, Filtered, Serial>, metrica::test::Policies<Anisotropic, Filtered, Serial>,                     \
-      metrica::test::Policies<Isotropic, Filtered, Serial>, metrica::test::Policies<LogEuclidean, Exact, Serial>,                        \
-      metrica::test::Policies<LogEuclidean, Fast, Serial>
+  metrica::test::Policies<LogEuclidean, Filtered, Serial>, metrica::test::Policies<Anisotropic, Filtered, Serial>, \
+      metrica::test::Policies<Isotropic, Filtered, Serial>, metrica::test::Policies<LogEuclidean, Exact, Serial>,  \
+      metrica::test::Policies<LogEuclidean, Fast, Serial>,                                                        \
+      metrica::test::Policies<LogEuclidean, Filtered, SpeculativeThreads<1>>,                                     \
+      metrica::test::Policies<LogEuclidean, Filtered, SpeculativeThreads<2>>,                                     \
+      metrica::test::Policies<Anisotropic, Filtered, SpeculativeThreads<8>>

@@ -11,6 +11,7 @@
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/policies/threads.hpp>
 #include <metrica/timer.hpp>
 #include <metrica/validate.hpp>
 
@@ -23,7 +24,19 @@ namespace metrica::cli {
 namespace {
 
 std::string stats_text(const char* name, const OperatorStats& s) {
-  return fmt::format("{} {}/{} ({:.2f} s)", name, count_text(s.applied), count_text(s.tried), s.seconds);
+  const std::string conflicts = s.conflicts > 0 ? fmt::format(", {} conflicts", count_text(s.conflicts)) : "";
+  return fmt::format("{} {}/{} ({:.2f} s{})", name, count_text(s.applied), count_text(s.tried), s.seconds, conflicts);
+}
+
+// Attempts, applied, conflicts (locks released, item replayed later),
+// replays and the items left to one thread, per operator.
+void print_parallel_stats(const AdaptReport& r) {
+  for (const auto& [name, s] : {std::pair{"collapse", r.collapse}, std::pair{"split", r.refine},
+                                std::pair{"flip", r.reconnect}, std::pair{"smooth", r.smooth}})
+    fmt::print("  {:<8} tried {:>10} applied {:>10} conflicts {:>8} ({:.2f}%) replays {:>8} one-thread tail {:>6} | {:.2f} s\n",
+               name, count_text(s.tried), count_text(s.applied), count_text(s.conflicts),
+               s.tried > 0 ? 100.0 * double(s.conflicts) / double(s.tried + s.conflicts) : 0.0, count_text(s.replays),
+               count_text(s.serial_tail), s.seconds);
 }
 
 void print_cycle(const CycleReport& c) {
@@ -52,11 +65,14 @@ int run_adapt(const std::vector<std::string>& args) {
             "operator with its time, share of edges in [1/sqrt2, sqrt2], worst mean ratio) and ends with\n"
             "the UGAWG quality report. With --analytic, new vertices take the exact metric, and\n"
             "--iterations N repeats the adaptation N times, re-evaluating the metric on the new mesh each\n"
-            "time (the UGAWG loop). The output is checked with validate() before it is written.\n\n"
+            "time (the UGAWG loop). The output is checked with validate() before it is written.\n"
+            "By default every operator runs on all cores (--threads N to choose, --concurrency serial\n"
+            "for one thread and an output that is the same to the bit on every run).\n\n"
             "Examples:\n"
             "  metrica adapt cube-linear-00.meshb -m cube-linear-00.solb -o adapted.meshb\n"
             "  metrica adapt cube.meshb --analytic polar-1 --iterations 5 -o polar1.meshb --vtu polar1.vtu\n"
-            "  metrica adapt cube.meshb --analytic polar-2 --points centroid -o polar2.meshb");
+            "  metrica adapt cube.meshb --analytic polar-2 --points centroid -o polar2.meshb\n"
+            "  metrica adapt cube.meshb --analytic linear --threads 2 -o linear.meshb");
   o.input("mesh (.mesh, .meshb)");
   o.output("adapted mesh (.mesh, .meshb, .vtu, .su2)");
   o.add()("metric,m", po::value<std::string>()->value_name("FILE"), "metric at the input's vertices (.sol, .solb)")(
@@ -67,6 +83,9 @@ int run_adapt(const std::vector<std::string>& args) {
       "metric interpolation: log-euclidean, anisotropic, isotropic")(
       "precision", po::value<std::string>()->default_value("filtered")->value_name("P"),
       "predicates: filtered (exact when it matters), exact, fast (plain double)")(
+      "concurrency", po::value<std::string>()->default_value("speculative")->value_name("C"),
+      "speculative (every operator on --threads threads, lock-free per-vertex try-locks) or serial "
+      "(one thread, the same output to the bit on every run)")(
       "points", po::value<std::string>()->default_value("edge")->value_name("RULE"),
       "point creation: edge (split long edges at their metric midpoint) or centroid (the centroids "
       "of tets with a long edge, moved to a boundary face or ridge they encroach)")(
@@ -93,6 +112,7 @@ int run_adapt(const std::vector<std::string>& args) {
     throw UsageError("adapt: --iterations needs --analytic (a metric file holds values at the input's vertices only)");
   const auto space = space_from_name(o.get<std::string>("space"));
   const auto precision = precision_from_name(o.get<std::string>("precision"));
+  const auto concurrency = concurrency_from_name(o.get<std::string>("concurrency"));
 
   AdaptOptions ao;
   ao.max_cycles = o.get<int>("cycles");
@@ -134,14 +154,17 @@ int run_adapt(const std::vector<std::string>& args) {
     }
     assign_metric(mesh, field);
     if (talk)
-      fmt::print("{}adapting {} vertices, {} tets ({} space, {} predicates, {} points, serial)\n",
+      fmt::print("{}adapting {} vertices, {} tets ({} space, {} predicates, {} points, {})\n",
                  iterations > 1 ? fmt::format("iteration {}: ", it + 1) : "", count_text(mesh.num_vertices()),
-                 count_text(mesh.num_tets()), to_string(space), to_string(precision), to_string(ao.points));
-    const auto report = adapt(mesh, ao, space, precision);
+                 count_text(mesh.num_tets()), to_string(space), to_string(precision), to_string(ao.points),
+                 concurrency == ConcurrencyKind::serial ? std::string("serial")
+                                                        : fmt::format("speculative, {} threads", thread_count()));
+    const auto report = adapt(mesh, ao, space, precision, concurrency);
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
                  count_text(report.collapse.applied), count_text(report.refine.applied),
                  count_text(report.reconnect.applied), count_text(report.smooth.applied));
+    if (talk && concurrency == ConcurrencyKind::speculative) print_parallel_stats(report);
   }
   // Flat boundaries keep the volume to round-off; on a curved discrete
   // boundary, collapses may flatten it within their normal-deviation bound

@@ -1,0 +1,138 @@
+// Strong scaling of the adaptation pipeline: the same case (the UGAWG
+// `linear` metric scaled as in bench_adapt) run Serial, then Speculative
+// with each thread count of the list, median of `runs` each. For each
+// operator and end to end: seconds, speedup over Speculative on one
+// thread, efficiency (speedup / threads), conflict rate (items that met a
+// held vertex, over items tried), and the output's quality, so that the
+// quality's independence of the thread count shows too. Also the cost of
+// the Speculative machinery on one thread against Serial.
+//
+//   bench_scaling [scale=0.37] [runs=3] [threads=1,2]
+#include "bench_common.hpp"
+
+#include <metrica/box.hpp>
+#include <metrica/metrics/analytic_metric.hpp>
+#include <metrica/metrics/metric_field.hpp>
+#include <metrica/metrics/quality_report.hpp>
+#include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/policies/threads.hpp>
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace metrica;
+
+namespace {
+
+double peak_bytes() {
+  std::ifstream in("/proc/self/status");
+  std::string key;
+  while (in >> key) {
+    if (key == "VmHWM:") {
+      double kb = 0;
+      in >> kb;
+      return kb * 1024.0;
+    }
+    std::getline(in, key);
+  }
+  return 0.0;
+}
+
+struct Run {
+  std::string label;
+  int threads = 1;
+  double seconds = 0;
+  AdaptReport report;
+  QualityReport quality;
+  double peak_mb = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const double scale = argc > 1 ? std::stod(argv[1]) : 0.37;
+  const int runs = argc > 2 ? std::stoi(argv[2]) : 3;
+  std::vector<int> thread_list;
+  {
+    std::stringstream in(argc > 3 ? argv[3] : "1,2");
+    std::string item;
+    while (std::getline(in, item, ',')) thread_list.push_back(std::stoi(item));
+  }
+  const MetricFunction metric = [scale](const Point& p) {
+    Sym6 m = evaluate(AnalyticMetric::linear, p);
+    for (double& x : m) x /= scale * scale;
+    return m;
+  };
+  fmt::print("scaling: linear x {} on a machine with {} core(s), log-euclidean, filtered, median of {}\n", scale,
+             core_count(), runs);
+  auto run = [&](const std::string& label, ConcurrencyKind c, int threads) {
+    set_thread_count(threads);
+    Run r;
+    r.label = label;
+    r.threads = threads;
+    std::vector<std::pair<double, AdaptReport>> all;
+    Mesh last;
+    for (int i = 0; i < runs; ++i) {
+      Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+      std::vector<Sym6> f(mesh.vertex_capacity());
+      for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) f[v] = metric(mesh.point(v));
+      assign_metric(mesh, f);
+      AdaptOptions o;
+      o.metric = &metric;
+      Stopwatch clock;
+      AdaptReport rep = adapt(mesh, o, SpaceKind::log_euclidean, PrecisionKind::filtered, c);
+      all.emplace_back(clock.seconds(), std::move(rep));
+      if (i == runs - 1) last = std::move(mesh);
+    }
+    std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    r.seconds = all[all.size() / 2].first;
+    r.report = all[all.size() / 2].second;
+    r.quality = quality_report(last);
+    r.peak_mb = peak_bytes() / 1e6;
+    fmt::print("  {:<16} {:7.2f} s  {:>9} tets  in range {:.2f}%  mean Q {:.4f}  min Q {:.3f}  peak {:.0f} MB\n",
+               r.label, r.seconds, r.quality.tets, 100 * r.quality.unit_length_share, r.quality.quality.mean,
+               r.quality.quality.min, r.peak_mb);
+    std::fflush(stdout);
+    return r;
+  };
+  std::vector<Run> results;
+  results.push_back(run("serial", ConcurrencyKind::serial, 1));
+  for (int n : thread_list) results.push_back(run(fmt::format("speculative x{}", n), ConcurrencyKind::speculative, n));
+
+  const Run& serial = results[0];
+  const Run* one = nullptr;
+  for (const Run& r : results)
+    if (r.label == "speculative x1") one = &r;
+  const Run& base = one != nullptr ? *one : serial;
+  fmt::print("\nend to end: {:.0f} output tets/s serial", double(serial.quality.tets) / serial.seconds);
+  if (one != nullptr) fmt::print("; speculative on 1 thread costs {:+.1f}% over serial", 100 * (one->seconds / serial.seconds - 1));
+  fmt::print("\n\n| run | seconds | speedup | efficiency | collapse | split | flips | smoothing | other |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|\n");
+  auto op_cells = [&](const Run& r) {
+    const auto& x = r.report;
+    const double other = x.seconds - x.collapse.seconds - x.refine.seconds - x.reconnect.seconds - x.smooth.seconds;
+    const double base_other = base.report.seconds - base.report.collapse.seconds - base.report.refine.seconds -
+                              base.report.reconnect.seconds - base.report.smooth.seconds;
+    auto cell = [&](const OperatorStats& s, const OperatorStats& b) {
+      const double conflict_rate = s.tried + s.conflicts > 0 ? double(s.conflicts) / double(s.tried + s.conflicts) : 0.0;
+      return fmt::format("{:.2f} s, x{:.2f}, {:.1f}% confl.", s.seconds, b.seconds / s.seconds, 100 * conflict_rate);
+    };
+    return fmt::format("{} | {} | {} | {} | {:.2f} s, x{:.2f}", cell(x.collapse, base.report.collapse),
+                       cell(x.refine, base.report.refine), cell(x.reconnect, base.report.reconnect),
+                       cell(x.smooth, base.report.smooth), other, base_other / other);
+  };
+  for (const Run& r : results) {
+    const double speedup = base.seconds / r.seconds;
+    fmt::print("| {} | {:.2f} | {:.2f} | {:.0f}% | {} |\n", r.label, r.seconds, speedup, 100 * speedup / r.threads,
+               op_cells(r));
+  }
+  fmt::print("\n(speedups against {}; per operator: its seconds, its speedup, its conflict rate; \"other\" is\n"
+             "compaction, statistics and the serial parts of the passes: work lists, candidate generation)\n",
+             base.label);
+  return 0;
+}
