@@ -34,65 +34,68 @@
 
 namespace metrica {
 
+// One owner word per vertex id: 0 when free, else 1 + the owner thread.
+class SpeculativeOwnerTable {
+ public:
+  void resize(std::size_t n) {
+    if (n <= size_) return;
+    words_ = std::make_unique<std::atomic<std::uint32_t>[]>(n);  // value-initialised: 0
+    size_ = n;
+  }
+  std::atomic<std::uint32_t>* data() { return words_.get(); }
+
+ private:
+  std::unique_ptr<std::atomic<std::uint32_t>[]> words_;
+  std::size_t size_ = 0;
+};
+
+class SpeculativeLocks {
+ public:
+  SpeculativeLocks(std::atomic<std::uint32_t>* owners, std::uint32_t me) : owners_(owners), me_(me) {}
+  SpeculativeLocks(const SpeculativeLocks&) = delete;
+  SpeculativeLocks& operator=(const SpeculativeLocks&) = delete;
+  ~SpeculativeLocks() { release(); }
+
+  // All of `vertices` (those already held are skipped), or none: on
+  // the first one held by another thread everything this thread holds
+  // is released.
+  bool acquire(std::span<const VertexId> vertices) {
+    for (VertexId v : vertices) {
+      std::atomic<std::uint32_t>& word = owners_[v];
+      std::uint32_t owner = word.load(std::memory_order_relaxed);
+      if (owner == me_) continue;
+      if (owner != 0 || !word.compare_exchange_strong(owner, me_, std::memory_order_acquire,
+                                                      std::memory_order_relaxed)) {
+        release();
+        return false;
+      }
+      held_.push_back(v);
+    }
+    return true;
+  }
+  bool acquire(std::initializer_list<VertexId> vertices) {
+    return acquire(std::span<const VertexId>(vertices.begin(), vertices.size()));
+  }
+  void release() {
+    for (VertexId v : held_) owners_[v].store(0, std::memory_order_release);
+    held_.clear();
+  }
+  std::size_t held() const { return held_.size(); }
+
+ private:
+  std::atomic<std::uint32_t>* owners_;
+  std::uint32_t me_;
+  boost::container::small_vector<VertexId, 128> held_;
+};
+
 // Threads: `Threads` when positive (tests pin 1, 2 and 8), else
 // thread_count() (--threads, OMP_NUM_THREADS, or one per core).
 template <int Threads = 0>
 struct SpeculativeThreads {
   static constexpr std::string_view name = "speculative";
 
-  // One owner word per vertex id: 0 when free, else 1 + the owner thread.
-  class OwnerTable {
-   public:
-    void resize(std::size_t n) {
-      if (n <= size_) return;
-      words_ = std::make_unique<std::atomic<std::uint32_t>[]>(n);  // value-initialised: 0
-      size_ = n;
-    }
-    std::atomic<std::uint32_t>* data() { return words_.get(); }
-
-   private:
-    std::unique_ptr<std::atomic<std::uint32_t>[]> words_;
-    std::size_t size_ = 0;
-  };
-
-  class Locks {
-   public:
-    Locks(std::atomic<std::uint32_t>* owners, std::uint32_t me) : owners_(owners), me_(me) {}
-    Locks(const Locks&) = delete;
-    Locks& operator=(const Locks&) = delete;
-    ~Locks() { release(); }
-
-    // All of `vertices` (those already held are skipped), or none: on
-    // the first one held by another thread everything this thread holds
-    // is released.
-    bool acquire(std::span<const VertexId> vertices) {
-      for (VertexId v : vertices) {
-        std::atomic<std::uint32_t>& word = owners_[v];
-        std::uint32_t owner = word.load(std::memory_order_relaxed);
-        if (owner == me_) continue;
-        if (owner != 0 || !word.compare_exchange_strong(owner, me_, std::memory_order_acquire,
-                                                        std::memory_order_relaxed)) {
-          release();
-          return false;
-        }
-        held_.push_back(v);
-      }
-      return true;
-    }
-    bool acquire(std::initializer_list<VertexId> vertices) {
-      return acquire(std::span<const VertexId>(vertices.begin(), vertices.size()));
-    }
-    void release() {
-      for (VertexId v : held_) owners_[v].store(0, std::memory_order_release);
-      held_.clear();
-    }
-    std::size_t held() const { return held_.size(); }
-
-   private:
-    std::atomic<std::uint32_t>* owners_;
-    std::uint32_t me_;
-    boost::container::small_vector<VertexId, 128> held_;
-  };
+  using OwnerTable = SpeculativeOwnerTable;
+  using Locks = SpeculativeLocks;
 
   static int threads() { return Threads > 0 ? Threads : thread_count(); }
 

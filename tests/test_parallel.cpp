@@ -1,0 +1,182 @@
+// The Speculative policy: owner-word locks (all or nothing), the rounds of
+// a work list (every item runs exactly once, conflicts replayed), the
+// threads' allocation pools (unique ids, counts, growth between rounds),
+// and whole adaptations on 1, 2 and 8 threads (8 on a 2-core machine
+// forces interleavings): valid, the quality of the serial run, no
+// conflict on one thread. Serial runs are the same to the bit.
+#include "operator_test_support.hpp"
+
+#include <metrica/mesh_build.hpp>
+#include <metrica/metrics/analytic_metric.hpp>
+#include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/policies/speculative.hpp>
+#include <metrica/policies/threads.hpp>
+
+#include <atomic>
+#include <set>
+
+using namespace metrica;
+using namespace metrica::test;
+
+namespace {
+
+// The linear UGAWG metric with sizes x 2.5 (about 300 vertices).
+Sym6 small_linear(const Point& p) {
+  Sym6 m = evaluate(AnalyticMetric::linear, p);
+  for (double& x : m) x /= 2.5 * 2.5;
+  return m;
+}
+
+struct Adapted {
+  Mesh mesh;
+  AdaptReport report;
+};
+
+Adapted adapt_linear(ConcurrencyKind c) {
+  Adapted a{make_box({.nx = 3, .ny = 3, .nz = 3}), {}};
+  const MetricFunction metric = small_linear;
+  std::vector<Sym6> f(a.mesh.vertex_capacity());
+  for (VertexId v = 0; v < a.mesh.vertex_capacity(); ++v) f[v] = metric(a.mesh.point(v));
+  assign_metric(a.mesh, f);
+  AdaptOptions o;
+  o.metric = &metric;
+  a.report = adapt(a.mesh, o, SpaceKind::log_euclidean, PrecisionKind::filtered, c);
+  return a;
+}
+
+std::size_t total_conflicts(const AdaptReport& r) {
+  return r.collapse.conflicts + r.refine.conflicts + r.reconnect.conflicts + r.smooth.conflicts;
+}
+
+// Restores the thread count a test changed.
+struct ThreadCountGuard {
+  int saved = thread_count();
+  ~ThreadCountGuard() { set_thread_count(saved); }
+};
+
+}  // namespace
+
+TEST_SUITE("parallel") {
+  TEST_CASE("owner words: a cavity is acquired whole or not at all") {
+    Speculative::OwnerTable owners;
+    owners.resize(16);
+    Speculative::Locks a(owners.data(), 1), b(owners.data(), 2);
+    CHECK(a.acquire({1, 2, 3}));
+    CHECK(a.acquire({3, 4}));  // 3 is already a's: skipped
+    CHECK(a.held() == 4);
+    CHECK_FALSE(b.acquire({5, 6, 4}));  // 4 is a's: b keeps nothing
+    CHECK(b.held() == 0);
+    CHECK(owners.data()[5].load() == 0);
+    CHECK(owners.data()[6].load() == 0);
+    a.release();
+    CHECK(b.acquire({5, 6, 4}));
+    CHECK(owners.data()[4].load() == 2);
+  }
+
+  TEST_CASE("every item of a work list runs to the end exactly once, conflicts replayed in later rounds") {
+    Mesh mesh = make_box({.nx = 2, .ny = 2, .nz = 2});
+    std::vector<VertexId> items(2000);
+    for (std::size_t i = 0; i < items.size(); ++i) items[i] = static_cast<VertexId>(i % mesh.num_vertices());
+    std::vector<std::atomic<int>> done(items.size()), attempts(items.size());
+    std::vector<std::uint32_t> index(items.size());
+    for (std::size_t i = 0; i < items.size(); ++i) index[i] = static_cast<std::uint32_t>(i);
+    // Each item locks its vertex and a neighbour id; a third of the items
+    // report a conflict on their first attempt whatever happens.
+    auto work = [&](std::uint32_t i, int, SpeculativeLocks& locks) {
+      const int attempt = attempts[i]++;
+      const VertexId v = items[i], w = (v + 1) % static_cast<VertexId>(mesh.num_vertices());
+      if (!locks.acquire({v, w}) || (i % 3 == 0 && attempt == 0)) return Attempt::conflict;
+      ++done[i];
+      return Attempt::done;
+    };
+    for (int threads : {1, 2, 8}) {
+      CAPTURE(threads);
+      for (auto& d : done) d = 0;
+      for (auto& a : attempts) a = 0;
+      const PassTally tally = [&] {
+        if (threads == 1) return SpeculativeThreads<1>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
+        if (threads == 2) return SpeculativeThreads<2>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
+        return SpeculativeThreads<8>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
+      }();
+      for (std::size_t i = 0; i < items.size(); ++i) REQUIRE(done[i] == 1);
+      CHECK(tally.conflicts >= (items.size() + 2) / 3);
+      CHECK(tally.replays == tally.conflicts);
+      CHECK(tally.rounds >= 2);
+      require_valid(mesh, 1.0);  // nothing written, the reserve handed back
+    }
+  }
+
+  TEST_CASE("allocation pools: threads create unique ids, the counts add up, the reserve grows between rounds") {
+    Mesh mesh = make_box({.nx = 2, .ny = 2, .nz = 2});
+    const std::size_t v0 = mesh.num_vertices(), t0 = mesh.num_tets();
+    // More items than the reserve's first size (a tenth of them plus two
+    // chunks per thread).
+    std::vector<std::uint32_t> index(30000);
+    for (std::size_t i = 0; i < index.size(); ++i) index[i] = static_cast<std::uint32_t>(i);
+    std::vector<VertexId> made_v(index.size(), kNoId);
+    std::vector<TetId> made_t(index.size(), kNoId);
+    // Each item makes one vertex and two tets and removes one of them (the
+    // tets are not linked into the mesh: only the allocation is tested).
+    auto work = [&](std::uint32_t i, int, SpeculativeLocks&) {
+      made_v[i] = mesh.add_vertex(Point(2.0, 2.0, 2.0));
+      const TetId keep = mesh.add_tet({kNoId - 1, kNoId - 1, kNoId - 1, kNoId - 1});
+      mesh.remove_tet(mesh.add_tet({kNoId - 1, kNoId - 1, kNoId - 1, kNoId - 1}));
+      made_t[i] = keep;
+      return Attempt::done;
+    };
+    // Room for a tenth of the items: the rest waits for growth.
+    const PassRoom room{.max_vertices = 1, .max_tets = 2, .vertices_per_item = 0.1, .tets_per_item = 0.1};
+    const PassTally tally = SpeculativeThreads<8>::for_each(mesh, std::span<const std::uint32_t>(index), room, work);
+    CHECK(tally.conflicts == 0);
+    CHECK(tally.rounds >= 2);  // items waited for the reserve to grow
+    CHECK(std::set<VertexId>(made_v.begin(), made_v.end()).size() == index.size());
+    CHECK(std::set<TetId>(made_t.begin(), made_t.end()).size() == index.size());
+    CHECK(mesh.num_vertices() == v0 + index.size());
+    CHECK(mesh.num_tets() == t0 + index.size());
+    for (VertexId v : made_v) REQUIRE(mesh.vertex_alive(v));
+    for (TetId t : made_t) REQUIRE(mesh.tet_alive(t));
+  }
+
+  TEST_CASE("Speculative on 1 thread: no conflict, a valid mesh of the serial quality") {
+    ThreadCountGuard guard;
+    const Adapted serial = adapt_linear(ConcurrencyKind::serial);
+    set_thread_count(1);
+    const Adapted one = adapt_linear(ConcurrencyKind::speculative);
+    require_valid(one.mesh, 1.0);
+    CHECK(total_conflicts(one.report) == 0);
+    const auto& s = serial.report.cycles.back();
+    const auto& p = one.report.cycles.back();
+    INFO("serial " << s.conformity << " / " << s.min_quality << ", speculative " << p.conformity << " / "
+                   << p.min_quality);
+    CHECK(std::abs(p.conformity - s.conformity) <= 0.02);
+    CHECK(p.min_quality >= 0.3);
+  }
+
+  TEST_CASE("Speculative on 2 and 8 threads: valid meshes of the serial quality") {
+    ThreadCountGuard guard;
+    const Adapted serial = adapt_linear(ConcurrencyKind::serial);
+    for (int threads : {2, 8}) {
+      CAPTURE(threads);
+      set_thread_count(threads);
+      const Adapted a = adapt_linear(ConcurrencyKind::speculative);
+      require_valid(a.mesh, 1.0);
+      const auto& s = serial.report.cycles.back();
+      const auto& p = a.report.cycles.back();
+      INFO("serial " << s.conformity << " / " << s.min_quality << ", speculative " << p.conformity << " / "
+                     << p.min_quality << ", conflicts " << total_conflicts(a.report));
+      CHECK(std::abs(p.conformity - s.conformity) <= 0.03);
+      CHECK(p.min_quality >= 0.3);
+      CHECK(std::abs(double(p.vertices) - double(s.vertices)) <= 0.1 * double(s.vertices));
+    }
+  }
+
+  TEST_CASE("Serial adaptation gives the same mesh to the bit on every run") {
+    const Adapted a = adapt_linear(ConcurrencyKind::serial);
+    const Adapted b = adapt_linear(ConcurrencyKind::serial);
+    const auto da = extract_mesh_data(a.mesh), db = extract_mesh_data(b.mesh);
+    REQUIRE(da.vertices.size() == db.vertices.size());
+    REQUIRE(da.tets.size() == db.tets.size());
+    CHECK(da.vertices == db.vertices);
+    CHECK(da.tets == db.tets);
+  }
+}
