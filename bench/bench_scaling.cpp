@@ -120,7 +120,8 @@ int main(int argc, char** argv) {
                               base.report.reconnect.seconds - base.report.smooth.seconds;
     auto cell = [&](const OperatorStats& s, const OperatorStats& b) {
       const double conflict_rate = s.tried + s.conflicts > 0 ? double(s.conflicts) / double(s.tried + s.conflicts) : 0.0;
-      return fmt::format("{:.2f} s, x{:.2f}, {:.1f}% confl.", s.seconds, b.seconds / s.seconds, 100 * conflict_rate);
+      return fmt::format("{:.2f} s ({:.2f} in loop), x{:.2f}, {:.1f}% confl.", s.seconds, s.loop_seconds,
+                         b.seconds / s.seconds, 100 * conflict_rate);
     };
     return fmt::format("{} | {} | {} | {} | {:.2f} s, x{:.2f}", cell(x.collapse, base.report.collapse),
                        cell(x.refine, base.report.refine), cell(x.reconnect, base.report.reconnect),
@@ -131,7 +132,8 @@ int main(int argc, char** argv) {
     fmt::print("| {} | {:.2f} | {:.2f} | {:.0f}% | {} |\n", r.label, r.seconds, speedup, 100 * speedup / r.threads,
                op_cells(r));
   }
-  fmt::print("\n(speedups against {}; per operator: its seconds, its speedup, its conflict rate; \"other\" is\n"
+  fmt::print("\n(speedups against {}; per operator: its seconds (of which in the policy's loop over its work\n"
+             "list, the parallel part), its speedup, its conflict rate; \"other\" is\n"
              "compaction, statistics and the serial parts of the passes: work lists, candidate generation)\n",
              base.label);
   return 0;

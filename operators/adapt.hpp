@@ -70,22 +70,34 @@ struct AdaptReport {
 // The share of edges in [1/sqrt 2, sqrt 2] and, when asked, the smallest
 // mean ratio (through the quality cache when `cached`: only while the
 // cache is known to hold S's values, as inside adapt).
-template <MetricSpace S>
+template <MetricSpace S, class C = Serial>
 double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached = false) {
-  std::size_t in = 0, all = 0;
-  for (const auto& [a, b] : unique_edges_unordered(mesh)) {
-    const double l = S::edge_length(mesh, a, b);
-    in += (l >= 1.0 / std::sqrt(2.0) && l <= std::sqrt(2.0));
-    ++all;
-  }
+  // In blocks of 64 (one count, one minimum per block) on C's threads.
+  constexpr std::size_t kBlock = 64;
+  const auto edges = unique_edges_unordered(mesh);
+  const auto in_blocks =
+      C::template collect<std::size_t>((edges.size() + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<std::size_t>& part) {
+        std::size_t in = 0;
+        for (std::size_t i = b * kBlock; i < std::min(edges.size(), (b + 1) * kBlock); ++i) {
+          const double l = S::edge_length(mesh, edges[i][0], edges[i][1]);
+          in += (l >= 1.0 / std::sqrt(2.0) && l <= std::sqrt(2.0));
+        }
+        part.push_back(in);
+      });
+  std::size_t in = 0;
+  for (std::size_t x : in_blocks) in += x;
   if (min_quality != nullptr) {
-    double q = 1.0;
-    for (TetId t = 0; t < mesh.tet_capacity(); ++t)
-      if (mesh.tet_alive(t))
-        q = std::min(q, cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t)));
-    *min_quality = q;
+    const std::size_t nt = mesh.tet_capacity();
+    const auto mins = C::template collect<double>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<double>& part) {
+      double q = 1.0;
+      for (auto t = static_cast<TetId>(b * kBlock); t < std::min(nt, (b + 1) * kBlock); ++t)
+        if (mesh.tet_alive(t))
+          q = std::min(q, cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t)));
+      part.push_back(q);
+    });
+    *min_quality = mins.empty() ? 1.0 : *std::min_element(mins.begin(), mins.end());
   }
-  return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
+  return edges.empty() ? 0.0 : static_cast<double>(in) / static_cast<double>(edges.size());
 }
 
 template <MetricSpace S, Precision P, Concurrency C>
@@ -101,7 +113,7 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
     mesh.compact();
     c.vertices = mesh.num_vertices();
     c.tets = mesh.num_tets();
-    c.conformity = conformity<S>(mesh, &c.min_quality, true);
+    c.conformity = conformity<S, C>(mesh, &c.min_quality, true);
     c.seconds = clock.seconds();
     report.collapse += c.collapse;
     report.refine += c.refine;

@@ -172,7 +172,7 @@ template <MetricSpace S, Precision P, Concurrency C>
 OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  auto todo = edges_beyond<S>(mesh, o.min_length, EdgeOrder::shortest_first);
+  auto todo = edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first);
   if (o.changed_since > 0) {
     // A collapse of ab reads the balls of a and b only.
     const std::vector<std::uint8_t> changed = changed_vertices(mesh, o.changed_since);

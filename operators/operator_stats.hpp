@@ -18,6 +18,9 @@ struct OperatorStats {
   // Speculative: items replayed in a later round, items left to one thread.
   std::size_t replays = 0, serial_tail = 0;
   double seconds = 0.0;
+  // Of `seconds`, the time in the policy's for_each (the parallel part
+  // under Speculative; the rest makes work lists).
+  double loop_seconds = 0.0;
   // Counts of one thread's share of a pass.
   void add_counts(const OperatorStats& o) {
     tried += o.tried;
@@ -29,6 +32,7 @@ struct OperatorStats {
     conflicts += t.conflicts;
     replays += t.replays;
     serial_tail += t.serial_tail;
+    loop_seconds += t.seconds;
   }
   OperatorStats& operator+=(const OperatorStats& o) {
     tried += o.tried;
@@ -39,6 +43,7 @@ struct OperatorStats {
     replays += o.replays;
     serial_tail += o.serial_tail;
     seconds += o.seconds;
+    loop_seconds += o.loop_seconds;
     return *this;
   }
 };

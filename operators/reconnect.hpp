@@ -98,15 +98,17 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
   Mesh::Epoch since = o.changed_since;
   for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
     const Mesh::Epoch sweep_epoch = mesh.next_epoch();
-    seeds.clear();
-    edges.clear();
-    for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+    seeds = C::template collect<TetId>(mesh.tet_capacity(), [&](std::size_t i, std::vector<TetId>& part) {
+      const auto t = static_cast<TetId>(i);
       if (mesh.tet_alive(t) && mesh.changed_since(t, since) &&
-          (o.seed_below >= 1.0 || cached_mean_ratio<S>(mesh, t) < o.seed_below)) {
-        seeds.push_back(t);
-        const auto& tv = mesh.tet(t);
-        for (const auto& e : kEdgeVertex) edges.push_back({edge_key(tv[e[0]], tv[e[1]]), t});
-      }
+          (o.seed_below >= 1.0 || cached_mean_ratio<S>(mesh, t) < o.seed_below))
+        part.push_back(t);
+    });
+    edges.clear();
+    for (TetId t : seeds) {
+      const auto& tv = mesh.tet(t);
+      for (const auto& e : kEdgeVertex) edges.push_back({edge_key(tv[e[0]], tv[e[1]]), t});
+    }
     since = sweep_epoch;
     // Each edge once per sweep, in vertex order (space order after compact).
     std::sort(edges.begin(), edges.end(), [](const EdgeSeed& x, const EdgeSeed& y) { return x.key < y.key; });

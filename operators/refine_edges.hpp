@@ -40,7 +40,7 @@ template <MetricSpace S, Precision P, Concurrency C>
 OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  const auto todo = edges_beyond<S>(mesh, o.max_length, EdgeOrder::longest_first);
+  const auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first);
   // Vertices stamped with this epoch or later were created by this pass.
   const Mesh::Epoch pass_epoch = mesh.next_epoch();
   struct Scratch {

@@ -206,11 +206,13 @@ OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
   const std::vector<std::uint8_t> changed = changed_vertices(mesh, o.changed_since);
-  std::vector<VertexId> todo;
-  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
-    if (mesh.tet_alive(t) && cached_mean_ratio<S>(mesh, t) < o.below)
-      for (VertexId v : mesh.tet(t))
-        if (changed[v]) todo.push_back(v);
+  std::vector<VertexId> todo =
+      C::template collect<VertexId>(mesh.tet_capacity(), [&](std::size_t i, std::vector<VertexId>& part) {
+        const auto t = static_cast<TetId>(i);
+        if (mesh.tet_alive(t) && cached_mean_ratio<S>(mesh, t) < o.below)
+          for (VertexId v : mesh.tet(t))
+            if (changed[v]) part.push_back(v);
+      });
   std::sort(todo.begin(), todo.end());
   todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
   std::vector<PerThread<SmoothScratch>> threads(static_cast<std::size_t>(C::threads()));

@@ -16,6 +16,8 @@
 //   - a tet all of whose vertices it holds, entirely (points, metrics);
 //   - any tet's vertices through Mesh::peek_tet (a seed), to lock them
 //     and check again.
+// C::collect runs a read-only sweep (no writes to the mesh but the quality
+// cache) that builds a work list, in parallel under Speculative.
 // Serial runs the items in order on one thread and never conflicts;
 // Speculative (speculative.hpp) runs them on all threads with per-vertex
 // owner words. Operators are written once for both.
@@ -23,6 +25,7 @@
 
 #include <metrica/ids.hpp>
 #include <metrica/mesh.hpp>
+#include <metrica/timer.hpp>
 
 #include <concepts>
 #include <cstddef>
@@ -30,6 +33,7 @@
 #include <initializer_list>
 #include <span>
 #include <string_view>
+#include <vector>
 
 namespace metrica {
 
@@ -49,12 +53,14 @@ struct PassRoom {
 // round, rounds, and items left to one thread when rounds stalled.
 struct PassTally {
   std::size_t conflicts = 0, replays = 0, rounds = 0, serial_tail = 0;
+  double seconds = 0.0;  // inside for_each (the rest of a pass builds its work list)
 };
 
 template <class C>
 concept Concurrency = requires(typename C::Locks& locks, std::span<const VertexId> vertices) {
   { C::name } -> std::convertible_to<std::string_view>;
   { C::threads() } -> std::same_as<int>;
+  { C::template collect<int>(std::size_t{0}, [](std::size_t, std::vector<int>&) {}) } -> std::same_as<std::vector<int>>;
   { locks.acquire(vertices) } -> std::same_as<bool>;
   { locks.release() } -> std::same_as<void>;
 };
@@ -68,12 +74,23 @@ struct Serial {
   };
   static int threads() { return 1; }
 
+  // Read-only sweeps that build a work list: f(i, out) for i in [0, n)
+  // appends what item i contributes; the parts keep the order of i.
+  template <class T, class F>
+  static std::vector<T> collect(std::size_t n, F&& f) {
+    std::vector<T> out;
+    for (std::size_t i = 0; i < n; ++i) f(i, out);
+    return out;
+  }
+
   template <class Item, class Work>
   static PassTally for_each(Mesh&, std::span<const Item> items, const PassRoom&, Work&& work) {
+    Stopwatch clock;
     Locks locks;
     PassTally tally;
     tally.rounds = items.empty() ? 0 : 1;
     for (const Item& item : items) work(item, 0, locks);
+    tally.seconds = clock.seconds();
     return tally;
   }
 };

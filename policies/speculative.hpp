@@ -99,10 +99,44 @@ struct SpeculativeThreads {
 
   static int threads() { return Threads > 0 ? Threads : thread_count(); }
 
+  // A read-only sweep in static chunks; each thread appends to its own
+  // part, the parts joined in thread order (the order of i).
+  template <class T, class F>
+  static std::vector<T> collect(std::size_t n, F&& f) {
+    const int nt = std::max(1, threads());
+    std::vector<T> out;
+    if (nt == 1 || n < 4096) {
+      for (std::size_t i = 0; i < n; ++i) f(i, out);
+      return out;
+    }
+    std::vector<std::vector<T>> parts(static_cast<std::size_t>(nt));
+    std::exception_ptr error;
+#pragma omp parallel num_threads(nt)
+    {
+      std::vector<T>& mine = parts[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(static)
+      for (long i = 0; i < static_cast<long>(n); ++i) {
+        try {
+          f(static_cast<std::size_t>(i), mine);
+        } catch (...) {
+#pragma omp critical(metrica_collect_error)
+          if (!error) error = std::current_exception();
+        }
+      }
+    }
+    if (error) std::rethrow_exception(error);
+    std::size_t total = 0;
+    for (const auto& p : parts) total += p.size();
+    out.reserve(total);
+    for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
+    return out;
+  }
+
   template <class Item, class Work>
   static PassTally for_each(Mesh& mesh, std::span<const Item> items, const PassRoom& room, Work&& work) {
     PassTally tally;
     if (items.empty()) return tally;
+    Stopwatch clock;
     const int nt = std::max(1, threads());
     // Room for the list, plus a chunk per thread and the per-item margin.
     auto room_for = [&](std::size_t n, int threads_now) {
@@ -190,6 +224,7 @@ struct SpeculativeThreads {
       current = std::span<const Item>(list);
     }
     mesh.end_parallel(pools);
+    tally.seconds = clock.seconds();
     return tally;
   }
 };
