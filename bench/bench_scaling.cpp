@@ -120,7 +120,9 @@ int main(int argc, char** argv) {
                               base.report.reconnect.seconds - base.report.smooth.seconds;
     auto cell = [&](const OperatorStats& s, const OperatorStats& b) {
       const double conflict_rate = s.tried + s.conflicts > 0 ? double(s.conflicts) / double(s.tried + s.conflicts) : 0.0;
-      return fmt::format("{:.2f} s ({:.2f} in loop), x{:.2f}, {:.1f}% confl.", s.seconds, s.loop_seconds,
+      const std::string balance =
+          s.thread_seconds > 0 ? fmt::format(", {:.0f}% busy", 100 * s.busy_seconds / s.thread_seconds) : "";
+      return fmt::format("{:.2f} s ({:.2f} in loop{}), x{:.2f}, {:.1f}% confl.", s.seconds, s.loop_seconds, balance,
                          b.seconds / s.seconds, 100 * conflict_rate);
     };
     return fmt::format("{} | {} | {} | {} | {:.2f} s, x{:.2f}", cell(x.collapse, base.report.collapse),

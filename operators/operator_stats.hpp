@@ -21,6 +21,9 @@ struct OperatorStats {
   // Of `seconds`, the time in the policy's for_each (the parallel part
   // under Speculative; the rest makes work lists).
   double loop_seconds = 0.0;
+  // Speculative: the threads' busy time and the loops' time x threads
+  // (their ratio is the load balance).
+  double busy_seconds = 0.0, thread_seconds = 0.0;
   // Counts of one thread's share of a pass.
   void add_counts(const OperatorStats& o) {
     tried += o.tried;
@@ -33,6 +36,8 @@ struct OperatorStats {
     replays += t.replays;
     serial_tail += t.serial_tail;
     loop_seconds += t.seconds;
+    busy_seconds += t.busy_seconds;
+    thread_seconds += t.thread_seconds;
   }
   OperatorStats& operator+=(const OperatorStats& o) {
     tried += o.tried;
@@ -44,6 +49,8 @@ struct OperatorStats {
     serial_tail += o.serial_tail;
     seconds += o.seconds;
     loop_seconds += o.loop_seconds;
+    busy_seconds += o.busy_seconds;
+    thread_seconds += o.thread_seconds;
     return *this;
   }
 };

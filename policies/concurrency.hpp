@@ -54,6 +54,9 @@ struct PassRoom {
 struct PassTally {
   std::size_t conflicts = 0, replays = 0, rounds = 0, serial_tail = 0;
   double seconds = 0.0;  // inside for_each (the rest of a pass builds its work list)
+  // Load balance: the threads' time until each ran out of items, against
+  // the rounds' time times their threads (busy / thread = 1: no waiting).
+  double busy_seconds = 0.0, thread_seconds = 0.0;
 };
 
 template <class C>

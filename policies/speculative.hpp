@@ -152,6 +152,7 @@ struct SpeculativeThreads {
     struct alignas(64) PerThread {
       std::vector<Item> deferred;
       std::size_t conflicts = 0;
+      double busy = 0;
       bool out_of_room = false;
       std::exception_ptr error;
     };
@@ -169,6 +170,7 @@ struct SpeculativeThreads {
       // enough to balance.
       const auto chunk = static_cast<long>(std::clamp<std::size_t>(current.size() / (static_cast<std::size_t>(threads_now) * 32), 16, 1024));
       const long n = static_cast<long>(current.size());
+      Stopwatch round_clock;
 #pragma omp parallel num_threads(threads_now)
       {
         const int tid = omp_get_thread_num();
@@ -195,7 +197,9 @@ struct SpeculativeThreads {
           locks.release();
         }
         Mesh::bind_pool(nullptr);
+        mine.busy += round_clock.seconds();  // until this thread ran out of items
       }
+      tally.thread_seconds += round_clock.seconds() * threads_now;
       next.clear();
       bool out_of_room = false;
       std::size_t round_conflicts = 0;
@@ -224,6 +228,7 @@ struct SpeculativeThreads {
       current = std::span<const Item>(list);
     }
     mesh.end_parallel(pools);
+    for (const PerThread& p : per) tally.busy_seconds += p.busy;
     tally.seconds = clock.seconds();
     return tally;
   }

@@ -250,6 +250,10 @@ void Mesh::end_parallel(std::span<AllocationPool> pools) {
 }
 
 void Mesh::split_ridge(VertexId a, VertexId b, VertexId m) {
+  // Ridge edges join ridge or corner vertices (classification): without
+  // input feature edges (which may lie inside), most splits need not take
+  // the lock that parallel passes share.
+  if (feature_edges_empty_ && (vertex_class_[a] < VertexClass::ridge || vertex_class_[b] < VertexClass::ridge)) return;
   std::lock_guard guard(tags_lock_);
   if (ridges_.erase(edge_key(a, b))) {
     ridges_.insert(edge_key(a, m));
@@ -262,6 +266,7 @@ void Mesh::split_ridge(VertexId a, VertexId b, VertexId m) {
 }
 
 void Mesh::merge_edge_tags(VertexId from, VertexId to, std::span<const VertexId> neighbours) {
+  if (feature_edges_empty_ && vertex_class_[from] < VertexClass::ridge) return;  // on no tagged edge
   std::lock_guard guard(tags_lock_);
   for (auto* tags : {&ridges_, &feature_edges_}) {
     for (VertexId x : neighbours)

@@ -139,7 +139,10 @@ class Mesh {
   // The sets themselves: only outside parallel passes.
   const std::unordered_set<std::uint64_t>& ridge_edges() const { return ridges_; }
   const std::unordered_set<std::uint64_t>& feature_edges() const { return feature_edges_; }
-  void add_feature_edge(VertexId a, VertexId b) { feature_edges_.insert(edge_key(a, b)); }
+  void add_feature_edge(VertexId a, VertexId b) {
+    feature_edges_.insert(edge_key(a, b));
+    feature_edges_empty_ = false;
+  }
 
   // Recomputes ridges and vertex classes from the surface ids, feature
   // edges and required vertices (classification.cpp). The one function
@@ -254,6 +257,7 @@ class Mesh {
   std::unordered_set<std::uint64_t> ridges_;
   std::unordered_set<std::uint64_t> feature_edges_;
   mutable SpinLock tags_lock_;  // guards the two sets in parallel passes
+  bool feature_edges_empty_ = true;  // never input feature edges
 
   // The reserve of a parallel pass: ids handed out from `cursor` on.
   struct Reserve {
