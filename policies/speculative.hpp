@@ -89,8 +89,11 @@ class SpeculativeLocks {
 };
 
 // Threads: `Threads` when positive (tests pin 1, 2 and 8), else
-// thread_count() (--threads, OMP_NUM_THREADS, or one per core).
-template <int Threads = 0>
+// thread_count() (--threads, OMP_NUM_THREADS, or one per core). A work
+// list shorter than `MinItems` runs on the calling thread, without pools
+// or owner words: the late cycles of an adaptation make many short lists
+// (tens of items), whose fork, join and reserve cost more than their work.
+template <int Threads = 0, std::size_t MinItems = 0>
 struct SpeculativeThreads {
   static constexpr std::string_view name = "speculative";
 
@@ -98,6 +101,15 @@ struct SpeculativeThreads {
   using Locks = SpeculativeLocks;
 
   static int threads() { return Threads > 0 ? Threads : thread_count(); }
+
+  // The owner words, at least n: kept by the calling thread from pass to
+  // pass (every word is 0 again when a pass ends), so a pass neither
+  // allocates nor clears them.
+  static std::atomic<std::uint32_t>* owner_words(std::size_t n) {
+    thread_local OwnerTable table;
+    table.resize(n);
+    return table.data();
+  }
 
   // A read-only sweep in static chunks; each thread appends to its own
   // part, the parts joined in thread order (the order of i).
@@ -137,6 +149,16 @@ struct SpeculativeThreads {
     PassTally tally;
     if (items.empty()) return tally;
     Stopwatch clock;
+    if (items.size() < MinItems) {
+      Locks locks(owner_words(mesh.vertex_capacity()), 1);
+      for (const Item& item : items) {
+        work(item, 0, locks);  // one thread: never a conflict
+        locks.release();
+      }
+      tally.rounds = 1;
+      tally.seconds = clock.seconds();
+      return tally;
+    }
     const int nt = std::max(1, threads());
     // Room for the list, plus a chunk per thread and the per-item margin.
     auto room_for = [&](std::size_t n, int threads_now) {
@@ -157,12 +179,11 @@ struct SpeculativeThreads {
       std::exception_ptr error;
     };
     std::vector<PerThread> per(static_cast<std::size_t>(nt));
-    OwnerTable owners;
     std::vector<Item> list, next;
     std::span<const Item> current = items;
     int threads_now = nt;
     for (;;) {
-      owners.resize(mesh.vertex_capacity());
+      std::atomic<std::uint32_t>* const words = owner_words(mesh.vertex_capacity());
       ++tally.rounds;
       if (threads_now == 1 && nt > 1) tally.serial_tail += current.size();
       // Chunks of the list: large enough to keep a thread in one region
@@ -177,7 +198,7 @@ struct SpeculativeThreads {
         PerThread& mine = per[static_cast<std::size_t>(tid)];
         Mesh::AllocationPool& pool = pools[static_cast<std::size_t>(tid)];
         Mesh::bind_pool(&pool);
-        Locks locks(owners.data(), static_cast<std::uint32_t>(tid) + 1);
+        Locks locks(words, static_cast<std::uint32_t>(tid) + 1);
 #pragma omp for schedule(dynamic, chunk) nowait
         for (long i = 0; i < n; ++i) {
           const Item& item = current[static_cast<std::size_t>(i)];
@@ -234,7 +255,7 @@ struct SpeculativeThreads {
   }
 };
 
-using Speculative = SpeculativeThreads<0>;
+using Speculative = SpeculativeThreads<0, 256>;
 
 static_assert(Concurrency<Speculative>);
 

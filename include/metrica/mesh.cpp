@@ -183,6 +183,10 @@ void Mesh::Reserve::drain_into(std::vector<std::uint32_t>& out) {
 
 void Mesh::append_dead(std::size_t vertex_room, std::size_t tet_room) {
   const std::size_t nv = points_.size(), nt = tets_.size();
+  // Grow by an eighth more than asked, not by doubling: the room is
+  // mostly handed back, and doubling every array would double the peak.
+  if (points_.capacity() < nv + vertex_room || tets_.capacity() < nt + tet_room)
+    reserve(nv + vertex_room + nv / 8, nt + tet_room + nt / 8);
   points_.resize(nv + vertex_room, Point::Zero());
   vertex_ref_.resize(nv + vertex_room, 0);
   vert2tet_.resize(nv + vertex_room, kNoId);
@@ -242,10 +246,6 @@ void Mesh::end_parallel(std::span<AllocationPool> pools) {
   }
   vertex_reserve_.drain_into(free_vertices_);
   tet_reserve_.drain_into(free_tets_);
-  // Lowest ids last: the serial path pops from the back, so it reuses the
-  // low ids first (the arrays' tail stays dead until compact drops it).
-  std::sort(free_vertices_.begin(), free_vertices_.end(), std::greater<>());
-  std::sort(free_tets_.begin(), free_tets_.end(), std::greater<>());
   parallel_ = false;
 }
 

@@ -185,7 +185,9 @@ class Mesh {
   // rounds (begin_parallel, grow_parallel), when no thread runs. Vertices
   // removed during the pass are recycled only after it (end_parallel): a
   // thread may still hold a removed vertex's id in its work list.
-  struct AllocationPool {
+  // One cache line (or more) each: every creation and removal writes its
+  // thread's pool, which must not share a line with another's.
+  struct alignas(64) AllocationPool {
     std::vector<VertexId> vertices;
     std::vector<TetId> tets;
     std::vector<VertexId> removed_vertices;
