@@ -12,6 +12,7 @@
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/policies/threads.hpp>
 #include <metrica/timer.hpp>
 
 #include <fmt/core.h>
@@ -40,7 +41,7 @@ double peak_mb() {
 
 int main(int argc, char** argv) try {
   int iterations = 8;
-  std::string csv_path, space_name = "log-euclidean", points = "edge";
+  std::string csv_path, space_name = "log-euclidean", points = "edge", concurrency = "serial";
   std::vector<std::string> cases;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -48,14 +49,19 @@ int main(int argc, char** argv) try {
     else if (a == "--csv" && i + 1 < argc) csv_path = argv[++i];
     else if (a == "--space" && i + 1 < argc) space_name = argv[++i];
     else if (a == "--points" && i + 1 < argc) points = argv[++i];
+    else if (a == "--concurrency" && i + 1 < argc) concurrency = argv[++i];
+    else if (a == "--threads" && i + 1 < argc) set_thread_count(std::stoi(argv[++i]));
     else if (a == "-h" || a == "--help") {
-      fmt::print("usage: ugawg [--iterations N] [--csv FILE] [--space S] [--points edge|centroid] [linear polar-1 polar-2]\n");
+      fmt::print("usage: ugawg [--iterations N] [--csv FILE] [--space S] [--points edge|centroid]\n"
+                 "             [--concurrency serial|speculative] [--threads N] [linear polar-1 polar-2]\n"
+                 "(serial by default: the figures of the README are reproducible to the bit)\n");
       return 0;
     } else cases.push_back(a);
   }
   if (cases.empty()) cases = {"linear", "polar-1", "polar-2"};
   const SpaceKind space = space_from_name(space_name);
   const PointRule rule = point_rule_from_name(points);
+  const ConcurrencyKind conc = concurrency_from_name(concurrency);
   std::string csv = "case,iteration,vertices,tets,seconds,conformity,min_q,mean_q,vertices_per_complexity,peak_mb\n";
   for (const auto& name : cases) {
     const AnalyticMetric kind = analytic_metric_from_name(name);
@@ -72,7 +78,7 @@ int main(int argc, char** argv) try {
       o.metric = &metric;
       o.points = rule;
       Stopwatch clock;
-      adapt(mesh, o, space, PrecisionKind::filtered);
+      adapt(mesh, o, space, PrecisionKind::filtered, conc);
       const double seconds = clock.seconds();
       const auto r = quality_report(mesh, space);
       fmt::print("  {:>4} {:>9} {:>10} {:>8.2f} {:>8.2f}% {:>7.3f} {:>7.3f} {:>8.3f} {:>8.1f}\n", it, r.vertices, r.tets,
