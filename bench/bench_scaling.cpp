@@ -7,7 +7,7 @@
 // quality's independence of the thread count shows too. Also the cost of
 // the Speculative machinery on one thread against Serial.
 //
-//   bench_scaling [scale=0.37] [runs=3] [threads=1,2]
+//   bench_scaling [scale=0.37] [runs=3] [threads=1,2] [noserial]
 #include "bench_common.hpp"
 
 #include <metrica/box.hpp>
@@ -101,7 +101,8 @@ int main(int argc, char** argv) {
     return r;
   };
   std::vector<Run> results;
-  results.push_back(run("serial", ConcurrencyKind::serial, 1));
+  const bool with_serial = !(argc > 4 && std::string(argv[4]) == "noserial");
+  if (with_serial) results.push_back(run("serial", ConcurrencyKind::serial, 1));
   for (int n : thread_list) results.push_back(run(fmt::format("speculative x{}", n), ConcurrencyKind::speculative, n));
 
   const Run& serial = results[0];
@@ -109,8 +110,9 @@ int main(int argc, char** argv) {
   for (const Run& r : results)
     if (r.label == "speculative x1") one = &r;
   const Run& base = one != nullptr ? *one : serial;
-  fmt::print("\nend to end: {:.0f} output tets/s serial", double(serial.quality.tets) / serial.seconds);
-  if (one != nullptr) fmt::print("; speculative on 1 thread costs {:+.1f}% over serial", 100 * (one->seconds / serial.seconds - 1));
+  fmt::print("\nend to end: {:.0f} output tets/s {}", double(serial.quality.tets) / serial.seconds, serial.label);
+  if (one != nullptr && with_serial)
+    fmt::print("; speculative on 1 thread costs {:+.1f}% over serial", 100 * (one->seconds / serial.seconds - 1));
   fmt::print("\n\n| run | seconds | speedup | efficiency | collapse | split | flips | smoothing | other |\n");
   fmt::print("|---|---|---|---|---|---|---|---|---|\n");
   auto op_cells = [&](const Run& r) {

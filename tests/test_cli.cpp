@@ -163,6 +163,49 @@ TEST_SUITE("regression") {
     CHECK(metrica_cli("check " + (dir / "q.meshb")).code == 0);
   }
 
+  TEST_CASE("loop writes one CSV row per iteration and each mesh - interpolate transfers a field") {
+    test::TempDir dir;
+    const auto r = metrica_cli("loop --field tanh3 --iterations 2 --complexity 500 --csv " + (dir / "l.csv") +
+                               " --output-dir " + (dir / "run") + " --interpolate --threads 2");
+    INFO(r.output);
+    REQUIRE(r.code == 0);
+    CHECK(has(r, "L2 error"));
+    CHECK(has(r, "transfer"));
+    std::ifstream in(dir / "l.csv");
+    std::string header, line;
+    std::getline(in, header);
+    CHECK(header == "iteration,complexity,vertices,tets,seconds,l2_error,transfer_error,conformity,min_q");
+    int rows = 0;
+    while (std::getline(in, line)) ++rows;
+    CHECK(rows == 2);
+    CHECK(metrica_cli("check " + (dir / "run/loop-02.meshb")).code == 0);
+    // Transfer a field from iteration 1's mesh to iteration 2's.
+    REQUIRE(metrica_cli("metric " + (dir / "run/loop-01.meshb") + " --field tanh3 --complexity 500 -o " +
+                        (dir / "m1.solb")).code == 0);
+    const auto bad = metrica_cli("interpolate " + (dir / "run/loop-01.meshb") + " --field " + (dir / "m1.solb") +
+                                 " --to " + (dir / "run/loop-02.meshb") + " -o " + (dir / "f2.solb"));
+    CHECK(bad.code == 1);  // a metric is not a scalar field: a clear error
+    CHECK_FALSE(std::filesystem::exists(dir / "f2.solb"));
+    // A linear scalar field moves exactly.
+    const auto m1 = io::read_meshb(dir / "run/loop-01.meshb");
+    const auto m2 = io::read_meshb(dir / "run/loop-02.meshb");
+    auto linear = [](const Point& p) { return 1.0 + p.x() - 2.0 * p.y() + 3.0 * p.z(); };
+    io::SolData f1;
+    f1.count = m1.vertices.size();
+    f1.types = {io::SolType::scalar};
+    for (const auto& p : m1.vertices) f1.values.push_back(linear(p));
+    io::write_sol(dir / "f1.solb", f1);
+    const auto ok = metrica_cli("interpolate " + (dir / "run/loop-01.meshb") + " --field " + (dir / "f1.solb") +
+                                " --to " + (dir / "run/loop-02.meshb") + " -o " + (dir / "f2.solb"));
+    INFO(ok.output);
+    REQUIRE(ok.code == 0);
+    const auto f2 = io::read_sol(dir / "f2.solb");
+    REQUIRE(f2.count == m2.vertices.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < f2.count; ++i) worst = std::max(worst, std::abs(f2.values[i] - linear(m2.vertices[i])));
+    CHECK(worst < 1e-9);
+  }
+
   TEST_CASE("adapt on bad input: exit 1 with the reason - nothing written") {
     test::TempDir dir;
     REQUIRE(metrica_cli("cube --n 2 -o " + (dir / "c.meshb")).code == 0);
@@ -248,7 +291,12 @@ TEST_SUITE("regression") {
     CHECK(metrica_cli("metric x.meshb -o m.solb").code == 2);  // no source
     CHECK(metrica_cli("metric x.meshb --analytic linear --field tanh3 -o m.solb").code == 2);
     CHECK(metrica_cli("quality x.meshb").code == 2);  // no metric
-    for (const char* c : {"cube", "info", "check", "convert", "metric", "quality", "adapt"}) {
+    CHECK(metrica_cli("loop --quick").code == 2);  // no field
+    CHECK(metrica_cli("loop --field tanh3 --iterations 0").code == 2);
+    CHECK(metrica_cli("loop --field tanh3 --norm 0.5").code == 2);
+    CHECK(metrica_cli("loop --field nofield --quick").code == 1);
+    CHECK(metrica_cli("interpolate a.meshb --to b.meshb -o c.solb").code == 2);  // no field
+    for (const char* c : {"cube", "info", "check", "convert", "metric", "quality", "adapt", "loop", "interpolate"}) {
       const auto r = metrica_cli(std::string(c) + " --help");
       CHECK(r.code == 0);
       CHECK(has(r, "Example"));

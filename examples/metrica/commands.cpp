@@ -9,6 +9,8 @@ int run_convert(const std::vector<std::string>& args);
 int run_metric(const std::vector<std::string>& args);
 int run_quality(const std::vector<std::string>& args);
 int run_adapt(const std::vector<std::string>& args);
+int run_loop(const std::vector<std::string>& args);
+int run_interpolate(const std::vector<std::string>& args);
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> list{
@@ -18,6 +20,9 @@ const std::vector<Command>& commands() {
       {"convert", "convert between .mesh, .meshb, .vtu, .su2 (and .sol <-> .solb)", run_convert},
       {"metric", "write a metric field: analytic, multiscale from a field, scaled, bounded, graded", run_metric},
       {"adapt", "adapt a mesh to a metric (file or analytic): collapse, split, flips, smoothing", run_adapt},
+      {"loop", "the adaptive loop with an analytic field: multiscale metric, adapt, L2 error, repeat", run_loop},
+      {"interpolate", "transfer a vertex field from one mesh to another (P1, point location by walking)",
+       run_interpolate},
       {"quality", "print the UGAWG quality report of a mesh in a metric (--csv for a table)", run_quality},
   };
   return list;

@@ -276,7 +276,6 @@ class Mesh {
     void drain_into(std::vector<std::uint32_t>& out);
   };
   Reserve vertex_reserve_, tet_reserve_;
-  std::vector<VertexId> graveyard_;  // vertices removed in this parallel pass
   bool parallel_ = false;
 
   friend class MeshCompactor;

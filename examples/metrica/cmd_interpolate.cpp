@@ -1,0 +1,50 @@
+#include "cli.hpp"
+
+#include <metrica/error.hpp>
+#include <metrica/io/meshb.hpp>
+#include <metrica/log.hpp>
+#include <metrica/metrics/metric_field.hpp>
+#include <metrica/point_location.hpp>
+#include <metrica/timer.hpp>
+
+#include <fmt/core.h>
+
+namespace metrica::cli {
+
+int run_interpolate(const std::vector<std::string>& args) {
+  Options o("interpolate", "[-i] FROM_MESH --field FIELD.solb --to TO_MESH [-o] OUTPUT.solb",
+            "Transfers a scalar vertex field from one mesh to another (a solver restarting on an adapted\n"
+            "mesh from its previous solution): each vertex of the target mesh is located in the source\n"
+            "mesh by walking from the tet of the previous vertex, and takes the P1 (barycentric)\n"
+            "interpolant there. Target vertices outside the source mesh (a curved boundary discretised\n"
+            "differently) take the value at the closest point of the closest tet found; they are counted.\n\n"
+            "Example:\n"
+            "  metrica interpolate old.meshb --field old.solb --to adapted.meshb -o restart.solb");
+  o.input("source mesh (.mesh, .meshb)");
+  o.output("interpolated field (.sol, .solb)");
+  o.add()("field", po::value<std::string>()->value_name("FILE"), "scalar field at the source's vertices (.sol, .solb)")(
+      "to", po::value<std::string>()->value_name("MESH"), "target mesh (.mesh, .meshb)");
+  if (!o.parse(args)) return kOk;
+  const auto input = o.required("input", "the source mesh (-i)");
+  const auto output = o.required("output", "the output field (-o)");
+  const auto field_path = o.required("field", "the field (--field)");
+  const auto to_path = o.required("to", "the target mesh (--to)");
+  Stopwatch clock;
+  const auto from = load_mesh(input);
+  const auto values = scalar_field_from_sol(io::read_sol(field_path), from.data.vertices.size(), field_path);
+  const auto to = load_mesh(to_path);
+  std::size_t outside = 0;
+  const auto out = interpolate_vertex_field(from.mesh, values, to.mesh, &outside);
+  io::SolData sol;
+  sol.version = to.data.version;
+  sol.count = to.data.vertices.size();
+  sol.types = {io::SolType::scalar};
+  sol.values.assign(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(sol.count));
+  io::write_sol(output, sol);
+  if (log::level() >= log::Level::normal)
+    fmt::print("wrote {}: {} values ({} outside the source mesh, clamped) in {:.2f} s\n", output, count_text(sol.count),
+               count_text(outside), clock.seconds());
+  return kOk;
+}
+
+}  // namespace metrica::cli

@@ -1,0 +1,39 @@
+// Point location by walking and the transfer of a vertex field from one
+// mesh to another (a solver restarting on the adapted mesh from its
+// previous solution, seed section 5.1).
+//
+// The walk (visibility walk): from a tet, compute the barycentric
+// coordinates of the point; if one is negative, step across the face
+// opposite the most negative one. On a valid mesh of a convex region the
+// walk ends in the containing tet; a point outside the domain (a curved
+// boundary discretised differently by the two meshes) stops at a boundary
+// face, and the closest tet seen is used with its coordinates clamped to
+// the tet. After Mesh::compact the points of the target mesh come in space
+// order, so each walk starts from the tet where the previous one ended.
+#pragma once
+
+#include <metrica/mesh.hpp>
+
+#include <array>
+#include <vector>
+
+namespace metrica {
+
+struct Location {
+  TetId tet = kNoId;
+  std::array<double, 4> bary{};  // clamped to [0, 1], summing to 1
+  bool inside = false;           // false: the point lies outside the mesh (bary clamped)
+  int steps = 0;
+};
+
+// The tet holding p, walking from `start` (any live tet; kNoId: the first).
+Location locate(const Mesh& mesh, const Point& p, TetId start = kNoId);
+
+// The P1 interpolant of `values` (by vertex id of `from`) at every vertex of
+// `to`; the result is indexed by vertex id of `to`. InputError when sizes
+// do not match. `outside`, when given, counts the target vertices that lay
+// outside `from` (clamped).
+std::vector<double> interpolate_vertex_field(const Mesh& from, const std::vector<double>& values, const Mesh& to,
+                                             std::size_t* outside = nullptr);
+
+}  // namespace metrica

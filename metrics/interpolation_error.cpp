@@ -1,0 +1,65 @@
+#include <metrica/error.hpp>
+#include <metrica/geometry.hpp>
+#include <metrica/metrics/interpolation_error.hpp>
+#include <metrica/metrics/quadrature.hpp>
+
+#include <fmt/core.h>
+
+#include <cmath>
+
+namespace metrica {
+namespace {
+
+void check_values(const Mesh& mesh, const std::vector<double>& values, const char* what) {
+  if (values.size() != mesh.vertex_capacity())
+    throw InputError(fmt::format("{}: {} values for a mesh of {} vertex ids", what, values.size(), mesh.vertex_capacity()));
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v) && !std::isfinite(values[v]))
+      throw InputError(fmt::format("{}: the value at vertex {} is not finite", what, v));
+}
+
+// sqrt( sum_T |T| sum_q w_q e(T, q)^2 ) over the live tets.
+template <class Error>
+double l2_norm_of(const Mesh& mesh, Error&& error) {
+  const auto& rule = tet_quadrature_degree5();
+  double sum = 0;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const auto& v = mesh.tet(t);
+    double e2 = 0;
+    for (const auto& q : rule) {
+      const double e = error(v, q);
+      e2 += q.weight * e * e;
+    }
+    sum += std::abs(tet_volume(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3]))) * e2;
+  }
+  return std::sqrt(std::max(sum, 0.0));
+}
+
+}  // namespace
+
+double l2_interpolation_error(const Mesh& mesh, const std::vector<double>& values, const ScalarFunction& exact) {
+  check_values(mesh, values, "L2 error");
+  return l2_norm_of(mesh, [&](const TetVertices& v, const QuadraturePoint& q) {
+    Point p = Point::Zero();
+    double uh = 0;
+    for (int k = 0; k < 4; ++k) {
+      p += q.bary[k] * mesh.point(v[k]);
+      uh += q.bary[k] * values[v[k]];
+    }
+    return exact(p) - uh;
+  });
+}
+
+double l2_difference(const Mesh& mesh, const std::vector<double>& a, const std::vector<double>& b) {
+  check_values(mesh, a, "L2 difference");
+  check_values(mesh, b, "L2 difference");
+  // (a - b) is P1: the degree-2 integrand is exact under the same rule.
+  return l2_norm_of(mesh, [&](const TetVertices& v, const QuadraturePoint& q) {
+    double e = 0;
+    for (int k = 0; k < 4; ++k) e += q.bary[k] * (a[v[k]] - b[v[k]]);
+    return e;
+  });
+}
+
+}  // namespace metrica
