@@ -7,55 +7,27 @@
 //   bench_adapt [scale=1] [runs=3] [space=log-euclidean] [precision=filtered]
 #include "bench_common.hpp"
 
-#include <metrica/box.hpp>
-#include <metrica/metrics/analytic_metric.hpp>
-#include <metrica/metrics/metric_field.hpp>
 #include <metrica/operators/adapt_dispatch.hpp>
 
 #include <fmt/core.h>
 
-#include <fstream>
 #include <string>
 #include <thread>
 
 using namespace metrica;
-
-namespace {
-// Peak resident memory of this process (VmHWM), in bytes.
-double peak_bytes() {
-  std::ifstream in("/proc/self/status");
-  std::string key;
-  while (in >> key) {
-    if (key == "VmHWM:") {
-      double kb = 0;
-      in >> kb;
-      return kb * 1024.0;
-    }
-    std::getline(in, key);
-  }
-  return 0.0;
-}
-}  // namespace
 
 int main(int argc, char** argv) {
   const double scale = argc > 1 ? std::stod(argv[1]) : 1.0;
   const int runs = argc > 2 ? std::stoi(argv[2]) : 3;
   const SpaceKind space = space_from_name(argc > 3 ? argv[3] : "log-euclidean");
   const PrecisionKind precision = precision_from_name(argc > 4 ? argv[4] : "filtered");
-  const MetricFunction metric = [scale](const Point& p) {
-    Sym6 m = evaluate(AnalyticMetric::linear, p);
-    for (double& x : m) x /= scale * scale;
-    return m;
-  };
+  const MetricFunction metric = bench::scaled_linear_metric(scale);
   fmt::print("adapt: linear x {} on {} core(s), {} space, {} predicates, serial, median of {}\n", scale,
              std::thread::hardware_concurrency(), to_string(space), to_string(precision), runs);
   AdaptReport last;
   std::size_t tets = 0;
   const double t = bench::median_seconds(runs, [&] {
-    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
-    std::vector<Sym6> f(mesh.vertex_capacity());
-    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) f[v] = metric(mesh.point(v));
-    assign_metric(mesh, f);
+    Mesh mesh = bench::start_mesh(metric);
     AdaptOptions o;
     o.metric = &metric;
     last = adapt(mesh, o, space, precision);
@@ -71,7 +43,7 @@ int main(int argc, char** argv) {
              last.seconds, 100 * last.collapse.seconds / last.seconds, 100 * last.refine.seconds / last.seconds,
              100 * last.reconnect.seconds / last.seconds, 100 * last.smooth.seconds / last.seconds,
              100 * (last.seconds - ops) / last.seconds);
-  fmt::print("peak memory {:.1f} MB, {:.0f} bytes per output tet\n", peak_bytes() / 1e6,
-             peak_bytes() / static_cast<double>(tets));
+  fmt::print("peak memory {:.1f} MB, {:.0f} bytes per output tet\n", bench::peak_bytes() / 1e6,
+             bench::peak_bytes() / static_cast<double>(tets));
   return 0;
 }

@@ -10,9 +10,6 @@
 //   bench_scaling [scale=0.37] [runs=3] [threads=1,2] [noserial]
 #include "bench_common.hpp"
 
-#include <metrica/box.hpp>
-#include <metrica/metrics/analytic_metric.hpp>
-#include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/operators/adapt_dispatch.hpp>
 #include <metrica/policies/threads.hpp>
@@ -20,7 +17,6 @@
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -28,20 +24,6 @@
 using namespace metrica;
 
 namespace {
-
-double peak_bytes() {
-  std::ifstream in("/proc/self/status");
-  std::string key;
-  while (in >> key) {
-    if (key == "VmHWM:") {
-      double kb = 0;
-      in >> kb;
-      return kb * 1024.0;
-    }
-    std::getline(in, key);
-  }
-  return 0.0;
-}
 
 struct Run {
   std::string label;
@@ -63,11 +45,7 @@ int main(int argc, char** argv) {
     std::string item;
     while (std::getline(in, item, ',')) thread_list.push_back(std::stoi(item));
   }
-  const MetricFunction metric = [scale](const Point& p) {
-    Sym6 m = evaluate(AnalyticMetric::linear, p);
-    for (double& x : m) x /= scale * scale;
-    return m;
-  };
+  const MetricFunction metric = bench::scaled_linear_metric(scale);
   fmt::print("scaling: linear x {} on a machine with {} core(s), log-euclidean, filtered, median of {}\n", scale,
              core_count(), runs);
   auto run = [&](const std::string& label, ConcurrencyKind c, int threads) {
@@ -78,10 +56,7 @@ int main(int argc, char** argv) {
     std::vector<std::pair<double, AdaptReport>> all;
     Mesh last;
     for (int i = 0; i < runs; ++i) {
-      Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
-      std::vector<Sym6> f(mesh.vertex_capacity());
-      for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) f[v] = metric(mesh.point(v));
-      assign_metric(mesh, f);
+      Mesh mesh = bench::start_mesh(metric);
       AdaptOptions o;
       o.metric = &metric;
       Stopwatch clock;
@@ -93,7 +68,7 @@ int main(int argc, char** argv) {
     r.seconds = all[all.size() / 2].first;
     r.report = all[all.size() / 2].second;
     r.quality = quality_report(last);
-    r.peak_mb = peak_bytes() / 1e6;
+    r.peak_mb = bench::peak_bytes() / 1e6;
     fmt::print("  {:<16} {:7.2f} s  {:>9} tets  in range {:.2f}%  mean Q {:.4f}  min Q {:.3f}  peak {:.0f} MB\n",
                r.label, r.seconds, r.quality.tets, 100 * r.quality.unit_length_share, r.quality.quality.mean,
                r.quality.quality.min, r.peak_mb);

@@ -40,10 +40,7 @@ struct OperatorStats {
     thread_seconds += t.thread_seconds;
   }
   OperatorStats& operator+=(const OperatorStats& o) {
-    tried += o.tried;
-    applied += o.applied;
-    rejected += o.rejected;
-    deferred += o.deferred;
+    add_counts(o);
     conflicts += o.conflicts;
     replays += o.replays;
     serial_tail += o.serial_tail;
