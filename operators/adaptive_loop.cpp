@@ -31,12 +31,14 @@ std::vector<LoopRow> adaptive_loop(Mesh& mesh, const LoopOptions& o) {
   if (!(o.complexity > 0)) throw InputError(fmt::format("loop: the complexity must be > 0 (got {})", o.complexity));
   if (!(o.norm >= 1)) throw InputError(fmt::format("loop: the norm p must be >= 1 (got {})", o.norm));
   std::vector<LoopRow> rows;
+  // The field at the vertices of the current mesh: made once per mesh, it
+  // measures one iteration's error and drives the next one's metric.
+  std::vector<double> u = field_at_vertices(mesh, o.field);
   for (int it = 0; it < o.iterations; ++it) {
     Stopwatch clock;
     LoopRow row;
     row.iteration = it + 1;
     row.complexity = loop_complexity(o, it);
-    const std::vector<double> u = field_at_vertices(mesh, o.field);
     MultiscaleOptions ms;
     ms.complexity = row.complexity;
     ms.norm = o.norm;
@@ -53,9 +55,11 @@ std::vector<LoopRow> adaptive_loop(Mesh& mesh, const LoopOptions& o) {
       row.conformity = report.cycles.back().conformity;
       row.min_quality = report.cycles.back().min_quality;
     }
-    row.l2_error = l2_interpolation_error(mesh, field_at_vertices(mesh, o.field), o.field);
+    std::vector<double> adapted = field_at_vertices(mesh, o.field);
+    row.l2_error = l2_interpolation_error(mesh, adapted, o.field);
     if (o.interpolate)
       row.transfer_error = l2_interpolation_error(mesh, interpolate_vertex_field(previous, u, mesh), o.field);
+    u = std::move(adapted);
     rows.push_back(row);
     if (o.on_iteration) o.on_iteration(row, mesh);
   }
