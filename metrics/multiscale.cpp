@@ -92,6 +92,7 @@ std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<double>&
   Stopwatch clock;
   const auto gradient = recover_gradient(mesh, values);
   auto hessian = recover_hessian(mesh, gradient);
+  if (o.extrapolate_boundary) extrapolate_hessian_to_boundary(mesh, hessian);
   // A Hessian at round-off level of the gradient's scale is zero: the
   // field is linear and asks for no particular size.
   double gmax = 0.0, hmax = 0.0;

@@ -23,6 +23,9 @@ struct MultiscaleOptions {
   MetricBounds bounds;  // h_max defaults to the domain's largest extent
   bool gradation = true;
   GradationOptions gradation_options;
+  // The recovered Hessian at boundary vertices replaced by their interior
+  // neighbours' (recovery.hpp: extrapolate_hessian_to_boundary).
+  bool extrapolate_boundary = true;
   int max_relaxations = 8;           // scale / bound / grade rounds
   double complexity_tolerance = 5e-3;  // stop when |C/N - 1| is below
 };

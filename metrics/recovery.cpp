@@ -6,7 +6,9 @@
 #include <Eigen/LU>
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace metrica {
 
@@ -72,6 +74,57 @@ std::vector<Sym6> recover_hessian(const Mesh& mesh, const std::vector<Eigen::Vec
   std::vector<Sym6> out(h.size());
   for (std::size_t v = 0; v < h.size(); ++v) out[v] = to_sym6(h[v]);
   return out;
+}
+
+int extrapolate_hessian_to_boundary(const Mesh& mesh, std::vector<Sym6>& hessian) {
+  const std::size_t n = mesh.vertex_capacity();
+  if (hessian.size() != n)
+    throw InputError(fmt::format("Hessian field of {} tensors for {} vertex ids", hessian.size(), n));
+  // 0: has its own value (interior), 1: waits for a donor, 2: filled this pass.
+  std::vector<std::uint8_t> state(n, 0);
+  std::size_t waiting = 0;
+  for (VertexId v = 0; v < n; ++v)
+    if (mesh.vertex_alive(v) && mesh.vertex_class(v) != VertexClass::interior) {
+      state[v] = 1;
+      ++waiting;
+    }
+  if (waiting == 0) return 0;
+  // Donors are counted once per edge: a pair (v, w) is met in every tet of
+  // the edge's shell, so each donor's weight is the number of tets sharing
+  // the edge; dividing by the summed weight makes it a weighted mean, which
+  // favours neighbours joined by many tets (the well-connected ones).
+  std::vector<Sym6> sum(n);
+  std::vector<double> weight(n);
+  int passes = 0;
+  while (waiting > 0) {
+    ++passes;
+    std::fill(sum.begin(), sum.end(), Sym6{});
+    std::fill(weight.begin(), weight.end(), 0.0);
+    for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+      if (!mesh.tet_alive(t)) continue;
+      const auto& k = mesh.tet(t);
+      for (int i = 0; i < 4; ++i) {
+        if (state[k[i]] != 1) continue;
+        for (int j = 0; j < 4; ++j) {
+          if (j == i || state[k[j]] == 1) continue;
+          for (int c = 0; c < 6; ++c) sum[k[i]][c] += hessian[k[j]][c];
+          weight[k[i]] += 1.0;
+        }
+      }
+    }
+    std::size_t filled = 0;
+    for (VertexId v = 0; v < n; ++v) {
+      if (state[v] != 1 || weight[v] == 0.0) continue;
+      for (int c = 0; c < 6; ++c) hessian[v][c] = sum[v][c] / weight[v];
+      state[v] = 2;
+      ++filled;
+    }
+    if (filled == 0) break;  // a boundary component with no interior vertex anywhere: keep its values
+    waiting -= filled;
+    for (auto& s : state)
+      if (s == 2) s = 0;
+  }
+  return passes;
 }
 
 }  // namespace metrica

@@ -20,4 +20,14 @@ std::vector<Eigen::Vector3d> recover_gradient(const Mesh& mesh, const std::vecto
 std::vector<Sym6> recover_hessian(const Mesh& mesh, const std::vector<double>& values);
 std::vector<Sym6> recover_hessian(const Mesh& mesh, const std::vector<Eigen::Vector3d>& gradient);
 
+// Replaces the Hessian at boundary vertices (any class but interior) by the
+// mean of their interior neighbours' Hessians, in passes (a boundary vertex
+// with no interior neighbour waits until a neighbour has been filled), as
+// refine's multiscale metric does (ref_metric_extrapolate_boundary_multipass).
+// Why: the projected gradient at a boundary vertex is one-sided, first-order
+// accurate, so projecting it again gives a second derivative with an O(1)
+// error there; the error grows as the mesh is refined and asks for sizes
+// that pile vertices onto the boundary. Returns the number of passes.
+int extrapolate_hessian_to_boundary(const Mesh& mesh, std::vector<Sym6>& hessian);
+
 }  // namespace metrica

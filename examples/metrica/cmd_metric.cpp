@@ -23,7 +23,7 @@ int run_metric(const std::vector<std::string>& args) {
             "  -m M               an existing metric (to scale, bound, grade or intersect).\n"
             "The multiscale metric (Loseille & Alauzet) controls the L^p norm of the P1 interpolation error\n"
             "for a target complexity (--complexity, default 1000); its Hessian comes from L2-projection\n"
-            "recovery. For the other sources --complexity scales the field to that complexity.\n"
+            "recovery, replaced at boundary vertices by the mean of their interior neighbours'. For the other sources --complexity scales the field to that complexity.\n"
             "Then, in order: bounds (--hmin, --hmax, --max-anisotropy), gradation (--gradation, mixed space\n"
             "by default) with rescaling to the complexity, and intersection with --intersect.\n"
             "The output is .solb or .sol (libMeshb version of the mesh unless --format-version).\n\n"
