@@ -36,6 +36,13 @@ Run metrica_cli(const std::string& args) {
 
 bool has(const Run& r, const std::string& s) { return r.output.find(s) != std::string::npos; }
 
+// The position of the n-th comma (1-based) of a CSV line.
+std::size_t nth_comma(const std::string& line, int n) {
+  std::size_t at = std::string::npos;
+  for (int i = 0; i < n; ++i) at = line.find(',', at == std::string::npos ? 0 : at + 1);
+  return at;
+}
+
 }  // namespace
 
 TEST_SUITE("regression") {
@@ -176,9 +183,36 @@ TEST_SUITE("regression") {
     std::getline(in, header);
     CHECK(header == "iteration,complexity,vertices,tets,seconds,l2_error,transfer_error,conformity,min_q");
     int rows = 0;
-    while (std::getline(in, line)) ++rows;
+    std::string last;
+    while (std::getline(in, line)) {
+      ++rows;
+      last = line;
+    }
     CHECK(rows == 2);
     CHECK(metrica_cli("check " + (dir / "run/loop-02.meshb")).code == 0);
+    // `error` measures what the loop reported, and against a truth mesh:
+    // zero against itself, positive against another.
+    auto error_of = [](const Run& run) {
+      const auto at = run.output.find("L2 error ");
+      REQUIRE(at != std::string::npos);
+      return std::stod(run.output.substr(at + 9));
+    };
+    const auto e2 = metrica_cli("error " + (dir / "run/loop-02.meshb") + " --analytic tanh3");
+    INFO(e2.output);
+    REQUIRE(e2.code == 0);
+    const double csv_error = std::stod(last.substr(nth_comma(last, 5) + 1));
+    CHECK(error_of(e2) == doctest::Approx(csv_error).epsilon(1e-5));
+    const auto self = metrica_cli("error " + (dir / "run/loop-02.meshb") + " --analytic tanh3 --truth " +
+                                  (dir / "run/loop-02.meshb"));
+    REQUIRE(self.code == 0);
+    CHECK(error_of(self) < 1e-12);
+    const auto coarse = metrica_cli("error " + (dir / "run/loop-01.meshb") + " --analytic tanh3 --truth " +
+                                    (dir / "run/loop-02.meshb"));
+    REQUIRE(coarse.code == 0);
+    CHECK(error_of(coarse) > 1e-6);
+    CHECK(metrica_cli("error " + (dir / "run/loop-02.meshb")).code == 2);  // no reference
+    CHECK(metrica_cli("error " + (dir / "run/loop-02.meshb") + " --field f.solb").code == 2);  // no truth
+    CHECK(metrica_cli("error " + (dir / "missing.meshb") + " --analytic tanh3").code == 1);
     // Transfer a field from iteration 1's mesh to iteration 2's.
     REQUIRE(metrica_cli("metric " + (dir / "run/loop-01.meshb") + " --field tanh3 --complexity 500 -o " +
                         (dir / "m1.solb")).code == 0);
@@ -296,7 +330,7 @@ TEST_SUITE("regression") {
     CHECK(metrica_cli("loop --field tanh3 --norm 0.5").code == 2);
     CHECK(metrica_cli("loop --field nofield --quick").code == 1);
     CHECK(metrica_cli("interpolate a.meshb --to b.meshb -o c.solb").code == 2);  // no field
-    for (const char* c : {"cube", "info", "check", "convert", "metric", "quality", "adapt", "loop", "interpolate"}) {
+    for (const char* c : {"cube", "info", "check", "convert", "metric", "quality", "adapt", "loop", "interpolate", "error"}) {
       const auto r = metrica_cli(std::string(c) + " --help");
       CHECK(r.code == 0);
       CHECK(has(r, "Example"));

@@ -11,6 +11,7 @@ int run_quality(const std::vector<std::string>& args);
 int run_adapt(const std::vector<std::string>& args);
 int run_loop(const std::vector<std::string>& args);
 int run_interpolate(const std::vector<std::string>& args);
+int run_error(const std::vector<std::string>& args);
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> list{
@@ -23,6 +24,7 @@ const std::vector<Command>& commands() {
       {"loop", "the adaptive loop with an analytic field: multiscale metric, adapt, L2 error, repeat", run_loop},
       {"interpolate", "transfer a vertex field from one mesh to another (P1, point location by walking)",
        run_interpolate},
+      {"error", "the L2 error of a P1 field against an analytic field or a finer mesh's solution", run_error},
       {"quality", "print the UGAWG quality report of a mesh in a metric (--csv for a table)", run_quality},
   };
   return list;
