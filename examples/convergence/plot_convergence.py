@@ -79,16 +79,17 @@ def main():
         series[name], seconds = levels(path, a.last)
         total += seconds
     print("| field | complexity | vertices | L2 error | refine at this complexity (vertices / error) "
-          "| refine at these vertices | error / refine's at these vertices |")
-    print("|---|---|---|---|---|---|---|")
+          "| error / refine's at this complexity | refine at these vertices | error / refine's at these vertices |")
+    print("|---|---|---|---|---|---|---|---|")
     for name, pts in series.items():
         for c, v, e, n, _ in pts:
             ref = REFINE.get(name, {}).get(int(round(c)))
             ref_text = f"{ref[0]:.0f} / {ref[1]:.3g}" if ref else "-"
+            same_c = f"{e / ref[1]:.2f}" if ref else "-"
             at = refine_at(name, v)
             at_text = f"{at:.3g}" if at else "-"
             ratio = f"{e / at:.2f}" if at else "-"
-            print(f"| {name} | {c:.0f} | {v:.0f} | {e:.3e} | {ref_text} | {at_text} | {ratio} |")
+            print(f"| {name} | {c:.0f} | {v:.0f} | {e:.3e} | {ref_text} | {same_c} | {at_text} | {ratio} |")
     for name, pts in series.items():
         print(f"{name}: fitted slope {slope(pts):.3f} (second order: -0.667)")
     print(f"total loop time {total:.0f} s")
