@@ -38,6 +38,13 @@ double l2_norm_of(const Mesh& mesh, Error&& error) {
 
 }  // namespace
 
+std::vector<double> values_at_vertices(const Mesh& mesh, const ScalarFunction& u) {
+  std::vector<double> out(mesh.vertex_capacity(), 0.0);
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v)) out[v] = u(mesh.point(v));
+  return out;
+}
+
 double l2_interpolation_error(const Mesh& mesh, const std::vector<double>& values, const ScalarFunction& exact) {
   check_values(mesh, values, "L2 error");
   return l2_norm_of(mesh, [&](const TetVertices& v, const QuadraturePoint& q) {

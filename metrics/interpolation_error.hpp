@@ -16,6 +16,10 @@ namespace metrica {
 
 using ScalarFunction = std::function<double(const Point&)>;
 
+// u at every live vertex, indexed by vertex id (0 at dead ids): the P1
+// interpolant's values.
+std::vector<double> values_at_vertices(const Mesh& mesh, const ScalarFunction& u);
+
 // `values` indexed by vertex id (dead entries ignored). InputError when
 // the sizes do not match or a value is not finite.
 double l2_interpolation_error(const Mesh& mesh, const std::vector<double>& values, const ScalarFunction& exact);

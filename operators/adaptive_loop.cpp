@@ -16,15 +16,6 @@ double loop_complexity(const LoopOptions& o, int iteration) {
   return o.complexity * std::pow(2.0, doublings);
 }
 
-namespace {
-std::vector<double> field_at_vertices(const Mesh& mesh, const ScalarFunction& u) {
-  std::vector<double> out(mesh.vertex_capacity(), 0.0);
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-    if (mesh.vertex_alive(v)) out[v] = u(mesh.point(v));
-  return out;
-}
-}  // namespace
-
 std::vector<LoopRow> adaptive_loop(Mesh& mesh, const LoopOptions& o) {
   if (!o.field) throw InputError("loop: no field");
   if (o.iterations < 1) throw InputError(fmt::format("loop: iterations must be >= 1 (got {})", o.iterations));
@@ -33,7 +24,7 @@ std::vector<LoopRow> adaptive_loop(Mesh& mesh, const LoopOptions& o) {
   std::vector<LoopRow> rows;
   // The field at the vertices of the current mesh: made once per mesh, it
   // measures one iteration's error and drives the next one's metric.
-  std::vector<double> u = field_at_vertices(mesh, o.field);
+  std::vector<double> u = values_at_vertices(mesh, o.field);
   for (int it = 0; it < o.iterations; ++it) {
     Stopwatch clock;
     LoopRow row;
@@ -55,7 +46,7 @@ std::vector<LoopRow> adaptive_loop(Mesh& mesh, const LoopOptions& o) {
       row.conformity = report.cycles.back().conformity;
       row.min_quality = report.cycles.back().min_quality;
     }
-    std::vector<double> adapted = field_at_vertices(mesh, o.field);
+    std::vector<double> adapted = values_at_vertices(mesh, o.field);
     row.l2_error = l2_interpolation_error(mesh, adapted, o.field);
     if (o.interpolate)
       row.transfer_error = l2_interpolation_error(mesh, interpolate_vertex_field(previous, u, mesh), o.field);

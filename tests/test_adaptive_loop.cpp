@@ -36,13 +36,6 @@ double quadrature_of_monomial(int a, int b, int c) {
   return sum / 6.0;  // |T| = 1/6
 }
 
-std::vector<double> values_of(const Mesh& mesh, const ScalarFunction& f) {
-  std::vector<double> out(mesh.vertex_capacity(), 0.0);
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-    if (mesh.vertex_alive(v)) out[v] = f(mesh.point(v));
-  return out;
-}
-
 }  // namespace
 
 TEST_SUITE("property") {
@@ -66,12 +59,12 @@ TEST_SUITE("property") {
     const ScalarFunction smooth = [](const Point& p) { return std::sin(3.0 * p.x()) * std::cos(2.0 * p.y()) + p.z() * p.z(); };
     Mesh coarse = make_box({.nx = 4, .ny = 4, .nz = 4});
     Mesh fine = make_box({.nx = 8, .ny = 8, .nz = 8});
-    CHECK(l2_interpolation_error(coarse, values_of(coarse, linear), linear) < 1e-13);
-    const double e_coarse = l2_interpolation_error(coarse, values_of(coarse, smooth), smooth);
-    const double e_fine = l2_interpolation_error(fine, values_of(fine, smooth), smooth);
+    CHECK(l2_interpolation_error(coarse, values_at_vertices(coarse, linear), linear) < 1e-13);
+    const double e_coarse = l2_interpolation_error(coarse, values_at_vertices(coarse, smooth), smooth);
+    const double e_fine = l2_interpolation_error(fine, values_at_vertices(fine, smooth), smooth);
     INFO("errors " << e_coarse << " " << e_fine);
     CHECK(e_coarse / e_fine == doctest::Approx(4.0).epsilon(0.1));
-    CHECK(l2_difference(fine, values_of(fine, linear), values_of(fine, linear)) == 0.0);
+    CHECK(l2_difference(fine, values_at_vertices(fine, linear), values_at_vertices(fine, linear)) == 0.0);
   }
 
   TEST_CASE("point location finds the tet of every point - a field transfer is exact for linear fields") {
@@ -94,7 +87,7 @@ TEST_SUITE("property") {
     }
     const ScalarFunction linear = [](const Point& p) { return 2.0 - p.x() + 4.0 * p.y() + 0.25 * p.z(); };
     std::size_t outside = 1;
-    const auto moved = interpolate_vertex_field(from, values_of(from, linear), to, &outside);
+    const auto moved = interpolate_vertex_field(from, values_at_vertices(from, linear), to, &outside);
     CHECK(outside == 0);
     for (VertexId v = 0; v < to.vertex_capacity(); ++v)
       if (to.vertex_alive(v)) CHECK(moved[v] == doctest::Approx(linear(to.point(v))).epsilon(1e-12));

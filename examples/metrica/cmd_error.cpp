@@ -18,11 +18,15 @@ namespace metrica::cli {
 
 namespace {
 
-std::vector<double> values_at(const LoadedMesh& m, AnalyticField f) {
-  std::vector<double> out(m.mesh.vertex_capacity(), 0.0);
-  for (VertexId v = 0; v < m.mesh.vertex_capacity(); ++v)
-    if (m.mesh.vertex_alive(v)) out[v] = evaluate(f, m.mesh.point(v));
-  return out;
+// The field at a mesh's vertices: from the file of option `file_option`
+// when given, else the analytic field there.
+std::vector<double> field_on(const LoadedMesh& m, const Options& o, const char* file_option,
+                             const std::optional<AnalyticField>& analytic) {
+  if (o.has(file_option)) {
+    const auto path = o.get<std::string>(file_option);
+    return scalar_field_from_sol(io::read_sol(path), m.data.vertices.size(), path);
+  }
+  return values_at_vertices(m.mesh, [f = *analytic](const Point& p) { return evaluate(f, p); });
 }
 
 }  // namespace
@@ -60,25 +64,13 @@ int run_error(const std::vector<std::string>& args) {
 
   Stopwatch clock;
   const auto mesh = load_mesh(input);
-  std::vector<double> values;
-  if (o.has("field")) {
-    const auto path = o.get<std::string>("field");
-    values = scalar_field_from_sol(io::read_sol(path), mesh.data.vertices.size(), path);
-  } else {
-    values = values_at(mesh, *analytic);
-  }
+  const auto values = field_on(mesh, o, "field", analytic);
   double error = 0;
   std::string against;
   if (o.has("truth")) {
     const auto truth_path = o.get<std::string>("truth");
     const auto truth = load_mesh(truth_path);
-    std::vector<double> reference;
-    if (o.has("truth-field")) {
-      const auto path = o.get<std::string>("truth-field");
-      reference = scalar_field_from_sol(io::read_sol(path), truth.data.vertices.size(), path);
-    } else {
-      reference = values_at(truth, *analytic);
-    }
+    const auto reference = field_on(truth, o, "truth-field", analytic);
     std::size_t outside = 0;
     const auto transferred = interpolate_vertex_field(mesh.mesh, values, truth.mesh, &outside);
     error = l2_difference(truth.mesh, transferred, reference);
