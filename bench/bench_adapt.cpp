@@ -13,6 +13,7 @@
 
 #include <string>
 #include <thread>
+#include <vector>
 
 using namespace metrica;
 
@@ -25,11 +26,14 @@ int main(int argc, char** argv) {
   fmt::print("adapt: linear x {} on {} core(s), {} space, {} predicates, serial, median of {}\n", scale,
              std::thread::hardware_concurrency(), to_string(space), to_string(precision), runs);
   AdaptReport last;
+  std::vector<CycleReport> cycles;  // of the last run
   std::size_t tets = 0;
   const double t = bench::median_seconds(runs, [&] {
     Mesh mesh = bench::start_mesh(metric);
     AdaptOptions o;
     o.metric = &metric;
+    cycles.clear();
+    o.on_cycle = [&](const CycleReport& c) { cycles.push_back(c); };
     last = adapt(mesh, o, space, precision);
     tets = mesh.num_tets();
   });
@@ -43,6 +47,13 @@ int main(int argc, char** argv) {
              last.seconds, 100 * last.collapse.seconds / last.seconds, 100 * last.refine.seconds / last.seconds,
              100 * last.reconnect.seconds / last.seconds, 100 * last.smooth.seconds / last.seconds,
              100 * (last.seconds - ops) / last.seconds);
+  // Where the time goes, cycle by cycle (q: the quality phase).
+  fmt::print("cycle   vertices       tets  collapsed     split  in range  min Q  | seconds: collapse  split  flips  smooth  total\n");
+  for (const auto& r : cycles)
+    fmt::print("{:>4}{} {:>10} {:>10} {:>10} {:>9} {:>8.2f}% {:>6.3f}  | {:>16.2f} {:>6.2f} {:>6.2f} {:>7.2f} {:>6.2f}\n",
+               r.cycle, r.quality_phase ? 'q' : ' ', r.vertices, r.tets, r.collapse.applied, r.refine.applied,
+               100.0 * r.conformity, r.min_quality, r.collapse.seconds, r.refine.seconds, r.reconnect.seconds,
+               r.smooth.seconds, r.seconds);
   fmt::print("peak memory {:.1f} MB, {:.0f} bytes per output tet\n", bench::peak_bytes() / 1e6,
              bench::peak_bytes() / static_cast<double>(tets));
   return 0;

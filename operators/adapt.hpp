@@ -41,6 +41,15 @@ struct AdaptOptions {
   // Stop cycling when a cycle splits and collapses fewer than this share
   // of the vertices.
   double min_change = 0.002;
+  // ... or, once the mesh is nearly a unit mesh (at least
+  // near_unit_conformity of its edges in range), when a cycle raises that
+  // share by less than min_conformity_gain: the last cycles trade splits
+  // for collapses and gain little, the quality phase's smoothing gains more
+  // per second (1M tets, linear: 62 s -> 56 s, 98.66% -> 98.45% in range,
+  // min Q 0.44 -> 0.52). Far from a unit mesh the share can stall or
+  // fall while the operators work, so the rule waits.
+  double min_conformity_gain = 0.005;
+  double near_unit_conformity = 0.9;
   int quality_passes = 4;
   RefineOptions refine;
   CollapseOptions collapse;
@@ -135,6 +144,7 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
   ReconnectOptions& flip_o = o.reconnect;
   SmoothOptions& smooth_o = o.smooth;
   ReconnectOptions delaunay_o = o.reconnect;
+  double previous_conformity = 0.0;
   for (int cycle = 0; cycle < o.max_cycles; ++cycle) {
     Stopwatch clock;
     CycleReport c;
@@ -155,6 +165,9 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
     const std::size_t changed = c.collapse.applied + c.refine.applied;
     finish(c, clock);
     if (static_cast<double>(changed) < o.min_change * static_cast<double>(mesh.num_vertices())) break;
+    if (previous_conformity >= o.near_unit_conformity && c.conformity - previous_conformity < o.min_conformity_gain)
+      break;
+    previous_conformity = c.conformity;
   }
   // The quality phase: flips from the tets below polish_below, smoothing
   // of every vertex. A pass whose threshold is larger than in the cycles
