@@ -32,7 +32,7 @@ std::vector<EdgeCandidate> edges_beyond(const Mesh& mesh, double bound, EdgeOrde
         const double l = S::edge_length(mesh, a, b);
         if (longer ? l > bound : l < bound) part.push_back({l, a, b});
       });
-  std::sort(out.begin(), out.end(), [longer](const EdgeCandidate& x, const EdgeCandidate& y) {
+  C::sort(out.begin(), out.end(), [longer](const EdgeCandidate& x, const EdgeCandidate& y) {
     if (x.length != y.length) return longer ? x.length > y.length : x.length < y.length;
     return x.a < y.a || (x.a == y.a && x.b < y.b);
   });

@@ -104,14 +104,13 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
           (o.seed_below >= 1.0 || cached_mean_ratio<S>(mesh, t) < o.seed_below))
         part.push_back(t);
     });
-    edges.clear();
-    for (TetId t : seeds) {
-      const auto& tv = mesh.tet(t);
-      for (const auto& e : kEdgeVertex) edges.push_back({edge_key(tv[e[0]], tv[e[1]]), t});
-    }
+    edges = C::template collect<EdgeSeed>(seeds.size(), [&](std::size_t i, std::vector<EdgeSeed>& part) {
+      const auto& tv = mesh.tet(seeds[i]);
+      for (const auto& e : kEdgeVertex) part.push_back({edge_key(tv[e[0]], tv[e[1]]), seeds[i]});
+    });
     since = sweep_epoch;
     // Each edge once per sweep, in vertex order (space order after compact).
-    std::sort(edges.begin(), edges.end(), [](const EdgeSeed& x, const EdgeSeed& y) { return x.key < y.key; });
+    C::sort(edges.begin(), edges.end(), [](const EdgeSeed& x, const EdgeSeed& y) { return x.key < y.key; });
     edges.erase(std::unique(edges.begin(), edges.end(),
                             [](const EdgeSeed& x, const EdgeSeed& y) { return x.key == y.key; }),
                 edges.end());

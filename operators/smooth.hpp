@@ -213,7 +213,7 @@ OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
           for (VertexId v : mesh.tet(t))
             if (changed[v]) part.push_back(v);
       });
-  std::sort(todo.begin(), todo.end());
+  C::sort(todo.begin(), todo.end(), std::less<VertexId>{});
   todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
   std::vector<PerThread<SmoothScratch>> threads(static_cast<std::size_t>(C::threads()));
   auto work = [&](VertexId v, int thread, typename C::Locks& locks) {

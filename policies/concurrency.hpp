@@ -27,7 +27,10 @@
 #include <metrica/mesh.hpp>
 #include <metrica/timer.hpp>
 
+#include <algorithm>
 #include <concepts>
+#include <functional>
+#include <utility>
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
@@ -64,6 +67,7 @@ concept Concurrency = requires(typename C::Locks& locks, std::span<const VertexI
   { C::name } -> std::convertible_to<std::string_view>;
   { C::threads() } -> std::same_as<int>;
   { C::template collect<int>(std::size_t{0}, [](std::size_t, std::vector<int>&) {}) } -> std::same_as<std::vector<int>>;
+  { C::sort(std::declval<int*>(), std::declval<int*>(), std::less<int>{}) } -> std::same_as<void>;
   { locks.acquire(vertices) } -> std::same_as<bool>;
   { locks.release() } -> std::same_as<void>;
 };
@@ -84,6 +88,12 @@ struct Serial {
     std::vector<T> out;
     for (std::size_t i = 0; i < n; ++i) f(i, out);
     return out;
+  }
+
+  // Sorts a work list (std::sort: the same order on every run).
+  template <class It, class Less>
+  static void sort(It first, It last, Less less) {
+    std::sort(first, last, less);
   }
 
   template <class Item, class Work>

@@ -144,6 +144,35 @@ struct SpeculativeThreads {
     return out;
   }
 
+  // Sorts [first, last) by `less` on the policy's threads: one slice per
+  // thread sorted in parallel, then merged pairwise in parallel rounds.
+  // Not stable, and equal elements may end in another order than
+  // std::sort's (work lists only; Serial keeps std::sort).
+  template <class It, class Less>
+  static void sort(It first, It last, Less less) {
+    const auto n = static_cast<std::size_t>(last - first);
+    const int nt = std::max(1, threads());
+    if (nt == 1 || n < 32768) {
+      std::sort(first, last, less);
+      return;
+    }
+    std::vector<It> cut(static_cast<std::size_t>(nt) + 1);
+    for (int i = 0; i <= nt; ++i)
+      cut[static_cast<std::size_t>(i)] = first + static_cast<std::ptrdiff_t>(n * static_cast<std::size_t>(i) / static_cast<std::size_t>(nt));
+#pragma omp parallel for num_threads(nt) schedule(static, 1)
+    for (int i = 0; i < nt; ++i) std::sort(cut[static_cast<std::size_t>(i)], cut[static_cast<std::size_t>(i) + 1], less);
+    for (int width = 1; width < nt; width *= 2) {
+      const int pairs = (nt + 2 * width - 1) / (2 * width);
+#pragma omp parallel for num_threads(std::min(nt, pairs)) schedule(static, 1)
+      for (int k = 0; k < pairs; ++k) {
+        const int lo = 2 * width * k, mid = std::min(nt, lo + width), hi = std::min(nt, lo + 2 * width);
+        if (mid < hi)
+          std::inplace_merge(cut[static_cast<std::size_t>(lo)], cut[static_cast<std::size_t>(mid)],
+                             cut[static_cast<std::size_t>(hi)], less);
+      }
+    }
+  }
+
   template <class Item, class Work>
   static PassTally for_each(Mesh& mesh, std::span<const Item> items, const PassRoom& room, Work&& work) {
     PassTally tally;

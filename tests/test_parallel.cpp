@@ -13,6 +13,7 @@
 #include <metrica/policies/threads.hpp>
 
 #include <atomic>
+#include <random>
 #include <set>
 
 using namespace metrica;
@@ -135,6 +136,28 @@ TEST_SUITE("parallel") {
     CHECK(mesh.num_tets() == t0 + index.size());
     for (VertexId v : made_v) REQUIRE(mesh.vertex_alive(v));
     for (TetId t : made_t) REQUIRE(mesh.tet_alive(t));
+  }
+
+  TEST_CASE("the policies' sort orders a work list as std::sort does, on 1, 2, 3 and 8 threads") {
+    // Long enough for the parallel slices and merges (3 threads: a merge
+    // round with an odd slice left over).
+    std::mt19937_64 r(5);
+    std::vector<std::uint64_t> keys(100000);
+    for (auto& k : keys) k = r() % 50000;  // repeats
+    auto expect = keys;
+    std::sort(expect.begin(), expect.end());
+    auto serial = keys;
+    Serial::sort(serial.begin(), serial.end(), std::less<std::uint64_t>{});
+    CHECK(serial == expect);
+    auto check = [&](auto policy) {
+      auto got = keys;
+      decltype(policy)::sort(got.begin(), got.end(), std::less<std::uint64_t>{});
+      CHECK(got == expect);
+    };
+    check(SpeculativeThreads<1>{});
+    check(SpeculativeThreads<2>{});
+    check(SpeculativeThreads<3>{});
+    check(SpeculativeThreads<8>{});
   }
 
   TEST_CASE("Speculative on 1 thread: no conflict, a valid mesh of the serial quality") {
