@@ -55,8 +55,9 @@ Sym6 spd_log(const Sym6& m);
 Sym6 spd_exp(const Sym6& log_m);
 // The exponential by scaling and squaring of a Taylor polynomial: several
 // times faster than spd_exp, with a relative error of v^T M v up to ~2e-8
-// at anisotropy 1e8 (3e-11 at 1e4; 1e-15 for spd_exp). For measuring (the metric of a tet in quality evaluations), not for
-// metrics that are stored.
+// at anisotropy 1e8 (3e-11 at 1e4; 1e-15 for spd_exp). For measuring
+// (the metric of a tet in quality evaluations), not for metrics that are
+// stored.
 Sym6 spd_exp_fast(const Sym6& log_m);
 
 // L with M = L^T L (L = diag(sqrt l) R^T): maps a vector into the metric's

@@ -29,13 +29,13 @@
 
 #include <algorithm>
 #include <concepts>
-#include <functional>
-#include <utility>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <span>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace metrica {
