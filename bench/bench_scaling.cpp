@@ -69,9 +69,9 @@ int main(int argc, char** argv) {
     r.report = all[all.size() / 2].second;
     r.quality = quality_report(last);
     r.peak_mb = bench::peak_bytes() / 1e6;
-    fmt::print("  {:<16} {:7.2f} s  {:>9} tets  in range {:.2f}%  mean Q {:.4f}  min Q {:.3f}  peak {:.0f} MB\n",
+    fmt::print("  {:<16} {:7.2f} s  {:>9} tets  in range {:.2f}%  mean Q {:.4f}  min Q {:.3f}  peak {:.0f} MB  {} cycles\n",
                r.label, r.seconds, r.quality.tets, 100 * r.quality.unit_length_share, r.quality.quality.mean,
-               r.quality.quality.min, r.peak_mb);
+               r.quality.quality.min, r.peak_mb, r.report.cycles.size());
     std::fflush(stdout);
     return r;
   };
@@ -115,5 +115,25 @@ int main(int argc, char** argv) {
              "list, the parallel part), its speedup, its conflict rate; \"other\" is\n"
              "compaction, statistics and the serial parts of the passes: work lists, candidate generation)\n",
              base.label);
+  // The work behind the times: a thread count that replays or tries more
+  // pays for it here, not in contention.
+  fmt::print("\n| run | operator | tried | applied | rejected | conflicts | replays | left to one thread | rounds' loop s |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|\n");
+  for (const Run& r : results) {
+    const auto& x = r.report;
+    for (const auto& [name, s] : {std::pair<const char*, const OperatorStats&>{"collapse", x.collapse},
+                                  {"split", x.refine}, {"flips", x.reconnect}, {"smoothing", x.smooth}})
+      fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {:.2f} |\n", r.label, name, s.tried, s.applied, s.rejected,
+                 s.conflicts, s.replays, s.serial_tail, s.loop_seconds);
+  }
+  // Cycle by cycle (q: the quality phase): a thread count whose cycles
+  // split and collapse more shows here.
+  for (const Run& r : results) {
+    fmt::print("\n{}: cycle  vertices  collapsed  split  in range  min Q | s: collapse  split  flips  smooth\n", r.label);
+    for (const auto& c : r.report.cycles)
+      fmt::print("{:>4}{} {:>10} {:>9} {:>7} {:>8.2f}% {:>6.3f} | {:>11.2f} {:>6.2f} {:>6.2f} {:>7.2f}\n", c.cycle,
+                 c.quality_phase ? 'q' : ' ', c.vertices, c.collapse.applied, c.refine.applied, 100.0 * c.conformity,
+                 c.min_quality, c.collapse.seconds, c.refine.seconds, c.reconnect.seconds, c.smooth.seconds);
+  }
   return 0;
 }
