@@ -181,8 +181,9 @@ struct SpeculativeThreads {
     Stopwatch clock;
     if (items.size() < MinItems) {
       // Owner words for the vertices the items may create too (appended
-      // past the capacity, no pool here): a split locking its new vertex
-      // read past the table, met garbage, and was dropped as a conflict.
+      // past the capacity, no pool here): a split whose shell held a
+      // vertex made earlier in the pass read past the table, met garbage,
+      // and was dropped as a conflict.
       Locks locks(owner_words(mesh.vertex_capacity() + items.size() * room.max_vertices), 1);
       for (const Item& item : items) {
         if (work(item, 0, locks) == Attempt::conflict)  // one thread: never
