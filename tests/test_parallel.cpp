@@ -35,7 +35,9 @@ struct Adapted {
   AdaptReport report;
 };
 
-Adapted adapt_linear(ConcurrencyKind c) {
+// The 4x4x4 cube adapted to small_linear by `run(mesh, options)`.
+template <class Run>
+Adapted adapt_linear_by(Run&& run) {
   Adapted a{make_box({.nx = 3, .ny = 3, .nz = 3}), {}};
   const MetricFunction metric = small_linear;
   std::vector<Sym6> f(a.mesh.vertex_capacity());
@@ -43,23 +45,23 @@ Adapted adapt_linear(ConcurrencyKind c) {
   assign_metric(a.mesh, f);
   AdaptOptions o;
   o.metric = &metric;
-  a.report = adapt(a.mesh, o, SpaceKind::log_euclidean, PrecisionKind::filtered, c);
+  a.report = run(a.mesh, o);
   return a;
+}
+
+Adapted adapt_linear(ConcurrencyKind c) {
+  return adapt_linear_by([c](Mesh& mesh, const AdaptOptions& o) {
+    return adapt(mesh, o, SpaceKind::log_euclidean, PrecisionKind::filtered, c);
+  });
 }
 
 // The pipeline with every list shared out however short (the Speculative
 // alias runs lists under 8192 items on one thread, which at this size is
 // all of them): the parallel path under test.
 Adapted adapt_linear_shared() {
-  Adapted a{make_box({.nx = 3, .ny = 3, .nz = 3}), {}};
-  const MetricFunction metric = small_linear;
-  std::vector<Sym6> f(a.mesh.vertex_capacity());
-  for (VertexId v = 0; v < a.mesh.vertex_capacity(); ++v) f[v] = metric(a.mesh.point(v));
-  assign_metric(a.mesh, f);
-  AdaptOptions o;
-  o.metric = &metric;
-  a.report = adapt<LogEuclidean, Filtered, SpeculativeThreads<>>(a.mesh, o);
-  return a;
+  return adapt_linear_by([](Mesh& mesh, const AdaptOptions& o) {
+    return adapt<LogEuclidean, Filtered, SpeculativeThreads<>>(mesh, o);
+  });
 }
 
 std::size_t total_conflicts(const AdaptReport& r) {
