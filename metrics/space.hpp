@@ -43,7 +43,8 @@ concept MetricSpace = requires(const Mesh& mesh, VertexId a, const TetVertices& 
   { S::mean_ratio(mesh, t) } -> std::same_as<double>;
   { S::mean_ratio(mesh, t, p) } -> std::same_as<double>;
   { S::metric_volume(mesh, t) } -> std::same_as<double>;
-  // L with M = L^T L, mapping vectors into the metric's Euclidean space.
+  // L with M = L^T L, mapping vectors into the metric's Euclidean space;
+  // upper triangular (M's Cholesky factor), so L^-1 is a back substitution.
   { S::factor(m) } -> std::same_as<Matrix3>;
 };
 

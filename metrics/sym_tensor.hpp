@@ -60,8 +60,8 @@ Sym6 spd_exp(const Sym6& log_m);
 // stored.
 Sym6 spd_exp_fast(const Sym6& log_m);
 
-// L with M = L^T L (L = diag(sqrt l) R^T): maps a vector into the metric's
-// Euclidean space, |L v| = sqrt(v^T M v).
+// L with M = L^T L, upper triangular (the Cholesky factor): maps a vector
+// into the metric's Euclidean space, |L v| = sqrt(v^T M v).
 Matrix3 metric_factor(const Sym6& m);
 
 inline double metric_norm2(const Sym6& m, const Eigen::Vector3d& v) {

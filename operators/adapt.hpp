@@ -58,7 +58,7 @@ struct AdaptOptions {
   // 9.61 s, 98.20% / 91.96% in range; below 0.7 3.80 s / 8.83 s, 98.27% /
   // 92.03%; below 0.5 3.65 s / 8.35 s, 97.66% / 91.52%); the quality
   // phase sweeps from the tets below polish_below until little changes.
-  ReconnectOptions reconnect{.seed_below = 0.7, .max_sweeps = 1};
+  ReconnectOptions reconnect{.seed_below = 0.7, .max_sweeps = 1, .face_flip_below = 0.6};
   double polish_below = 0.8;
   SmoothOptions smooth{.below = 0.3};
   // Smoothing threshold during the quality phase: every vertex (measured:
@@ -144,6 +144,7 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
   ReconnectOptions& flip_o = o.reconnect;
   SmoothOptions& smooth_o = o.smooth;
   ReconnectOptions delaunay_o = o.reconnect;
+  delaunay_o.face_flip_below = 1.0;  // the Delaunay criterion does not follow quality
   double previous_conformity = 0.0;
   for (int cycle = 0; cycle < o.max_cycles; ++cycle) {
     Stopwatch clock;

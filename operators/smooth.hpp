@@ -63,7 +63,7 @@ Point ideal_apex(const Point& p, const Point& q, const Point& r, const Sym6& m) 
   const double nn = n.norm();
   if (nn <= 0.0) return (p + q + r) / 3.0;
   const Point apex = (pm + qm + rm) / 3.0 + std::sqrt(2.0 / 3.0) * len * n / nn;
-  return l.partialPivLu().solve(apex);
+  return l.triangularView<Eigen::Upper>().solve(apex);
 }
 }  // namespace detail
 

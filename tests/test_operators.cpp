@@ -112,6 +112,26 @@ TEST_SUITE("invariant") {
     for (const auto& [id, area] : areas) CHECK(after.at(id) == doctest::Approx(area).epsilon(1e-12));
   }
 
+  TEST_CASE("face flips are tried only where a tet of the face is below face_flip_below") {
+    Mesh start = jittered_box(3, 0.35, 2);
+    std::vector<Sym6> f(start.vertex_capacity());
+    for (VertexId v = 0; v < start.vertex_capacity(); ++v) f[v] = evaluate(AnalyticMetric::polar1, start.point(v));
+    assign_metric(start, f);
+    auto tried = [&](bool faces, double below) {
+      Mesh mesh = start;
+      const auto st = reconnect<LogEuclidean, Filtered, Serial, MinQuality>(
+          mesh, ReconnectOptions{.max_sweeps = 1, .face_flips = faces, .face_flip_below = below});
+      require_valid(mesh, 1.0);
+      return st.tried;
+    };
+    const std::size_t edges_only = tried(false, 1.0);
+    // No tet has a mean ratio below 0: no face is tried.
+    CHECK(tried(true, 0.0) == edges_only);
+    const std::size_t all = tried(true, 1.0), some = tried(true, 0.3);
+    CHECK(all > some);
+    CHECK(some > edges_only);
+  }
+
   TEST_CASE_TEMPLATE("boundary 2-2 flips swap diagonals inside one surface", T, METRICA_POLICY_COMBINATIONS) {
     using S = typename T::Space;
     using P = typename T::Precision;
