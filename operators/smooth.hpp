@@ -40,13 +40,27 @@ struct SmoothOptions {
   Mesh::Epoch changed_since = 0;
 };
 
+// What the mean ratio of a ball tet needs when only v moves: the face
+// opposite v (f0, and f1, f2 for v's three edges), the inward normal n of
+// that face (6 |K| = n . (p - f0) with v at p), the metric norms of the
+// face's three edges (fixed), the tet's metric and its determinant (v
+// keeps its metric until it moves). A trial then costs three metric norms
+// and a dot product per tet, not the tet's six edges, a determinant and
+// an orientation test.
+struct BallTerm {
+  Point f0, f1, f2;
+  Eigen::Vector3d normal;
+  double face_edges = 0.0;
+  double det = 0.0;
+};
+
 struct SmoothScratch {
   TetList ball;
   VertexList neighbours;
   boost::container::small_vector<Point, 96> trials;
-  // The metric of each ball tet (fixed while v's trial positions are
-  // measured: v keeps its metric until it moves).
+  // The metric of each ball tet, and its terms.
   boost::container::small_vector<Sym6, 64> metrics;
+  boost::container::small_vector<BallTerm, 64> terms;
 };
 
 namespace detail {
@@ -84,14 +98,25 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
   const Point x = mesh.point(v);
   s.trials.clear();
   s.metrics.clear();
+  s.terms.clear();
   for (TetId t : s.ball) s.metrics.push_back(S::tet_metric(mesh, mesh.tet(t)));
   // The optimal point: face (t[kFaceVertex[iv]]) is oriented outwards, so
-  // the apex lies on its negative side; swap two vertices.
+  // the apex lies on its negative side; swap two vertices. The same
+  // swapped order gives the inward normal of the ball terms.
   Point optimal = Point::Zero();
   for (std::size_t i = 0; i < s.ball.size(); ++i) {
     const auto& tv = mesh.tet(s.ball[i]);
     const auto f = face_vertices(tv, local_index(tv, v));
-    optimal += detail::ideal_apex<S>(mesh.point(f[0]), mesh.point(f[2]), mesh.point(f[1]), s.metrics[i]);
+    BallTerm b;
+    b.f0 = mesh.point(f[0]);
+    b.f1 = mesh.point(f[2]);
+    b.f2 = mesh.point(f[1]);
+    b.normal = (b.f1 - b.f0).cross(b.f2 - b.f0);
+    const Sym6& m = s.metrics[i];
+    b.face_edges = metric_norm2(m, b.f1 - b.f0) + metric_norm2(m, b.f2 - b.f1) + metric_norm2(m, b.f0 - b.f2);
+    b.det = determinant(m);
+    s.terms.push_back(b);
+    optimal += detail::ideal_apex<S>(b.f0, b.f1, b.f2, m);
   }
   optimal /= static_cast<double>(s.ball.size());
   // Trials from `secondary` on are tried only when none before improved.
@@ -160,33 +185,66 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
     }
     return n;
   };
-  // The smallest mean ratio of the ball with v at p; stops at the first
-  // tet at or below `floor` (that trial cannot win).
-  // Compared as cubes (one cube root per trial, not per tet).
-  auto min_quality_at = [&](const Point& p, double floor) {
-    const double floor3 = floor * floor * floor;
+  // The cube of the mean ratio (measures.hpp, mean_ratio_cubed) of ball
+  // tet i with v at p, from its terms.
+  const std::size_t n = s.ball.size();
+  auto quality3 = [&](std::size_t i, const Point& p) {
+    const BallTerm& b = s.terms[i];
+    const Sym6& m = s.metrics[i];
+    const double vol6 = b.normal.dot(p - b.f0);
+    const double sum = b.face_edges + metric_norm2(m, p - b.f0) + metric_norm2(m, p - b.f1) + metric_norm2(m, p - b.f2);
+    if (!(sum > 0.0)) return 0.0;
+    // mean_ratio_cubed's 36^3 / 3 (|K| sqrt(det M))^2 with |K| = vol6 / 6.
+    constexpr double kNorm3 = 36.0 * 36.0 / 3.0;
+    const double q3 = kNorm3 * vol6 * vol6 * b.det / (sum * sum * sum);
+    return vol6 < 0.0 ? -q3 : q3;
+  };
+  // The smallest mean ratio (cubed) of the ball with v at p; stops at the
+  // first tet at or below floor3 (that trial cannot win). It starts from
+  // the tet that stopped the last trial: the ball's bottleneck stops most
+  // failing trials at once.
+  std::size_t first = 0;
+  auto min_quality3_at = [&](const Point& p, double floor3) {
     double q3 = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < s.ball.size(); ++i) {
-      const auto& tv = mesh.tet(s.ball[i]);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = first + k < n ? first + k : first + k - n;
+      q3 = std::min(q3, quality3(i, p));
+      if (q3 <= floor3) {
+        first = i;
+        break;
+      }
+    }
+    return q3;
+  };
+  // The decision's orientation tests, with the Precision policy, for a
+  // trial about to be kept.
+  auto all_positive_at = [&](const Point& p) {
+    for (TetId t : s.ball) {
+      const auto& tv = mesh.tet(t);
       TetPoints pts = detail::tet_points(mesh, tv);
       pts[local_index(tv, v)] = p;
-      if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return -1.0;
-      q3 = std::min(q3, mean_ratio_cubed(pts, s.metrics[i]));
-      if (q3 <= floor3) break;
+      if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return false;
     }
-    return std::cbrt(q3);
+    return true;
   };
+  // The ball's quality now: the cache, or the terms (not stored: they
+  // give S::mean_ratio's number only up to rounding, and the cache holds
+  // S::mean_ratio's).
   double q_old = std::numeric_limits<double>::infinity();
-  for (TetId t : s.ball) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, t));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double q = mesh.cached_quality(s.ball[i]);
+    q_old = std::min(q_old, q != Mesh::kUnknownQuality ? q : std::cbrt(quality3(i, x)));
+  }
   const int bad_old = out_of_range(x);
-  double q_best = q_old;
+  double q_best = q_old, q3_best = q_old * q_old * q_old;
   Point best = x;
   for (std::size_t i = 0; i < s.trials.size(); ++i) {
     if (i == secondary && improves_min_quality(q_old, q_best)) break;
     const Point& p = s.trials[i];
-    const double q = min_quality_at(p, q_best);
-    if (q > q_best && out_of_range(p) <= bad_old) {
-      q_best = q;
+    const double q3 = min_quality3_at(p, q3_best);
+    if (q3 > q3_best && out_of_range(p) <= bad_old && all_positive_at(p)) {
+      q3_best = q3;
+      q_best = std::cbrt(q3);
       best = p;
     }
   }
