@@ -68,7 +68,13 @@ inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
     for (int f = 0; f < 4; ++f) {
       if (f == iv) continue;  // the face opposite v does not contain it
       const FaceRef n = mesh.neighbour(t, f);
-      if (n.valid() && seen.insert(n.tet(), ball)) ball.push_back(n.tet());
+      if (n.valid() && seen.insert(n.tet(), ball)) {
+        // The walk is a chain of dependent loads (a tet's vertices, then
+        // its neighbours), most of them cache misses on a large mesh: ask
+        // for the new tet's lines now, a few tets before it is read.
+        mesh.prefetch_tet(n.tet());
+        ball.push_back(n.tet());
+      }
     }
   }
 }

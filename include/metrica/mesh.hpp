@@ -79,6 +79,12 @@ class Mesh {
   int tet_ref(TetId t) const { return tet_ref_[t]; }
   // Neighbour across face `face` of t (with its local face), or none.
   FaceRef neighbour(TetId t, int face) const { return tet2tets_[t][face]; }
+  // Asks the cache for t's vertices and neighbours (walks that will read
+  // t a little later: each step of a walk is otherwise a dependent miss).
+  void prefetch_tet(TetId t) const {
+    __builtin_prefetch(&tets_[t]);
+    __builtin_prefetch(&tet2tets_[t]);
+  }
   FaceRef neighbour(FaceRef f) const { return tet2tets_[f.tet()][f.face()]; }
   SurfaceId surface_id(TetId t, int face) const { return face_surface_[t][face]; }
   Point tet_point(TetId t, int i) const { return points_[tets_[t][i]]; }
