@@ -94,17 +94,19 @@ inline int edge_ring(const Mesh& mesh, VertexId a, VertexId b, const Shell& shel
 // The tets of the fan of polygon `ring` from vertex k, each triangle
 // joined to a and b, oriented positively given the ring's sign.
 inline void fan_tets(const VertexList& ring, std::size_t k, VertexId a, VertexId b, int sign, NewTets& out) {
-  out.clear();
   const std::size_t m = ring.size();
+  if (m < 3) {
+    out.clear();
+    return;
+  }
+  // Sized once and written in place (push_back's checks were most of the
+  // cost of this function, called for every fan of every edge removal).
+  out.resize(2 * (m - 2), boost::container::default_init);
+  const VertexId first = sign > 0 ? b : a, second = sign > 0 ? a : b;
   for (std::size_t i = 1; i + 1 < m; ++i) {
     const VertexId p = ring[k], q = ring[(k + i) % m], r = ring[(k + i + 1) % m];
-    if (sign > 0) {
-      out.push_back({p, q, r, b});
-      out.push_back({q, p, r, a});
-    } else {
-      out.push_back({p, q, r, a});
-      out.push_back({q, p, r, b});
-    }
+    out[2 * (i - 1)] = {p, q, r, first};
+    out[2 * (i - 1) + 1] = {q, p, r, second};
   }
 }
 
