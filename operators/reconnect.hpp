@@ -8,6 +8,7 @@
 
 #include <metrica/operators/flips.hpp>
 #include <metrica/operators/operator_stats.hpp>
+#include <metrica/operators/work_list.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
@@ -119,10 +120,7 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
     });
     since = sweep_epoch;
     // Each edge once per sweep, in vertex order (space order after compact).
-    C::sort(edges.begin(), edges.end(), [](const EdgeSeed& x, const EdgeSeed& y) { return x.key < y.key; });
-    edges.erase(std::unique(edges.begin(), edges.end(),
-                            [](const EdgeSeed& x, const EdgeSeed& y) { return x.key == y.key; }),
-                edges.end());
+    sort_unique_by_vertex_key(edges, mesh.vertex_capacity(), [](const EdgeSeed& x) { return x.key; });
     const std::size_t applied_before = stats.applied;
     for (auto& t : threads) t.stats = {};
     // An edge removal of n tets makes 2n - 4 (a 2-3 flip one more), but

@@ -18,6 +18,7 @@
 #include <metrica/operators/flips.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operator_stats.hpp>
+#include <metrica/operators/work_list.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
@@ -271,8 +272,7 @@ OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
           for (VertexId v : mesh.tet(t))
             if (changed[v]) part.push_back(v);
       });
-  C::sort(todo.begin(), todo.end(), std::less<VertexId>{});
-  todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+  sort_unique_ids(todo, mesh.vertex_capacity());
   std::vector<PerThread<SmoothScratch>> threads(static_cast<std::size_t>(C::threads()));
   auto work = [&](VertexId v, int thread, typename C::Locks& locks) {
     auto& [s, st] = threads[static_cast<std::size_t>(thread)];
