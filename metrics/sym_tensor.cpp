@@ -1,6 +1,7 @@
 #include <metrica/metrics/sym_tensor.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Eigenvalues>
 
@@ -62,6 +63,10 @@ Sym6 spd_exp_fast(const Sym6& log_m) {
   const double norm2 = d[0] * d[0] + d[2] * d[2] + d[5] * d[5] + 2.0 * (d[1] * d[1] + d[3] * d[3] + d[4] * d[4]);
   const double det = d[0] * (d[2] * d[5] - d[4] * d[4]) - d[1] * (d[1] * d[5] - d[4] * d[3]) +
                      d[3] * (d[1] * d[4] - d[2] * d[3]);
+  if (!std::isfinite(norm2 + det + t)) {  // NaN or inf in: NaN out, not an endless halving
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return Sym6{nan, nan, nan, nan, nan, nan};
+  }
   int halvings = 0;
   double scale = 1.0;  // 2^-halvings
   while (norm2 * scale * scale > 0.25) {

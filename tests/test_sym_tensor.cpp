@@ -56,6 +56,10 @@ TEST_SUITE("property") {
     }
     // Exact cases: log 0 is the identity; a multiple of the identity.
     CHECK(spd_exp_fast(Sym6{}) == Sym6{1, 0, 1, 0, 0, 1});
+    // A non-finite logarithm gives NaN (and returns: the halving loop
+    // would never end on an infinite norm).
+    CHECK(std::isnan(spd_exp_fast(Sym6{std::numeric_limits<double>::infinity(), 0, 0, 0, 0, 0})[0]));
+    CHECK(std::isnan(spd_exp_fast(Sym6{std::nan(""), 0, 0, 0, 0, 0})[2]));
     const auto iso = spd_exp_fast(spd_log(isotropic_metric(0.01)));
     CHECK(iso[0] == doctest::Approx(1e4).epsilon(1e-12));
     CHECK(iso[1] == 0.0);
