@@ -87,13 +87,12 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
     if (tv[0] == kNoId || tv[1] == kNoId || tv[2] == kNoId || tv[3] == kNoId) return Attempt::done;
     if (!locks.acquire(std::span<const VertexId>(tv))) return Attempt::conflict;
     if (mesh.tet(t) != tv) return Attempt::done;  // changed since the list was made
+    const bool t_below = o.face_flip_below >= 1.0 || cached_mean_ratio<S>(mesh, t) < o.face_flip_below;
     for (int f = 0; f < 4; ++f) {
       const FaceRef nb = mesh.neighbour(t, f);
       if (!nb.valid()) continue;
       if (!locks.acquire({mesh.tet(nb.tet())[nb.face()]})) return Attempt::conflict;
-      if (o.face_flip_below < 1.0 && cached_mean_ratio<S>(mesh, t) >= o.face_flip_below &&
-          cached_mean_ratio<S>(mesh, nb.tet()) >= o.face_flip_below)
-        continue;
+      if (!t_below && cached_mean_ratio<S>(mesh, nb.tet()) >= o.face_flip_below) continue;
       ++st.tried;
       const FlipResult r = flip23<S, P, Criterion>(mesh, t, f, x.s, o.flips);
       if (r == FlipResult::applied) {

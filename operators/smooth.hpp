@@ -186,19 +186,13 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
     }
     return n;
   };
-  // The cube of the mean ratio (measures.hpp, mean_ratio_cubed) of ball
-  // tet i with v at p, from its terms.
+  // The cube of the mean ratio of ball tet i with v at p, from its terms.
   const std::size_t n = s.ball.size();
   auto quality3 = [&](std::size_t i, const Point& p) {
     const BallTerm& b = s.terms[i];
     const Sym6& m = s.metrics[i];
-    const double vol6 = b.normal.dot(p - b.f0);
     const double sum = b.face_edges + metric_norm2(m, p - b.f0) + metric_norm2(m, p - b.f1) + metric_norm2(m, p - b.f2);
-    if (!(sum > 0.0)) return 0.0;
-    // mean_ratio_cubed's 36^3 / 3 (|K| sqrt(det M))^2 with |K| = vol6 / 6.
-    constexpr double kNorm3 = 36.0 * 36.0 / 3.0;
-    const double q3 = kNorm3 * vol6 * vol6 * b.det / (sum * sum * sum);
-    return vol6 < 0.0 ? -q3 : q3;
+    return mean_ratio_cubed(b.normal.dot(p - b.f0), b.det, sum);
   };
   // The smallest mean ratio (cubed) of the ball with v at p; stops at the
   // first tet at or below floor3 (that trial cannot win). It starts from

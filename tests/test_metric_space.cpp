@@ -83,6 +83,20 @@ TEST_SUITE("property") {
     CHECK(mean_ratio({kRegular[0], kRegular[1], kRegular[3], kRegular[2]}, isotropic_metric(1)) < 0.0);
   }
 
+  TEST_CASE("mean_ratio_cubed from its parts is the cube of the mean ratio - sign kept") {
+    auto r = test::rng(201);
+    for (int i = 0; i < 200; ++i) {
+      const Sym6 m = random_metric(r, 1e4);
+      const TetPoints t = random_tet(r);
+      double sum = 0.0;
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) sum += metric_norm2(m, t[b] - t[a]);
+      const double q3 = mean_ratio_cubed(orient3d_fast(t[0], t[1], t[2], t[3]), determinant(m), sum);
+      CHECK(std::cbrt(q3) == doctest::Approx(mean_ratio(t, m)).epsilon(1e-12));
+    }
+    CHECK(mean_ratio_cubed(1.0, 1.0, 0.0) == 0.0);
+  }
+
   TEST_CASE_TEMPLATE("space lengths scale by sqrt 2 when the metric doubles", S, Isotropic, Anisotropic, LogEuclidean) {
     auto r = test::rng(201);
     Mesh mesh = box_with_metric(r, 1e3);
