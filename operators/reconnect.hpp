@@ -8,6 +8,7 @@
 
 #include <metrica/operators/flips.hpp>
 #include <metrica/operators/operator_stats.hpp>
+#include <metrica/operators/work_list.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
@@ -42,12 +43,9 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
   std::vector<TetId> seeds;
-  // An edge and a tet that held it when the work list was made (the shell
-  // walk starts there when the tet still holds it, else from a's ball).
-  struct EdgeSeed {
-    std::uint64_t key;
-    TetId tet;
-  };
+  // Each edge with a tet that held it when the work list was made (the
+  // shell walk starts there when the tet still holds it, else from a's
+  // ball).
   std::vector<EdgeSeed> edges;
   struct Scratch {
     FlipScratch s;
@@ -112,18 +110,10 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
           (o.seed_below >= 1.0 || cached_mean_ratio<S>(mesh, t) < o.seed_below))
         part.push_back(t);
     });
-    edges = C::template collect<EdgeSeed>(seeds.size(), [&](std::size_t i, std::vector<EdgeSeed>& part) {
-      const auto& tv = mesh.tet(seeds[i]);
-      for (const auto& e : kEdgeVertex) part.push_back({edge_key(tv[e[0]], tv[e[1]]), seeds[i]});
-    });
-    since = sweep_epoch;
     // Each edge once per sweep, in vertex order (space order after compact).
-    // (std::sort: an in-place bucket sort on the lower vertex was faster at
-    // 224k tets but not at 1M, where its swaps miss the cache.)
-    C::sort(edges.begin(), edges.end(), [](const EdgeSeed& x, const EdgeSeed& y) { return x.key < y.key; });
-    edges.erase(std::unique(edges.begin(), edges.end(),
-                            [](const EdgeSeed& x, const EdgeSeed& y) { return x.key == y.key; }),
-                edges.end());
+    unique_edge_seeds(std::span<const TetId>(seeds), [&](TetId t) -> const TetVertices& { return mesh.tet(t); },
+                      mesh.vertex_capacity(), edges);
+    since = sweep_epoch;
     const std::size_t applied_before = stats.applied;
     for (auto& t : threads) t.stats = {};
     // An edge removal of n tets makes 2n - 4 (a 2-3 flip one more), but
