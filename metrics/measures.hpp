@@ -57,6 +57,14 @@ inline double mean_ratio_cubed(double volume6, double det, double edge_norms) {
   return volume6 < 0.0 ? -q3 : q3;
 }
 
+// The same from the points and the constant metric.
+inline double mean_ratio_cubed(const TetPoints& p, const Sym6& m) {
+  double sum = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) sum += metric_norm2(m, p[j] - p[i]);
+  return mean_ratio_cubed(orient3d_fast(p[0], p[1], p[2], p[3]), determinant(m), sum);
+}
+
 inline Point centroid(const TetPoints& p) { return 0.25 * (p[0] + p[1] + p[2] + p[3]); }
 
 }  // namespace metrica

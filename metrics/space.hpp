@@ -42,6 +42,8 @@ concept MetricSpace = requires(const Mesh& mesh, VertexId a, const TetVertices& 
   // the vertices at the points p (a trial position, e.g. in smoothing).
   { S::mean_ratio(mesh, t) } -> std::same_as<double>;
   { S::mean_ratio(mesh, t, p) } -> std::same_as<double>;
+  // The cube of mean_ratio without its cube root (for comparisons).
+  { S::mean_ratio_cubed(mesh, t) } -> std::same_as<double>;
   { S::metric_volume(mesh, t) } -> std::same_as<double>;
   // L with M = L^T L, mapping vectors into the metric's Euclidean space;
   // upper triangular (M's Cholesky factor), so L^-1 is a back substitution.
@@ -70,6 +72,9 @@ struct SpaceCommon {
   }
   static double mean_ratio(const Mesh& mesh, const TetVertices& t) {
     return metrica::mean_ratio(tet_points(mesh, t), tet_metric(mesh, t));
+  }
+  static double mean_ratio_cubed(const Mesh& mesh, const TetVertices& t) {
+    return metrica::mean_ratio_cubed(tet_points(mesh, t), tet_metric(mesh, t));
   }
   static double metric_volume(const Mesh& mesh, const TetVertices& t) {
     return metrica::metric_volume(tet_points(mesh, t), tet_metric(mesh, t));

@@ -128,6 +128,10 @@ TEST_SUITE("property") {
       const double q = S::mean_ratio(mesh, k);
       CHECK(q > 0.0);
       CHECK(q <= 1.0 + 1e-12);
+      CHECK(std::cbrt(S::mean_ratio_cubed(mesh, k)) == doctest::Approx(q).epsilon(1e-12));
+      TetVertices inverted = k;
+      std::swap(inverted[0], inverted[1]);
+      CHECK(std::cbrt(S::mean_ratio_cubed(mesh, inverted)) == doctest::Approx(-q).epsilon(1e-12));
       CHECK(S::metric_volume(mesh, k) > 0.0);
       CHECK(is_spd(S::tet_metric(mesh, k)));
     }

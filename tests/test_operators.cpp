@@ -132,6 +132,26 @@ TEST_SUITE("invariant") {
     CHECK(some > edges_only);
   }
 
+  TEST_CASE("MinQuality scores Q cubed: the same order, its bar the cube of the quality bar") {
+    Mesh mesh = jittered_box(3, 0.35, 4);
+    std::vector<Sym6> f(mesh.vertex_capacity());
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) f[v] = evaluate(AnalyticMetric::polar1, mesh.point(v));
+    assign_metric(mesh, f);
+    std::vector<std::pair<double, double>> q;  // Q, score
+    for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+      const double score = MinQuality::tet_score<LogEuclidean>(mesh, mesh.tet(t));
+      CHECK(MinQuality::tet_score_of<LogEuclidean>(mesh, t) == doctest::Approx(score).epsilon(1e-11));
+      q.emplace_back(LogEuclidean::mean_ratio(mesh, mesh.tet(t)), score);
+      const double bar = MinQuality::bar(score);
+      CHECK(bar > score);
+      CHECK(std::cbrt(bar) == doctest::Approx(improvement_bar(q.back().first)).epsilon(1e-12));
+    }
+    // Sorted by Q, the scores rise too (up to rounding: the two are
+    // computed by different sums, and equal tets abound in a box).
+    std::sort(q.begin(), q.end());
+    for (std::size_t i = 1; i < q.size(); ++i) CHECK(q[i].second >= q[i - 1].second * (1.0 - 1e-12));
+  }
+
   TEST_CASE_TEMPLATE("boundary 2-2 flips swap diagonals inside one surface", T, METRICA_POLICY_COMBINATIONS) {
     using S = typename T::Space;
     using P = typename T::Precision;
