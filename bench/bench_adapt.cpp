@@ -48,14 +48,14 @@ int main(int argc, char** argv) {
              100 * last.reconnect.seconds / last.seconds, 100 * last.smooth.seconds / last.seconds,
              100 * (last.seconds - ops) / last.seconds);
   // Where the time goes, cycle by cycle (q: the quality phase).
-  // Flips and smoothing: applied / tried.
-  fmt::print("cycle   vertices       tets  collapsed     split             flips          smoothed  in range  min Q  | "
+  // Each operator: applied / tried.
+  fmt::print("cycle   vertices       tets         collapsed             split             flips          smoothed  in range  min Q  | "
              "seconds: collapse  split  flips  smooth  total\n");
   for (const auto& r : cycles)
-    fmt::print("{:>4}{} {:>10} {:>10} {:>10} {:>9} {:>8}/{:<8} {:>8}/{:<8} {:>8.2f}% {:>6.3f}  | {:>16.2f} {:>6.2f} {:>6.2f} "
+    fmt::print("{:>4}{} {:>10} {:>10} {:>8}/{:<8} {:>8}/{:<8} {:>8}/{:<8} {:>8}/{:<8} {:>8.2f}% {:>6.3f}  | {:>16.2f} {:>6.2f} {:>6.2f} "
                "{:>7.2f} {:>6.2f}\n",
-               r.cycle, r.quality_phase ? 'q' : ' ', r.vertices, r.tets, r.collapse.applied, r.refine.applied,
-               r.reconnect.applied, r.reconnect.tried, r.smooth.applied, r.smooth.tried, 100.0 * r.conformity,
+               r.cycle, r.quality_phase ? 'q' : ' ', r.vertices, r.tets, r.collapse.applied, r.collapse.tried,
+               r.refine.applied, r.refine.tried, r.reconnect.applied, r.reconnect.tried, r.smooth.applied, r.smooth.tried, 100.0 * r.conformity,
                r.min_quality, r.collapse.seconds, r.refine.seconds, r.reconnect.seconds, r.smooth.seconds, r.seconds);
   fmt::print("peak memory {:.1f} MB, {:.0f} bytes per output tet\n", bench::peak_bytes() / 1e6,
              bench::peak_bytes() / static_cast<double>(tets));

@@ -53,6 +53,7 @@ struct CollapseScratch {
   Shell shell;
   VertexList neighbours, neighbours_b;  // of a, of b
   NewTets old_tets, new_tets, dragged;
+  boost::container::small_vector<double, 32> new_quality;  // of new_tets
   CavityPlan plan;
   TetList created;
 };
@@ -141,9 +142,11 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
   // Refused when the worst new tet is below the floor and below the worst
   // old one: when some new tet is below both.
   double q_old = Mesh::kUnknownQuality;
+  s.new_quality.clear();
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
       const double q = S::mean_ratio(mesh, t, points_of(t));
+      if (list == &s.new_tets) s.new_quality.push_back(q);
       if (q >= o.quality_floor) continue;
       if (q_old == Mesh::kUnknownQuality) {
         q_old = std::numeric_limits<double>::infinity();
@@ -154,6 +157,11 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
       if (q < q_old) return FlipResult::rejected;
     }
   apply_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, ref, s.created);
+  // The new tets' mean ratios, measured above at their final points in
+  // their final metric, go to the quality cache (not when b moves: its
+  // metric changes below).
+  if (moved == nullptr)
+    for (std::size_t i = 0; i < s.created.size(); ++i) mesh.cache_quality(s.created[i], s.new_quality[i]);
   mesh.merge_edge_tags(a, b, view(s.neighbours));
   mesh.remove_vertex(a);
   if (moved != nullptr) {

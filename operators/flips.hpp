@@ -143,6 +143,8 @@ struct FlipScratch {
   Shell shell;
   VertexList ring;
   NewTets old_tets, candidate, best;
+  // The scores of best's tets (scored criteria; empty when not kept).
+  boost::container::small_vector<double, 32> best_scores;
   CavityPlan plan;
   TetList created;
   // Edge removal: orientation (0 unknown, 1 positive, -1 not) and score
@@ -210,6 +212,7 @@ FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const
     tet_vertices_of(mesh, view(shell.tets), s.old_tets);
   }
   bool found = false;
+  s.best_scores.clear();
   for (std::size_t k = 0; k < fans; ++k) {
     fan_tets(s.ring, k, a, b, sign, s.candidate);
     // Tet c of the candidate is triangle (k, k + i, k + i + 1), i = 1 + c / 2,
@@ -268,6 +271,9 @@ FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const
     }
     if (!keeps_shape<S, Criterion>(mesh, view(shell.tets), view(s.candidate), o)) continue;
     s.best = s.candidate;
+    s.best_scores.clear();
+    if (memo)
+      for (std::size_t c = 0; c < s.candidate.size(); ++c) s.best_scores.push_back(s.memo_score[slot(c)]);
     found = true;
   }
   if (!found) return FlipResult::rejected;
@@ -280,6 +286,7 @@ FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const
   }
   if (!plan_cavity(mesh, view(shell.tets), view(s.best), s.plan, kNoId, kNoId, surface)) return FlipResult::rejected;
   apply_cavity(mesh, view(shell.tets), view(s.best), s.plan, ref, s.created);
+  cache_new_qualities<Criterion>(mesh, view(s.created), view(s.best_scores));
   return FlipResult::applied;
 }
 
@@ -302,9 +309,13 @@ FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptio
   }
   if (!all_positive<P>(mesh, view(s.candidate))) return FlipResult::rejected;
   const std::array<TetId, 2> old{t, nb.tet()};
+  std::array<double, 3> scores{};
   if constexpr (ScoredCriterion<Criterion>) {
     const double bar = Criterion::bar(min_score_of<Criterion, S>(mesh, old));
-    if (min_score<Criterion, S>(mesh, view(s.candidate), bar) <= bar) return FlipResult::rejected;
+    for (std::size_t c = 0; c < 3; ++c) {
+      scores[c] = Criterion::template tet_score<S>(mesh, s.candidate[c]);
+      if (scores[c] <= bar) return FlipResult::rejected;
+    }
   } else {
     s.old_tets.clear();
     s.old_tets.push_back(mesh.tet(t));
@@ -314,6 +325,7 @@ FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptio
   }
   if (!plan_cavity(mesh, old, view(s.candidate), s.plan)) return FlipResult::rejected;
   apply_cavity(mesh, old, view(s.candidate), s.plan, mesh.tet_ref(t), s.created);
+  cache_new_qualities<Criterion>(mesh, view(s.created), std::span<const double>(scores));
   return FlipResult::applied;
 }
 
