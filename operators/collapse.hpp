@@ -201,21 +201,27 @@ OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
     if (!locks.acquire({c.a, c.b})) return Attempt::conflict;
     if (!mesh.vertex_alive(c.a) || !mesh.vertex_alive(c.b)) return Attempt::done;
     vertex_ball(mesh, c.a, s.ball);
-    vertex_neighbours(mesh, s.ball, c.a, cavity);
-    if (std::find(cavity.begin(), cavity.end(), c.b) == cavity.end()) return Attempt::done;  // edge gone
+    vertex_neighbours(mesh, s.ball, c.a, s.neighbours);
+    if (std::find(s.neighbours.begin(), s.neighbours.end(), c.b) == s.neighbours.end()) return Attempt::done;  // edge gone
     vertex_ball(mesh, c.b, s.ball_b);
-    append_vertices(mesh, s.ball_b, cavity);
+    vertex_neighbours(mesh, s.ball_b, c.b, s.neighbours_b);
+    // The cavity: both balls' vertices, the union of the two neighbour
+    // lists (each holds the other end).
+    cavity = s.neighbours;
+    append_new(s.neighbours_b, cavity);
     if (!locks.acquire(view(cavity))) return Attempt::conflict;
     ++st.tried;
     VertexId from = c.a, to = c.b;
     if (mesh.vertex_class(to) < mesh.vertex_class(from)) std::swap(from, to);
     FlipResult r = FlipResult::not_applicable;
     bool rejected = false;
-    // The balls found for locking are those of the first attempt (the
-    // attempts that fail write nothing, so they stay valid for the others).
-    if (from != c.a) std::swap(s.ball, s.ball_b);
-    vertex_neighbours(mesh, s.ball, from, s.neighbours);
-    vertex_neighbours(mesh, s.ball_b, to, s.neighbours_b);
+    // The balls and neighbours found for locking are those of the first
+    // attempt (the attempts that fail write nothing, so they stay valid
+    // for the others).
+    if (from != c.a) {
+      std::swap(s.ball, s.ball_b);
+      std::swap(s.neighbours, s.neighbours_b);
+    }
     for (int attempt = 0; attempt < 3 && r != FlipResult::applied; ++attempt) {
       if (attempt == 1) {
         std::swap(from, to);

@@ -90,6 +90,14 @@ void append_vertices(const Mesh& mesh, const Tets& tets, VertexList& list) {
       if (seen.insert(v, list)) list.push_back(v);
 }
 
+// Appends to `list` the ids of `ids` it does not hold yet.
+inline void append_new(const VertexList& ids, VertexList& list) {
+  SmallIdSet seen;
+  for (VertexId v : list) seen.insert(v, list);  // (all already in the list)
+  for (VertexId v : ids)
+    if (seen.insert(v, list)) list.push_back(v);
+}
+
 // Marks (1) the vertices of the tets written since epoch `since`: the
 // vertices whose ball changed.
 inline std::vector<std::uint8_t> changed_vertices(const Mesh& mesh, Mesh::Epoch since) {
