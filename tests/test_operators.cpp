@@ -132,6 +132,35 @@ TEST_SUITE("invariant") {
     CHECK(some > edges_only);
   }
 
+  TEST_CASE("edge removal skips an edge shorter than its ring's threshold and only that") {
+    Mesh mesh = jittered_box(3, 0.2, 5);
+    set_uniform_metric(mesh, 0.3);
+    FlipScratch s;
+    int checked = 0;
+    for (const auto& [a, b] : unique_edges(mesh)) {
+      vertex_ball(mesh, a, s.ball);
+      REQUIRE(edge_shell(mesh, a, b, s.ball, s.shell));
+      if (!s.shell.closed || s.shell.tets.size() < 4 || s.shell.tets.size() > 7) continue;
+      const double l = LogEuclidean::edge_length(mesh, a, b);
+      const auto before = sorted_tets(mesh);
+      // The ring's own threshold applies: 4 vertices, ring4; more, ring5.
+      const bool four = s.shell.tets.size() == 4;
+      FlipOptions above{.short_edge_ring4 = four ? 1.01 * l : 0.0, .short_edge_ring5 = four ? 0.0 : 1.01 * l};
+      CHECK(remove_edge<LogEuclidean, Filtered, AlwaysFlip>(mesh, a, b, s, above) == FlipResult::not_applicable);
+      CHECK(sorted_tets(mesh) == before);
+      FlipOptions other{.short_edge_ring4 = four ? 0.0 : 1.01 * l, .short_edge_ring5 = four ? 1.01 * l : 0.0};
+      FlipOptions below{.short_edge_ring4 = 0.99 * l, .short_edge_ring5 = 0.99 * l};
+      // Tried (applied or rejected) under the other ring's threshold or a
+      // lower one; on copies, so the mesh stays for the next edge.
+      for (const FlipOptions& o : {other, below}) {
+        Mesh copy = mesh;
+        CHECK(remove_edge<LogEuclidean, Filtered, AlwaysFlip>(copy, a, b, s, o) != FlipResult::not_applicable);
+      }
+      ++checked;
+    }
+    CHECK(checked > 10);
+  }
+
   TEST_CASE("MinQuality scores Q cubed: the same order, its bar the cube of the quality bar") {
     Mesh mesh = jittered_box(3, 0.35, 4);
     std::vector<Sym6> f(mesh.vertex_capacity());
