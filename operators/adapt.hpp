@@ -59,13 +59,20 @@ struct AdaptOptions {
   // 92.03%; below 0.5 3.65 s / 8.35 s, 97.66% / 91.52%); the quality
   // phase sweeps from the tets below polish_below until little changes.
   //
+  //
   // Edge removals skip short edges with large rings (FlipOptions): on a
   // 943k-tet linear adaptation 37.0 s against 38.0 s, 98.51% / 98.47% in
   // range; 28k tets, 7.45 G against 8.42 G instructions.
+  // 2-3 flips only across faces with a tet below 0.3: on a 224k-tet run,
+  // the faces whose worse tet was in [0.3, 0.6) took 1.12M tries for 3.9k
+  // flips; 28k tets 7.27 G against 7.45 G instructions, the UGAWG cases'
+  // 5th iterations within 0.2% in range and min Q (0.6: linear / polar-1
+  // / polar-2 99.61% / 94.43% / 99.30%, min Q 0.58 / 0.34 / 0.63; 0.3:
+  // 99.62% / 94.61% / 99.33%, 0.61 / 0.40 / 0.62).
   ReconnectOptions reconnect{.flips = {.short_edge_ring4 = 0.8, .short_edge_ring5 = 1.0},
                              .seed_below = 0.7,
                              .max_sweeps = 1,
-                             .face_flip_below = 0.6};
+                             .face_flip_below = 0.3};
   double polish_below = 0.8;
   SmoothOptions smooth{.below = 0.3};
   // Smoothing threshold during the quality phase: every vertex (measured:
