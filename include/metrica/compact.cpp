@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
+#include <utility>
 
 namespace metrica {
 namespace {
@@ -48,21 +50,38 @@ void Mesh::compact() {
     code[v] = spread_bits(std::uint64_t(q.x())) | spread_bits(std::uint64_t(q.y())) << 1 |
               spread_bits(std::uint64_t(q.z())) << 2;
   }
-  std::sort(vertex_order.begin(), vertex_order.end(),
-            [&](VertexId a, VertexId b) { return code[a] < code[b] || (code[a] == code[b] && a < b); });
+  {
+    // Sorted as (code, id) pairs, which sit together in memory (comparing
+    // through code[] missed the cache at every step).
+    std::vector<std::pair<std::uint64_t, VertexId>> keyed(vertex_order.size());
+    for (std::size_t i = 0; i < vertex_order.size(); ++i) keyed[i] = {code[vertex_order[i]], vertex_order[i]};
+    std::sort(keyed.begin(), keyed.end());
+    for (std::size_t i = 0; i < keyed.size(); ++i) vertex_order[i] = keyed[i].second;
+  }
   std::vector<VertexId> new_vertex(vertex_capacity(), kNoId);
   for (std::size_t i = 0; i < vertex_order.size(); ++i) new_vertex[vertex_order[i]] = static_cast<VertexId>(i);
 
-  // Tets by their smallest new vertex id.
-  std::vector<std::uint32_t> tet_order;
+  // Tets by their smallest new vertex id, ties in id order: a counting
+  // sort on the key (it is below the vertex count), which keeps the id
+  // order within a key.
+  const std::size_t nv = vertex_order.size();
+  std::vector<std::uint32_t> start(nv + 1, 0);
   std::vector<VertexId> tet_key(tet_capacity(), kNoId);
+  std::size_t live = 0;
   for (TetId t = 0; t < tet_capacity(); ++t) {
     if (!tet_alive(t)) continue;
-    tet_order.push_back(t);
-    for (VertexId v : tets_[t]) tet_key[t] = std::min(tet_key[t], new_vertex[v]);
+    for (VertexId v : tets_[t]) {
+      if (v >= new_vertex.size() || new_vertex[v] == kNoId)
+        throw std::logic_error("Mesh::compact: a live tet has a dead or unknown vertex");
+      tet_key[t] = std::min(tet_key[t], new_vertex[v]);
+    }
+    ++start[tet_key[t] + 1];
+    ++live;
   }
-  std::sort(tet_order.begin(), tet_order.end(),
-            [&](TetId a, TetId b) { return tet_key[a] < tet_key[b] || (tet_key[a] == tet_key[b] && a < b); });
+  for (std::size_t i = 0; i < nv; ++i) start[i + 1] += start[i];
+  std::vector<std::uint32_t> tet_order(live);
+  for (TetId t = 0; t < tet_capacity(); ++t)
+    if (tet_alive(t)) tet_order[start[tet_key[t]]++] = t;
   std::vector<TetId> new_tet(tet_capacity(), kNoId);
   for (std::size_t i = 0; i < tet_order.size(); ++i) new_tet[tet_order[i]] = static_cast<TetId>(i);
 
