@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace metrica {
 
@@ -16,9 +17,23 @@ using TetPoints = std::array<Point, 4>;
 // Eq. (length) of the seed, appendix A: the length of edge v between
 // endpoints with metrics Ma and Mb, exact when the size varies
 // geometrically along the edge; the mean when the two lengths nearly agree.
+// That is the logarithmic mean of la and lb. With x = (la - lb) / (la + lb),
+// ln(la / lb) = 2 atanh x, so L = (la + lb) / 2 * x / atanh x, and
+// atanh x / x = 1 + x^2/3 + x^4/5 + ...: for |x| < 1/8 (the lengths within
+// a ratio of 1.29, most edges of a unit mesh) eight terms give it to
+// rounding (the next is below 2^-48 / 17) without a logarithm (the log was
+// 4% of an adaptation's instructions).
 inline double ugawg_length(double la, double lb) {
-  if (std::abs(la - lb) > 0.001) return (la - lb) / std::log(la / lb);
-  return 0.5 * (la + lb);
+  const double sum = la + lb;
+  if (!(sum > 0.0)) return 0.5 * sum;  // both 0 (or NaN)
+  const double x = (la - lb) / sum, x2 = x * x;
+  if (x2 < 1.0 / 64.0) {
+    const double atanh_over_x =
+        1.0 + x2 * (1.0 / 3 + x2 * (1.0 / 5 + x2 * (1.0 / 7 + x2 * (1.0 / 9 + x2 * (1.0 / 11 + x2 * (1.0 / 13 + x2 * (1.0 / 15)))))));
+    return 0.5 * sum / atanh_over_x;
+  }
+  if (la < lb) std::swap(la, lb);  // the same rounding either way round
+  return (la - lb) / std::log(la / lb);
 }
 inline double ugawg_length(const Eigen::Vector3d& v, const Sym6& ma, const Sym6& mb) {
   return ugawg_length(std::sqrt(metric_norm2(ma, v)), std::sqrt(metric_norm2(mb, v)));

@@ -19,6 +19,8 @@
 
 #include <doctest/doctest.h>
 
+#include <iomanip>
+
 #include <Eigen/LU>
 
 using namespace metrica;
@@ -81,6 +83,25 @@ TEST_SUITE("property") {
     // A flat tet has quality 0, an inverted one negative quality.
     CHECK(mean_ratio({Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(1, 1, 0)}, isotropic_metric(1)) == 0.0);
     CHECK(mean_ratio({kRegular[0], kRegular[1], kRegular[3], kRegular[2]}, isotropic_metric(1)) < 0.0);
+  }
+
+  TEST_CASE("the UGAWG edge length is the logarithmic mean of the end lengths, symmetric, l at equal ends") {
+    auto r = test::rng(204);
+    std::uniform_real_distribution<double> log_l(-8.0, 8.0), log_ratio(-0.6, 0.6);
+    for (int i = 0; i < 20000; ++i) {
+      // Ratios from 1 (the series) to e^0.6 (past its 1.29 bound: the log).
+      const double la = std::exp(log_l(r)), lb = la * std::exp(i % 2 == 0 ? log_ratio(r) : 1e-3 * log_ratio(r));
+      // la - lb is exact (Sterbenz); log1p keeps the ratio's digits.
+      const long double exact = static_cast<long double>(la - lb) / std::log1p(static_cast<long double>(la - lb) / lb);
+      INFO("la " << std::setprecision(17) << la << " lb " << lb);
+      CHECK(ugawg_length(la, lb) == doctest::Approx(static_cast<double>(exact)).epsilon(1e-14));
+      CHECK(ugawg_length(la, lb) == ugawg_length(lb, la));
+      CHECK(ugawg_length(la, la) == doctest::Approx(la).epsilon(1e-15));
+      CHECK(ugawg_length(la, lb) >= std::sqrt(la * lb) * (1 - 1e-15));  // geometric <= log <= arithmetic mean
+      CHECK(ugawg_length(la, lb) <= 0.5 * (la + lb) * (1 + 1e-15));
+    }
+    CHECK(ugawg_length(0.0, 0.0) == 0.0);
+    CHECK(std::isnan(ugawg_length(std::nan(""), 1.0)));
   }
 
   TEST_CASE("mean_ratio_cubed from its parts is the cube of the mean ratio - sign kept") {
