@@ -59,7 +59,6 @@ struct AdaptOptions {
   // 92.03%; below 0.5 3.65 s / 8.35 s, 97.66% / 91.52%); the quality
   // phase sweeps from the tets below polish_below until little changes.
   //
-  //
   // Edge removals skip short edges with large rings (FlipOptions): on a
   // 943k-tet linear adaptation 37.0 s against 38.0 s, 98.51% / 98.47% in
   // range; 28k tets, 7.45 G against 8.42 G instructions.

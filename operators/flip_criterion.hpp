@@ -90,7 +90,9 @@ struct MinQuality {
 // After a flip under Criterion is applied: under MinQuality the scores of
 // its new tets (in the order `created` lists them) are their Q^3, so the
 // quality cache gets them for a cube root each instead of a fresh mean
-// ratio later (the same value up to rounding). Other criteria: nothing.
+// ratio later (the same value up to rounding). Without a score per new
+// tet (an edge removal whose ring was too large to memoise) or under
+// other criteria: nothing.
 template <class Criterion>
 void cache_new_qualities(const Mesh& mesh, std::span<const TetId> created, std::span<const double> scores) {
   if constexpr (std::is_same_v<Criterion, MinQuality>) {

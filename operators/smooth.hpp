@@ -222,9 +222,9 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
     }
     return true;
   };
-  // The ball's quality now: the cache, or the terms (not stored: they
-  // give S::mean_ratio's number only up to rounding, and the cache holds
-  // S::mean_ratio's).
+  // The ball's quality now: the cache, or the terms (a cube root, no tet
+  // metric; not stored, since a move, the usual outcome of smoothing
+  // every vertex, makes them stale at once).
   double q_old = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
     const double q = mesh.cached_quality(s.ball[i]);
