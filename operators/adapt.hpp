@@ -10,12 +10,14 @@
 #pragma once
 
 #include <metrica/operators/collapse.hpp>
+#include <metrica/operators/edge_buckets.hpp>
 #include <metrica/operators/reconnect.hpp>
 #include <metrica/operators/refine_centroids.hpp>
 #include <metrica/operators/refine_edges.hpp>
 #include <metrica/operators/smooth.hpp>
 
 #include <functional>
+#include <span>
 #include <vector>
 
 namespace metrica {
@@ -94,20 +96,32 @@ struct AdaptReport {
 // cache is known to hold S's values, as inside adapt).
 template <MetricSpace S, class C = Serial>
 double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached = false) {
-  // In blocks of 64 (one count, one minimum per block) on C's threads.
+  // Edges in range and in all, per part of the edge buckets; the minimum
+  // in blocks of 64 tets; on C's threads.
   constexpr std::size_t kBlock = 64;
-  const auto edges = unique_edges_unordered(mesh);
-  const auto in_blocks =
-      C::template collect<std::size_t>((edges.size() + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<std::size_t>& part) {
+  const std::size_t parts = edge_bucket_parts<C>(mesh.tet_capacity());
+  struct alignas(64) Count {
+    std::size_t in = 0, all = 0;
+  };
+  std::vector<Count> counts(parts);
+  for_each_edge_bucket<C, VertexId>(
+      parts, mesh.tet_capacity(),
+      [&](std::size_t i) { return mesh.tet_alive(static_cast<TetId>(i)) ? static_cast<TetId>(i) : kNoId; },
+      [&](TetId t) -> const TetVertices& { return mesh.tet(t); }, mesh.vertex_capacity(), false,
+      [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
         std::size_t in = 0;
-        for (std::size_t i = b * kBlock; i < std::min(edges.size(), (b + 1) * kBlock); ++i) {
-          const double l = S::edge_length(mesh, edges[i][0], edges[i][1]);
+        for (VertexId b : kept) {
+          const double l = S::edge_length(mesh, a, b);
           in += (l >= 1.0 / std::sqrt(2.0) && l <= std::sqrt(2.0));
         }
-        part.push_back(in);
+        counts[p].in += in;
+        counts[p].all += kept.size();
       });
-  std::size_t in = 0;
-  for (std::size_t x : in_blocks) in += x;
+  std::size_t in = 0, all = 0;
+  for (const Count& c : counts) {
+    in += c.in;
+    all += c.all;
+  }
   if (min_quality != nullptr) {
     const std::size_t nt = mesh.tet_capacity();
     const auto mins = C::template collect<double>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<double>& part) {
@@ -119,7 +133,7 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
     });
     *min_quality = mins.empty() ? 1.0 : *std::min_element(mins.begin(), mins.end());
   }
-  return edges.empty() ? 0.0 : static_cast<double>(in) / static_cast<double>(edges.size());
+  return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
 }
 
 template <MetricSpace S, Precision P, Concurrency C>

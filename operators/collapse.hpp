@@ -183,7 +183,7 @@ OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
   auto todo = edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first);
   if (o.changed_since > 0) {
     // A collapse of ab reads the balls of a and b only.
-    const std::vector<std::uint8_t> changed = changed_vertices(mesh, o.changed_since);
+    const std::vector<std::uint8_t> changed = changed_vertices<C>(mesh, o.changed_since);
     std::erase_if(todo, [&](const EdgeCandidate& c) { return !changed[c.a] && !changed[c.b]; });
   }
   struct Scratch {

@@ -4,7 +4,7 @@
 // run is reproducible.
 #pragma once
 
-#include <metrica/mesh_edges.hpp>
+#include <metrica/operators/edge_buckets.hpp>
 #include <metrica/metrics/space.hpp>
 #include <metrica/policies/concurrency.hpp>
 
@@ -25,10 +25,8 @@ enum class EdgeOrder { longest_first, shortest_first };
 template <MetricSpace S, class C = Serial>
 std::vector<EdgeCandidate> edges_beyond(const Mesh& mesh, double bound, EdgeOrder order) {
   const bool longer = order == EdgeOrder::longest_first;
-  const auto edges = unique_edges_unordered(mesh);
   std::vector<EdgeCandidate> out =
-      C::template collect<EdgeCandidate>(edges.size(), [&](std::size_t i, std::vector<EdgeCandidate>& part) {
-        const auto [a, b] = edges[i];
+      collect_mesh_edges<C, EdgeCandidate>(mesh, [&](VertexId a, VertexId b, std::vector<EdgeCandidate>& part) {
         const double l = S::edge_length(mesh, a, b);
         if (longer ? l > bound : l < bound) part.push_back({l, a, b});
       });

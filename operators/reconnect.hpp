@@ -111,7 +111,7 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
         part.push_back(t);
     });
     // Each edge once per sweep, in vertex order (space order after compact).
-    unique_edge_seeds(std::span<const TetId>(seeds), [&](TetId t) -> const TetVertices& { return mesh.tet(t); },
+    unique_edge_seeds<C>(std::span<const TetId>(seeds), [&](TetId t) -> const TetVertices& { return mesh.tet(t); },
                       mesh.vertex_capacity(), edges);
     since = sweep_epoch;
     const std::size_t applied_before = stats.applied;

@@ -5,11 +5,13 @@
 #pragma once
 
 #include <metrica/mesh.hpp>
+#include <metrica/policies/concurrency.hpp>
 
 #include <boost/container/small_vector.hpp>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -99,12 +101,18 @@ inline void append_new(const VertexList& ids, VertexList& list) {
 }
 
 // Marks (1) the vertices of the tets written since epoch `since`: the
-// vertices whose ball changed.
-inline std::vector<std::uint8_t> changed_vertices(const Mesh& mesh, Mesh::Epoch since) {
+// vertices whose ball changed. On C's threads, each over a slice of the
+// tets (relaxed atomic stores: parts may mark one vertex together).
+template <class C = Serial>
+std::vector<std::uint8_t> changed_vertices(const Mesh& mesh, Mesh::Epoch since) {
   std::vector<std::uint8_t> changed(mesh.vertex_capacity(), 0);
-  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
-    if (mesh.tet_alive(t) && mesh.changed_since(t, since))
-      for (VertexId v : mesh.tet(t)) changed[v] = 1;
+  const std::size_t n = mesh.tet_capacity();
+  const std::size_t parts = n < 16384 ? 1 : static_cast<std::size_t>(std::max(1, C::threads()));
+  C::parallel_for(parts, [&](std::size_t p) {
+    for (auto t = static_cast<TetId>(n * p / parts); t < n * (p + 1) / parts; ++t)
+      if (mesh.tet_alive(t) && mesh.changed_since(t, since))
+        for (VertexId v : mesh.tet(t)) std::atomic_ref<std::uint8_t>(changed[v]).store(1, std::memory_order_relaxed);
+  });
   return changed;
 }
 

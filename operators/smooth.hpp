@@ -258,7 +258,7 @@ template <MetricSpace S, Precision P, Concurrency C>
 OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  const std::vector<std::uint8_t> changed = changed_vertices(mesh, o.changed_since);
+  const std::vector<std::uint8_t> changed = changed_vertices<C>(mesh, o.changed_since);
   std::vector<VertexId> todo =
       C::template collect<VertexId>(mesh.tet_capacity(), [&](std::size_t i, std::vector<VertexId>& part) {
         const auto t = static_cast<TetId>(i);

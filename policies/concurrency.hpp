@@ -17,7 +17,9 @@
 //   - any tet's vertices through Mesh::peek_tet (a seed), to lock them
 //     and check again.
 // C::collect runs a read-only sweep (no writes to the mesh but the quality
-// cache) that builds a work list, in parallel under Speculative.
+// cache) that builds a work list, in parallel under Speculative;
+// C::parallel_for(n, f) runs f(i) for each part i of such a sweep, where
+// part i writes only what it owns (a slice of an array, its own marks).
 // Serial runs the items in order on one thread and never conflicts;
 // Speculative (speculative.hpp) runs them on all threads with per-vertex
 // owner words. Operators are written once for both.
@@ -68,6 +70,7 @@ concept Concurrency = requires(typename C::Locks& locks, std::span<const VertexI
   { C::threads() } -> std::same_as<int>;
   { C::template collect<int>(std::size_t{0}, [](std::size_t, std::vector<int>&) {}) } -> std::same_as<std::vector<int>>;
   { C::sort(std::declval<int*>(), std::declval<int*>(), std::less<int>{}) } -> std::same_as<void>;
+  { C::parallel_for(std::size_t{0}, [](std::size_t) {}) } -> std::same_as<void>;
   { locks.acquire(vertices) } -> std::same_as<bool>;
   { locks.release() } -> std::same_as<void>;
 };
@@ -88,6 +91,12 @@ struct Serial {
     std::vector<T> out;
     for (std::size_t i = 0; i < n; ++i) f(i, out);
     return out;
+  }
+
+  // f(i) for i in [0, n), in order.
+  template <class F>
+  static void parallel_for(std::size_t n, F&& f) {
+    for (std::size_t i = 0; i < n; ++i) f(i);
   }
 
   // Sorts a work list (std::sort: the same order on every run).

@@ -145,6 +145,29 @@ struct SpeculativeThreads {
     return out;
   }
 
+  // f(i) for i in [0, n) on the policy's threads, one i per thread in
+  // turn (n is a number of parts, about threads()); f(i) writes only what
+  // part i owns. The first exception is rethrown after the loop.
+  template <class F>
+  static void parallel_for(std::size_t n, F&& f) {
+    const int nt = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(1, threads())), n));
+    if (nt <= 1) {
+      for (std::size_t i = 0; i < n; ++i) f(i);
+      return;
+    }
+    std::exception_ptr error;
+#pragma omp parallel for num_threads(nt) schedule(static, 1)
+    for (long i = 0; i < static_cast<long>(n); ++i) {
+      try {
+        f(static_cast<std::size_t>(i));
+      } catch (...) {
+#pragma omp critical(metrica_parallel_for_error)
+        if (!error) error = std::current_exception();
+      }
+    }
+    if (error) std::rethrow_exception(error);
+  }
+
   // Sorts [first, last) by `less` on the policy's threads: one slice per
   // thread sorted in parallel, then merged pairwise in parallel rounds.
   // Not stable, and equal elements may end in another order than

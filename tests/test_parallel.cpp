@@ -10,6 +10,8 @@
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/operators/adapt.hpp>
 #include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/operators/edge_buckets.hpp>
+#include <metrica/mesh_edges.hpp>
 #include <metrica/operators/refine_edges.hpp>
 #include <metrica/policies/speculative.hpp>
 #include <metrica/policies/threads.hpp>
@@ -177,6 +179,96 @@ TEST_SUITE("parallel") {
     check(SpeculativeThreads<2>{});
     check(SpeculativeThreads<3>{});
     check(SpeculativeThreads<8>{});
+  }
+
+  TEST_CASE("edge buckets on 1, 2, 3 and 8 threads give one thread's buckets, distinct, in order") {
+    // Random tets (with repeated edges) over 2000 vertices; the reference
+    // is a stable sort of the tets' edges by lower vertex keeping the first
+    // entry of each edge: the order one thread going through them makes.
+    std::mt19937_64 r(6);
+    const std::size_t capacity = 2000, n = 20000;
+    std::vector<TetVertices> tets(n);
+    for (auto& t : tets) {
+      do {
+        for (auto& v : t) v = static_cast<VertexId>(r() % capacity);
+      } while (t[0] == t[1] || t[0] == t[2] || t[0] == t[3] || t[1] == t[2] || t[1] == t[3] || t[2] == t[3]);
+    }
+    auto tet_of = [&](std::size_t i) { return i % 5 == 3 ? kNoId : static_cast<TetId>(i); };  // some skipped
+    auto vertices_of = [&](TetId t) -> const TetVertices& { return tets[t]; };
+    struct Edge {
+      VertexId a, b;
+      TetId tet;
+      bool operator==(const Edge&) const = default;
+    };
+    std::vector<Edge> all;
+    for (std::size_t i = 0; i < n; ++i)
+      if (tet_of(i) != kNoId)
+        for (const auto& e : kEdgeVertex) {
+          const VertexId a = tets[i][e[0]], b = tets[i][e[1]];
+          all.push_back({std::min(a, b), std::max(a, b), static_cast<TetId>(i)});
+        }
+    std::stable_sort(all.begin(), all.end(), [](const Edge& x, const Edge& y) { return x.a < y.a; });
+    std::vector<Edge> first_seen;
+    std::set<std::pair<VertexId, VertexId>> seen;
+    for (const Edge& e : all)
+      if (seen.insert({e.a, e.b}).second) first_seen.push_back(e);
+    auto by_key = first_seen;
+    std::stable_sort(by_key.begin(), by_key.end(), [](const Edge& x, const Edge& y) { return x.a < y.a || (x.a == y.a && x.b < y.b); });
+    auto check = [&](auto policy, std::size_t parts, bool sorted) {
+      using P = decltype(policy);
+      std::vector<std::vector<Edge>> got(parts);
+      for_each_edge_bucket<P, UpperTet>(parts, n, tet_of, vertices_of, capacity, sorted,
+                                        [&](std::size_t p, VertexId a, std::span<const UpperTet> kept) {
+                                          REQUIRE(p < parts);
+                                          for (const UpperTet& x : kept) got[p].push_back({a, x.upper, x.tet});
+                                        });
+      std::vector<Edge> joined;
+      for (const auto& part : got) joined.insert(joined.end(), part.begin(), part.end());
+      CHECK(joined == (sorted ? by_key : first_seen));
+    };
+    for (bool sorted : {false, true})
+      for (std::size_t parts : {1u, 2u, 3u, 8u}) {
+        check(Serial{}, parts, sorted);
+        check(SpeculativeThreads<2>{}, parts, sorted);
+        check(SpeculativeThreads<8>{}, parts, sorted);
+      }
+    // The policies' own part count: unique_edge_seeds on 2 and 8 threads
+    // gives Serial's list.
+    std::vector<TetId> seeds;
+    for (std::size_t i = 0; i < n; ++i) seeds.push_back(static_cast<TetId>(i));
+    std::vector<EdgeSeed> serial, two, eight;
+    unique_edge_seeds<Serial>(std::span<const TetId>(seeds), vertices_of, capacity, serial);
+    unique_edge_seeds<SpeculativeThreads<2>>(std::span<const TetId>(seeds), vertices_of, capacity, two);
+    unique_edge_seeds<SpeculativeThreads<8>>(std::span<const TetId>(seeds), vertices_of, capacity, eight);
+    REQUIRE(serial.size() == two.size());
+    REQUIRE(serial.size() == eight.size());
+    for (std::size_t i = 0; i < serial.size(); ++i) {
+      CHECK(serial[i].key == two[i].key);
+      CHECK(serial[i].tet == two[i].tet);
+      CHECK(serial[i].key == eight[i].key);
+      CHECK(serial[i].tet == eight[i].tet);
+    }
+  }
+
+  TEST_CASE("a mesh's edges and changed vertices on 2 and 8 threads are the serial ones") {
+    // Above the size where the edge passes share out their work.
+    Mesh mesh = make_box({.nx = 16, .ny = 16, .nz = 16});
+    REQUIRE(mesh.tet_capacity() >= 16384);
+    const auto expected = unique_edges_unordered(mesh);
+    auto edges_with = [&](auto policy) {
+      return collect_mesh_edges<decltype(policy), EdgeVertices>(
+          mesh, [](VertexId x, VertexId y, std::vector<EdgeVertices>& part) { part.push_back({x, y}); });
+    };
+    CHECK(edges_with(Serial{}) == expected);
+    CHECK(edges_with(SpeculativeThreads<2>{}) == expected);
+    CHECK(edges_with(SpeculativeThreads<8>{}) == expected);
+    const Mesh::Epoch since = mesh.next_epoch();
+    for (TetId t = 0; t < mesh.tet_capacity(); t += 7)
+      if (mesh.tet_alive(t)) mesh.touch_tet(t);
+    const auto marks = changed_vertices<Serial>(mesh, since);
+    CHECK(std::count(marks.begin(), marks.end(), 1) > 0);
+    CHECK(changed_vertices<SpeculativeThreads<2>>(mesh, since) == marks);
+    CHECK(changed_vertices<SpeculativeThreads<8>>(mesh, since) == marks);
   }
 
   TEST_CASE("Speculative on 1 thread: no conflict, a valid mesh of the serial quality") {
