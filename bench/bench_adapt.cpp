@@ -7,6 +7,7 @@
 //   bench_adapt [scale=1] [runs=3] [space=log-euclidean] [precision=filtered]
 #include "bench_common.hpp"
 
+#include <metrica/allocator.hpp>
 #include <metrica/operators/adapt_dispatch.hpp>
 
 #include <fmt/core.h>
@@ -18,6 +19,7 @@
 using namespace metrica;
 
 int main(int argc, char** argv) {
+  metrica::keep_freed_memory();  // allocator.hpp: pages reused from pass to pass
   const double scale = argc > 1 ? std::stod(argv[1]) : 1.0;
   const int runs = argc > 2 ? std::stoi(argv[2]) : 3;
   const SpaceKind space = space_from_name(argc > 3 ? argv[3] : "log-euclidean");

@@ -10,6 +10,7 @@
 //   bench_scaling [scale=0.37] [runs=3] [threads=1,2] [noserial]
 #include "bench_common.hpp"
 
+#include <metrica/allocator.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/operators/adapt_dispatch.hpp>
 #include <metrica/policies/threads.hpp>
@@ -37,6 +38,7 @@ struct Run {
 }  // namespace
 
 int main(int argc, char** argv) {
+  metrica::keep_freed_memory();  // allocator.hpp: pages reused from pass to pass
   const double scale = argc > 1 ? std::stod(argv[1]) : 0.37;
   const int runs = argc > 2 ? std::stoi(argv[2]) : 3;
   std::vector<int> thread_list;

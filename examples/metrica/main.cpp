@@ -1,6 +1,7 @@
 // metrica: one command with subcommands, like git or refine's ref.
 // Exit code 0 on success, 1 on invalid input or a failed check, 2 on bad
 // usage; errors are reported, never raised as a signal.
+#include <metrica/allocator.hpp>
 #include "cli.hpp"
 
 #include <metrica/error.hpp>
@@ -25,6 +26,7 @@ void print_usage(std::FILE* out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  metrica::keep_freed_memory();  // allocator.hpp: pages reused from pass to pass
   using namespace metrica::cli;
   if (argc < 2) {
     print_usage(stderr);

@@ -5,6 +5,7 @@
 //
 //   build/examples/ugawg/ugawg [--iterations N] [--csv FILE] [--space S] [--points RULE] [CASE...]
 //   CASE: linear, polar-1, polar-2 (default: all three)
+#include <metrica/allocator.hpp>
 #include <metrica/box.hpp>
 #include <metrica/error.hpp>
 #include <metrica/io/atomic_file.hpp>
@@ -40,6 +41,7 @@ double peak_mb() {
 }  // namespace
 
 int main(int argc, char** argv) try {
+  metrica::keep_freed_memory();  // allocator.hpp: pages reused from pass to pass
   int iterations = 8;
   std::string csv_path, space_name = "log-euclidean", points = "edge", concurrency = "serial";
   std::vector<std::string> cases;

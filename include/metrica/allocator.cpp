@@ -1,0 +1,20 @@
+#include <metrica/allocator.hpp>
+
+#include <climits>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
+namespace metrica {
+
+void keep_freed_memory() {
+#if defined(__GLIBC__)
+  // No block by mmap (large ones come from the heap and go back to it),
+  // and the heap's top released only beyond 2 GB of free memory.
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, INT_MAX);
+#endif
+}
+
+}  // namespace metrica
