@@ -1,6 +1,6 @@
 // Strong scaling of the adaptation pipeline: the same case (the UGAWG
-// `linear` metric scaled as in bench_adapt) run Serial, then Speculative
-// with each thread count of the list, median of `runs` each. For each
+// `linear` metric scaled as in bench_adapt) run Serial and Speculative
+// with each thread count of the list, median of `runs` each (interleaved). For each
 // operator and end to end: seconds, speedup over Speculative on one
 // thread, efficiency (speedup / threads), conflict rate (items that met a
 // held vertex, over items tried), and the output's quality, so that the
@@ -50,37 +50,61 @@ int main(int argc, char** argv) {
   const MetricFunction metric = bench::scaled_linear_metric(scale);
   fmt::print("scaling: linear x {} on a machine with {} core(s), log-euclidean, filtered, median of {}\n", scale,
              core_count(), runs);
-  auto run = [&](const std::string& label, ConcurrencyKind c, int threads) {
-    set_thread_count(threads);
-    Run r;
-    r.label = label;
-    r.threads = threads;
-    std::vector<std::pair<double, AdaptReport>> all;
-    Mesh last;
-    for (int i = 0; i < runs; ++i) {
+  // The runs interleaved (serial, x1, x2, serial, x1, x2, ...): this VM's
+  // speed drifts by up to 30% over minutes, and runs grouped by
+  // configuration put a slow spell on one of them (a 2.08x speedup for
+  // one operator on 2 threads, once).
+  struct Config {
+    std::string label;
+    ConcurrencyKind kind;
+    int threads;
+  };
+  std::vector<Config> configs;
+  const bool with_serial = !(argc > 4 && std::string(argv[4]) == "noserial");
+  if (with_serial) configs.push_back({"serial", ConcurrencyKind::serial, 1});
+  for (int n : thread_list) configs.push_back({fmt::format("speculative x{}", n), ConcurrencyKind::speculative, n});
+  std::vector<std::vector<std::pair<double, AdaptReport>>> times(configs.size());
+  std::vector<Run> results(configs.size());
+  std::vector<std::vector<double>> run_seconds(configs.size());  // in run order
+  for (int i = 0; i < runs; ++i)
+    for (std::size_t k = 0; k < configs.size(); ++k) {
+      const Config& c = configs[k];
+      set_thread_count(c.threads);
+      // Each run's own peak: the heap the last run kept handed back first.
+      release_freed_memory();
+      bench::reset_peak();
       Mesh mesh = bench::start_mesh(metric);
       AdaptOptions o;
       o.metric = &metric;
       Stopwatch clock;
-      AdaptReport rep = adapt(mesh, o, SpaceKind::log_euclidean, PrecisionKind::filtered, c);
-      all.emplace_back(clock.seconds(), std::move(rep));
-      if (i == runs - 1) last = std::move(mesh);
+      AdaptReport rep = adapt(mesh, o, SpaceKind::log_euclidean, PrecisionKind::filtered, c.kind);
+      times[k].emplace_back(clock.seconds(), std::move(rep));
+      run_seconds[k].push_back(times[k].back().first);
+      Run& r = results[k];
+      r.peak_mb = std::max(r.peak_mb, bench::peak_bytes() / 1e6);
+      if (i == runs - 1) r.quality = quality_report(mesh);
     }
+  for (std::size_t k = 0; k < configs.size(); ++k) {
+    Run& r = results[k];
+    r.label = configs[k].label;
+    r.threads = configs[k].threads;
+    auto& all = times[k];
     std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     r.seconds = all[all.size() / 2].first;
     r.report = all[all.size() / 2].second;
-    r.quality = quality_report(last);
-    r.peak_mb = bench::peak_bytes() / 1e6;
-    fmt::print("  {:<16} {:7.2f} s  {:>9} tets  in range {:.2f}%  mean Q {:.4f}  min Q {:.3f}  peak {:.0f} MB  {} cycles\n",
-               r.label, r.seconds, r.quality.tets, 100 * r.quality.unit_length_share, r.quality.quality.mean,
-               r.quality.quality.min, r.peak_mb, r.report.cycles.size());
-    std::fflush(stdout);
-    return r;
-  };
-  std::vector<Run> results;
-  const bool with_serial = !(argc > 4 && std::string(argv[4]) == "noserial");
-  if (with_serial) results.push_back(run("serial", ConcurrencyKind::serial, 1));
-  for (int n : thread_list) results.push_back(run(fmt::format("speculative x{}", n), ConcurrencyKind::speculative, n));
+    fmt::print("  {:<16} {:7.2f} s ({:.2f}-{:.2f})  {:>9} tets  in range {:.2f}%  mean Q {:.4f}  min Q {:.3f}  peak {:.0f} MB  {} cycles\n",
+               r.label, r.seconds, all.front().first, all.back().first, r.quality.tets, 100 * r.quality.unit_length_share,
+               r.quality.quality.mean, r.quality.quality.min, r.peak_mb, r.report.cycles.size());
+  }
+  // Speedups run by run (run i of each configuration ran side by side).
+  if (configs.size() > 1 && runs > 1) {
+    fmt::print("  per run, {} / {}:", configs.back().label, configs[configs.size() - 2].label);
+    std::vector<double> ratios;
+    for (int i = 0; i < runs; ++i) ratios.push_back(run_seconds[configs.size() - 2][i] / run_seconds.back()[i]);
+    for (double x : ratios) fmt::print(" {:.2f}x", x);
+    std::sort(ratios.begin(), ratios.end());
+    fmt::print(" (median {:.2f}x)\n", ratios[ratios.size() / 2]);
+  }
 
   const Run& serial = results[0];
   const Run* one = nullptr;

@@ -11,11 +11,16 @@
 //
 // Process-wide, so the library never calls it: the metrica command, the
 // examples and the benchmarks do at start-up; an application embedding
-// Metrica may call it too. A no-op outside glibc.
+// Metrica may call it too. A no-op outside glibc, and when the environment
+// sets METRICA_RETURN_FREED_MEMORY (to anything but 0).
 #pragma once
 
 namespace metrica {
 
 void keep_freed_memory();
+
+// Hands the freed memory kept in the heap back to the kernel (between
+// runs of a benchmark, so that each measures its own peak).
+void release_freed_memory();
 
 }  // namespace metrica
