@@ -99,24 +99,20 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
   // Edges in range and in all, per part of the edge buckets; the minimum
   // in blocks of 64 tets; on C's threads.
   constexpr std::size_t kBlock = 64;
-  const std::size_t parts = edge_bucket_parts<C>(mesh.tet_capacity());
+  const std::size_t parts = sweep_parts<C>(mesh.tet_capacity());
   struct alignas(64) Count {
     std::size_t in = 0, all = 0;
   };
   std::vector<Count> counts(parts);
-  for_each_edge_bucket<C, VertexId>(
-      parts, mesh.tet_capacity(),
-      [&](std::size_t i) { return mesh.tet_alive(static_cast<TetId>(i)) ? static_cast<TetId>(i) : kNoId; },
-      [&](TetId t) -> const TetVertices& { return mesh.tet(t); }, mesh.vertex_capacity(), false,
-      [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
-        std::size_t in = 0;
-        for (VertexId b : kept) {
-          const double l = S::edge_length(mesh, a, b);
-          in += (l >= 1.0 / std::sqrt(2.0) && l <= std::sqrt(2.0));
-        }
-        counts[p].in += in;
-        counts[p].all += kept.size();
-      });
+  for_each_mesh_edge_bucket<C>(mesh, parts, [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
+    std::size_t in = 0;
+    for (VertexId b : kept) {
+      const double l = S::edge_length(mesh, a, b);
+      in += (l >= 1.0 / std::sqrt(2.0) && l <= std::sqrt(2.0));
+    }
+    counts[p].in += in;
+    counts[p].all += kept.size();
+  });
   std::size_t in = 0, all = 0;
   for (const Count& c : counts) {
     in += c.in;

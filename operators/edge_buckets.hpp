@@ -40,13 +40,6 @@ struct UpperTet {
   TetId tet;
 };
 
-// How many parts a pass over n items uses under C: one below a size
-// where a fork costs more than it saves.
-template <class C>
-std::size_t edge_bucket_parts(std::size_t n) {
-  return n < 16384 ? 1 : static_cast<std::size_t>(std::max(1, C::threads()));
-}
-
 // For the items i < n with tet_of(i) != kNoId, the distinct edges of
 // vertices_of(tet_of(i)) (each vertex below `capacity`): calls
 // visit(part, a, kept) for every lower vertex a with an edge, where kept
@@ -118,8 +111,10 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
       for (const auto& e : kEdgeVertex) {
         const VertexId a = v[e[0]], b = v[e[1]];
         Entry& x = entries[cursor[std::min(a, b)]++];
-        if constexpr (std::is_same_v<Entry, UpperTet>) x = {std::max(a, b), t};
-        else x = std::max(a, b);
+        if constexpr (std::is_same_v<Entry, UpperTet>)
+          x = {std::max(a, b), t};
+        else
+          x = std::max(a, b);
       }
     }
   });
@@ -127,10 +122,13 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
   std::vector<std::size_t> cut(parts + 1, cap);
   cut[0] = 0;
   for (std::size_t p = 1; p < parts; ++p)
-    cut[p] = static_cast<std::size_t>(std::lower_bound(start.get(), start.get() + cap, static_cast<std::uint32_t>(total * p / parts)) - start.get());
+    cut[p] = static_cast<std::size_t>(
+        std::lower_bound(start.get(), start.get() + cap, static_cast<std::uint32_t>(total * p / parts)) - start.get());
   auto upper_of = [](const Entry& x) {
-    if constexpr (std::is_same_v<Entry, UpperTet>) return x.upper;
-    else return x;
+    if constexpr (std::is_same_v<Entry, UpperTet>)
+      return x.upper;
+    else
+      return x;
   };
   C::parallel_for(parts, [&](std::size_t p) {
     // last[b] == a: edge ab already kept (the part's counters, done with).
@@ -155,21 +153,28 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
   });
 }
 
+// for_each_edge_bucket over the live tets of `mesh` (VertexId entries,
+// unsorted), in `parts` parts (sweep_parts<C> of the tet capacity):
+// visit(part, a, kept).
+template <class C, class Visit>
+void for_each_mesh_edge_bucket(const Mesh& mesh, std::size_t parts, Visit&& visit) {
+  for_each_edge_bucket<C, VertexId>(
+      parts, mesh.tet_capacity(),
+      [&](std::size_t i) { return mesh.tet_alive(static_cast<TetId>(i)) ? static_cast<TetId>(i) : kNoId; },
+      [&](TetId t) -> const TetVertices& { return mesh.tet(t); }, mesh.vertex_capacity(), false, visit);
+}
+
 // The distinct edges of the live tets of `mesh` as f(a, b, part) with a <
 // b: each appends to `part` what edge ab contributes; the parts joined in
 // order of a (and of first appearance within a): the order of one thread
 // going through the tets by id.
 template <class C, class T, class F>
 std::vector<T> collect_mesh_edges(const Mesh& mesh, F&& f) {
-  const std::size_t n = mesh.tet_capacity();
-  const std::size_t parts = edge_bucket_parts<C>(n);
+  const std::size_t parts = sweep_parts<C>(mesh.tet_capacity());
   std::vector<std::vector<T>> out(parts);
-  for_each_edge_bucket<C, VertexId>(
-      parts, n, [&](std::size_t i) { return mesh.tet_alive(static_cast<TetId>(i)) ? static_cast<TetId>(i) : kNoId; },
-      [&](TetId t) -> const TetVertices& { return mesh.tet(t); }, mesh.vertex_capacity(), false,
-      [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
-        for (VertexId b : kept) f(a, b, out[p]);
-      });
+  for_each_mesh_edge_bucket<C>(mesh, parts, [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
+    for (VertexId b : kept) f(a, b, out[p]);
+  });
   if (parts == 1) return std::move(out[0]);
   std::size_t size = 0;
   for (const auto& part : out) size += part.size();

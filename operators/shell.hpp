@@ -107,7 +107,7 @@ template <class C = Serial>
 std::vector<std::uint8_t> changed_vertices(const Mesh& mesh, Mesh::Epoch since) {
   std::vector<std::uint8_t> changed(mesh.vertex_capacity(), 0);
   const std::size_t n = mesh.tet_capacity();
-  const std::size_t parts = n < 16384 ? 1 : static_cast<std::size_t>(std::max(1, C::threads()));
+  const std::size_t parts = sweep_parts<C>(n);
   C::parallel_for(parts, [&](std::size_t p) {
     for (auto t = static_cast<TetId>(n * p / parts); t < n * (p + 1) / parts; ++t)
       if (mesh.tet_alive(t) && mesh.changed_since(t, since))

@@ -43,7 +43,7 @@ struct EdgeSeed {
 template <class C = Serial, class VerticesOf>
 void unique_edge_seeds(std::span<const TetId> tets, VerticesOf&& vertices_of, std::size_t capacity,
                        std::vector<EdgeSeed>& out) {
-  const std::size_t parts = edge_bucket_parts<C>(tets.size());
+  const std::size_t parts = sweep_parts<C>(tets.size());
   std::vector<std::vector<EdgeSeed>> part_out(parts - 1);
   out.clear();
   for_each_edge_bucket<C, UpperTet>(

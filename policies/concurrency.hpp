@@ -119,4 +119,12 @@ struct Serial {
 
 static_assert(Concurrency<Serial>);
 
+// How many parts a parallel_for sweep over n items (tets, edges) uses
+// under C: one per thread, or one below a size where a fork costs more
+// than it saves.
+template <class C>
+std::size_t sweep_parts(std::size_t n) {
+  return n < 16384 ? 1 : static_cast<std::size_t>(std::max(1, C::threads()));
+}
+
 }  // namespace metrica

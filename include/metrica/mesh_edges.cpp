@@ -30,24 +30,6 @@ void edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& start, 
 }
 }  // namespace
 
-std::vector<EdgeVertices> unique_edges_unordered(const Mesh& mesh) {
-  std::vector<std::uint32_t> start;
-  std::vector<VertexId> upper;
-  edges_by_lower_vertex(mesh, start, upper);
-  // last[b] == a: edge ab already listed (no sort: one mark per vertex).
-  std::vector<VertexId> last(mesh.vertex_capacity(), kNoId);
-  std::vector<EdgeVertices> edges;
-  edges.reserve(upper.size() / 4);
-  for (VertexId a = 0; a + 1 < start.size(); ++a)
-    for (std::uint32_t i = start[a]; i < start[a + 1]; ++i) {
-      const VertexId b = upper[i];
-      if (last[b] == a) continue;
-      last[b] = a;
-      edges.push_back({a, b});
-    }
-  return edges;
-}
-
 // A bucket sort by the lower vertex (one counting pass, one filling pass),
 // then each vertex's short list of higher neighbours sorted and made
 // unique: the same order as sorting the edge keys, about four times

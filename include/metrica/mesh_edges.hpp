@@ -9,8 +9,7 @@
 namespace metrica {
 
 std::vector<EdgeVertices> unique_edges(const Mesh& mesh);
-// The same edges, ordered by lower vertex only (cheaper: no sort); for
-// consumers whose result does not depend on the order.
-std::vector<EdgeVertices> unique_edges_unordered(const Mesh& mesh);
+// (The operators' passes build their edge lists on their policy's threads:
+// operators/edge_buckets.hpp.)
 
 }  // namespace metrica
