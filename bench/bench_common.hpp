@@ -28,13 +28,13 @@ double median_seconds(int runs, F&& f) {
   return t[t.size() / 2];
 }
 
-// Peak resident memory of this process so far (VmHWM), in bytes.
 // Resets the peak to the current resident size (Linux: clear_refs 5).
 inline void reset_peak() {
   std::ofstream out("/proc/self/clear_refs");
   out << "5";
 }
 
+// Peak resident memory of this process so far (VmHWM), in bytes.
 inline double peak_bytes() {
   std::ifstream in("/proc/self/status");
   std::string key;

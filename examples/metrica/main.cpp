@@ -1,9 +1,9 @@
 // metrica: one command with subcommands, like git or refine's ref.
 // Exit code 0 on success, 1 on invalid input or a failed check, 2 on bad
 // usage; errors are reported, never raised as a signal.
-#include <metrica/allocator.hpp>
 #include "cli.hpp"
 
+#include <metrica/allocator.hpp>
 #include <metrica/error.hpp>
 
 #include <fmt/core.h>
