@@ -1,7 +1,19 @@
 // The work list of the edge operators (split, collapse): the edges whose
-// metric length is outside a bound, ordered by length (longest first for
-// splits, shortest first for collapses), ties broken by vertex ids so a
-// run is reproducible.
+// metric length is outside a bound, ordered by length class (longest
+// first for splits, shortest first for collapses) and, within a class, by
+// vertex ids, so a run is reproducible.
+//
+// Why classes and not exact lengths: a list sorted by exact length visits
+// the mesh in random order, each item a fresh cache miss. Within one class
+// the items follow the vertex ids, which compaction lays along a Morton
+// curve, so consecutive items are near in space and in memory. With 8
+// classes per doubling (lengths within a factor 2^(1/8) = 1.09 count as
+// equal) the order stays longest / shortest first to that factor. At
+// 942k tets on one thread (three interleaved runs each way) the collapse
+// loop fell from 7.0-7.9 s to 5.9-6.2 s, the split loop from 1.95-2.01 s
+// to 1.64-1.70 s, the whole run from 32.6 to 29.4 s (median), with the
+// same share of edges in range. 4 classes per doubling made the run
+// slower (40 s), 16 no faster than 8.
 #pragma once
 
 #include <metrica/operators/edge_buckets.hpp>
@@ -9,12 +21,21 @@
 #include <metrica/policies/concurrency.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace metrica {
 
+inline constexpr double kLengthClassesPerDoubling = 8.0;
+
+// floor(8 log2 l): the class of a metric length (l > 0).
+inline std::int32_t length_class(double length) {
+  return static_cast<std::int32_t>(std::floor(kLengthClassesPerDoubling * std::log2(std::max(length, 1e-30))));
+}
+
 struct EdgeCandidate {
-  double length;
+  std::int32_t length_class;
   VertexId a, b;
 };
 
@@ -28,10 +49,11 @@ std::vector<EdgeCandidate> edges_beyond(const Mesh& mesh, double bound, EdgeOrde
   std::vector<EdgeCandidate> out =
       collect_mesh_edges<C, EdgeCandidate>(mesh, [&](VertexId a, VertexId b, std::vector<EdgeCandidate>& part) {
         const double l = S::edge_length(mesh, a, b);
-        if (longer ? l > bound : l < bound) part.push_back({l, a, b});
+        if (longer ? l > bound : l < bound) part.push_back({length_class(l), a, b});
       });
   C::sort(out.begin(), out.end(), [longer](const EdgeCandidate& x, const EdgeCandidate& y) {
-    if (x.length != y.length) return longer ? x.length > y.length : x.length < y.length;
+    if (x.length_class != y.length_class)
+      return longer ? x.length_class > y.length_class : x.length_class < y.length_class;
     return x.a < y.a || (x.a == y.a && x.b < y.b);
   });
   return out;

@@ -12,11 +12,13 @@
 #include <metrica/operators/adapt.hpp>
 #include <metrica/operators/adapt_dispatch.hpp>
 #include <metrica/operators/edge_buckets.hpp>
+#include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/refine_edges.hpp>
 #include <metrica/policies/speculative.hpp>
 #include <metrica/policies/threads.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -274,6 +276,62 @@ TEST_SUITE("parallel") {
     CHECK(std::count(marks.begin(), marks.end(), 1) > 0);
     CHECK(changed_vertices<SpeculativeThreads<2>>(mesh, since) == marks);
     CHECK(changed_vertices<SpeculativeThreads<8>>(mesh, since) == marks);
+  }
+
+  TEST_CASE("edges_beyond: every edge past the bound once, longest (shortest) first to a factor 2^(1/8), the same on 2 and 8 threads") {
+    Mesh mesh = make_box({.nx = 16, .ny = 16, .nz = 16});
+    // Sizes graded along x and random anisotropy, so lengths spread over
+    // several classes.
+    auto r = rng(71);
+    std::vector<Sym6> field(mesh.vertex_capacity());
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+      const Sym6 m = random_metric(r, 4.0);
+      const double s = 4.0 + 60.0 * mesh.point(v).x();
+      field[v] = Sym6{m[0] * s, m[1] * s, m[2] * s, m[3] * s, m[4] * s, m[5] * s};
+    }
+    assign_metric(mesh, field);
+    const double step = std::exp2(1.0 / kLengthClassesPerDoubling);
+    for (const EdgeOrder order : {EdgeOrder::longest_first, EdgeOrder::shortest_first}) {
+      const bool longer = order == EdgeOrder::longest_first;
+      const double bound = 1.0;
+      const auto list = edges_beyond<LogEuclidean, Serial>(mesh, bound, order);
+      std::vector<EdgeVertices> expected;
+      for (const auto& e : unique_edges(mesh)) {
+        const double l = LogEuclidean::edge_length(mesh, e[0], e[1]);
+        if (longer ? l > bound : l < bound) expected.push_back(e);
+      }
+      std::vector<EdgeVertices> got;
+      for (const auto& c : list) got.push_back({c.a, c.b});
+      std::sort(got.begin(), got.end());
+      REQUIRE(got == expected);
+      REQUIRE(list.size() > 1000);
+      // Every later item is at most 2^(1/8) longer (shorter) than any
+      // earlier one; within a class the vertex ids ascend.
+      double extreme = 0.0;  // the shortest (longest) length so far
+      std::set<std::int32_t> classes;
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const double l = LogEuclidean::edge_length(mesh, list[i].a, list[i].b);
+        CHECK(list[i].length_class == length_class(l));
+        classes.insert(list[i].length_class);
+        if (longer) {
+          if (i > 0) REQUIRE(l < extreme * step);
+          extreme = i == 0 ? l : std::min(extreme, l);
+        } else {
+          if (i > 0) REQUIRE(l > extreme / step);
+          extreme = i == 0 ? l : std::max(extreme, l);
+        }
+        if (i > 0 && list[i].length_class == list[i - 1].length_class)
+          REQUIRE((list[i - 1].a < list[i].a || (list[i - 1].a == list[i].a && list[i - 1].b < list[i].b)));
+      }
+      CHECK(classes.size() >= 4);
+      auto same = [&](const auto& other) {
+        return std::equal(list.begin(), list.end(), other.begin(), other.end(), [](const auto& x, const auto& y) {
+          return x.length_class == y.length_class && x.a == y.a && x.b == y.b;
+        });
+      };
+      CHECK(same(edges_beyond<LogEuclidean, SpeculativeThreads<2>>(mesh, bound, order)));
+      CHECK(same(edges_beyond<LogEuclidean, SpeculativeThreads<8>>(mesh, bound, order)));
+    }
   }
 
   TEST_CASE("Speculative on 1 thread: no conflict, a valid mesh of the serial quality") {
