@@ -13,10 +13,10 @@
 // loop fell from 7.0-7.9 s to 5.9-6.2 s, the split loop from 1.95-2.01 s
 // to 1.64-1.70 s, the whole run from 32.6 to 29.4 s (median), with the
 // same share of edges in range. Coarser classes for the splits (2 or 4
-// per doubling) made the run slower, 36-41 s against 28-29 s: splitting
-// in space order rather than longest first leaves more work for the
-// later passes. For the collapses 2, 4 and 8 were within 1%; 16 was no
-// faster than 8.
+// per doubling) made the run slower, 36-41 s against 28-29 s, at a
+// slightly lower share in range (not looked into further: longest first
+// matters for splits). For the collapses 2, 4 and 8 were within 1%; 16
+// was no faster than 8.
 #pragma once
 
 #include <metrica/operators/edge_buckets.hpp>
