@@ -40,6 +40,7 @@ inline std::int32_t length_class(double length) {
 struct EdgeCandidate {
   std::int32_t length_class;
   VertexId a, b;
+  friend bool operator==(const EdgeCandidate&, const EdgeCandidate&) = default;
 };
 
 enum class EdgeOrder { longest_first, shortest_first };
