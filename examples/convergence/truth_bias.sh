@@ -29,9 +29,8 @@ for field in "${fields[@]}"; do
     mesh="$out/$field/loop-$i.meshb"
     exact=$(error_of "$mesh" --analytic "$field")
     against=$(error_of "$mesh" --analytic "$field" --truth "$truth")
-    vertices=$("$metrica" info "$mesh" | awk '/^  vertices/ {gsub(",", "", $2); print $2; exit}')
-    complexity=$((1000 * (1 << ((10#$i - 1) / 5))))
-    awk -v f="$field" -v c="$complexity" -v v="$vertices" -v e="$exact" -v t="$against" \
-      'BEGIN { printf "| %s | %d | %d | %.3e | %.3e | %.2f |\n", f, c, v, e, t, t / e }'
+    # This iteration's complexity and vertex count, from the loop's own CSV.
+    awk -F, -v it=$((10#$i)) -v f="$field" -v e="$exact" -v t="$against" \
+      '$1 == it { printf "| %s | %d | %d | %.3e | %.3e | %.2f |\n", f, $2, $3, e, t, t / e }' "$out/$field.csv"
   done
 done
