@@ -142,7 +142,7 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
   o.smooth.metric = o.metric;
   o.collapse.metric = o.metric;
   auto finish = [&](CycleReport& c, const Stopwatch& clock) {
-    mesh.compact();
+    mesh.compact(part_runner<C>(mesh.tet_capacity()));
     c.vertices = mesh.num_vertices();
     c.tets = mesh.num_tets();
     c.conformity = conformity<S, C>(mesh, &c.min_quality, true);

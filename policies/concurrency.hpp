@@ -27,6 +27,7 @@
 
 #include <metrica/ids.hpp>
 #include <metrica/mesh.hpp>
+#include <metrica/part_runner.hpp>
 #include <metrica/timer.hpp>
 
 #include <algorithm>
@@ -125,6 +126,14 @@ static_assert(Concurrency<Serial>);
 template <class C>
 std::size_t sweep_parts(std::size_t n) {
   return n < 16384 ? 1 : static_cast<std::size_t>(std::max(1, C::threads()));
+}
+
+// C's parallel_for as a PartRunner (for the mesh core, which knows no
+// policy), cut into sweep_parts<C>(n) parts.
+template <class C>
+PartRunner part_runner(std::size_t n) {
+  return PartRunner{sweep_parts<C>(n),
+                    [](std::size_t k, const std::function<void(std::size_t)>& f) { C::parallel_for(k, f); }};
 }
 
 }  // namespace metrica

@@ -6,6 +6,7 @@
 // interleaving, and within a few percent of Hilbert's cache behaviour on
 // tet meshes.
 #include <metrica/mesh.hpp>
+#include <metrica/part_runner.hpp>
 
 #include <algorithm>
 #include <limits>
@@ -27,85 +28,167 @@ std::uint64_t spread_bits(std::uint64_t x) {
   return x;
 }
 
+// [first, last) of part p when n items are cut into `parts`.
+std::pair<std::size_t, std::size_t> slice(std::size_t n, std::size_t parts, std::size_t p) {
+  return {n * p / parts, n * (p + 1) / parts};
+}
+
+// a[i] = old a[old_of_new[i]], the gather cut into parts.
 template <class T>
-void permute(std::vector<T>& a, const std::vector<std::uint32_t>& old_of_new) {
+void permute(std::vector<T>& a, const std::vector<std::uint32_t>& old_of_new, const PartRunner& run) {
   if (a.empty()) return;
   std::vector<T> out(old_of_new.size());
-  for (std::size_t i = 0; i < old_of_new.size(); ++i) out[i] = a[old_of_new[i]];
+  run(run.parts, [&](std::size_t p) {
+    const auto [first, last] = slice(old_of_new.size(), run.parts, p);
+    for (std::size_t i = first; i < last; ++i) out[i] = a[old_of_new[i]];
+  });
   a = std::move(out);
+}
+
+// Sorts v: each part's slice on its own, then slices merged pairwise in
+// rounds (the parts of a round in parallel).
+template <class T>
+void parallel_sort(std::vector<T>& v, const PartRunner& run) {
+  const std::size_t parts = run.parts;
+  auto cut = [&](std::size_t p) { return v.begin() + static_cast<std::ptrdiff_t>(v.size() * p / parts); };
+  run(parts, [&](std::size_t p) { std::sort(cut(p), cut(p + 1)); });
+  for (std::size_t width = 1; width < parts; width *= 2) {
+    const std::size_t pairs = (parts + 2 * width - 1) / (2 * width);
+    run(pairs, [&](std::size_t k) {
+      const std::size_t lo = 2 * width * k, mid = std::min(parts, lo + width), hi = std::min(parts, lo + 2 * width);
+      if (mid < hi) std::inplace_merge(cut(lo), cut(mid), cut(hi));
+    });
+  }
 }
 
 }  // namespace
 
-void Mesh::compact() {
-  // Vertices along the Morton curve of the bounding box.
-  const auto [lo, hi] = bounding_box(*this);
-  std::vector<std::uint32_t> vertex_order;
-  for (VertexId v = 0; v < vertex_capacity(); ++v)
-    if (vertex_alive(v)) vertex_order.push_back(v);
-  const Point scale = ((hi - lo).array().max(1e-300).inverse() * double((1u << 21) - 1)).matrix();
-  std::vector<std::uint64_t> code(vertex_capacity(), 0);
-  for (VertexId v : vertex_order) {
-    const Point q = (points_[v] - lo).cwiseProduct(scale);
-    code[v] = spread_bits(std::uint64_t(q.x())) | spread_bits(std::uint64_t(q.y())) << 1 |
-              spread_bits(std::uint64_t(q.z())) << 2;
+void Mesh::compact() { compact(PartRunner{}); }
+
+void Mesh::compact(const PartRunner& given) {
+  PartRunner run = given;
+  run.parts = std::max<std::size_t>(run.parts, 1);
+  const std::size_t parts = run.parts;
+  const std::size_t vcap = vertex_capacity(), tcap = tet_capacity();
+
+  // Bounding box and live vertices, per part.
+  struct alignas(64) PartBox {
+    Point lo = Point::Constant(std::numeric_limits<double>::max());
+    Point hi = Point::Constant(-std::numeric_limits<double>::max());
+    std::size_t live = 0;
+  };
+  std::vector<PartBox> boxes(parts);
+  run(parts, [&](std::size_t p) {
+    const auto [first, last] = slice(vcap, parts, p);
+    PartBox b;
+    for (std::size_t v = first; v < last; ++v) {
+      if (!vertex_alive(static_cast<VertexId>(v))) continue;
+      b.lo = b.lo.cwiseMin(points_[v]);
+      b.hi = b.hi.cwiseMax(points_[v]);
+      ++b.live;
+    }
+    boxes[p] = b;
+  });
+  PartBox all;
+  std::vector<std::size_t> offset(parts + 1, 0);
+  for (std::size_t p = 0; p < parts; ++p) {
+    all.lo = all.lo.cwiseMin(boxes[p].lo);
+    all.hi = all.hi.cwiseMax(boxes[p].hi);
+    offset[p + 1] = offset[p] + boxes[p].live;
   }
-  {
-    // Sorted as (code, id) pairs, which sit together in memory (comparing
-    // through code[] missed the cache at every step).
-    std::vector<std::pair<std::uint64_t, VertexId>> keyed(vertex_order.size());
-    for (std::size_t i = 0; i < vertex_order.size(); ++i) keyed[i] = {code[vertex_order[i]], vertex_order[i]};
-    std::sort(keyed.begin(), keyed.end());
-    for (std::size_t i = 0; i < keyed.size(); ++i) vertex_order[i] = keyed[i].second;
-  }
-  std::vector<VertexId> new_vertex(vertex_capacity(), kNoId);
-  for (std::size_t i = 0; i < vertex_order.size(); ++i) new_vertex[vertex_order[i]] = static_cast<VertexId>(i);
+  const std::size_t nv = offset[parts];
+
+  // Vertices along the Morton curve of the bounding box, sorted as (code,
+  // id) pairs, which sit together in memory (comparing through a code
+  // array missed the cache at every step); ids break ties, so the order
+  // is the same for any number of parts.
+  const Point lo = all.lo;
+  const Point scale = ((all.hi - all.lo).array().max(1e-300).inverse() * double((1u << 21) - 1)).matrix();
+  std::vector<std::pair<std::uint64_t, VertexId>> keyed(nv);
+  run(parts, [&](std::size_t p) {
+    const auto [first, last] = slice(vcap, parts, p);
+    std::size_t i = offset[p];
+    for (std::size_t v = first; v < last; ++v) {
+      if (!vertex_alive(static_cast<VertexId>(v))) continue;
+      const Point q = (points_[v] - lo).cwiseProduct(scale);
+      const std::uint64_t code = spread_bits(std::uint64_t(q.x())) | spread_bits(std::uint64_t(q.y())) << 1 |
+                                 spread_bits(std::uint64_t(q.z())) << 2;
+      keyed[i++] = {code, static_cast<VertexId>(v)};
+    }
+  });
+  parallel_sort(keyed, run);
+  std::vector<std::uint32_t> vertex_order(nv);
+  std::vector<VertexId> new_vertex(vcap, kNoId);
+  run(parts, [&](std::size_t p) {
+    const auto [first, last] = slice(nv, parts, p);
+    for (std::size_t i = first; i < last; ++i) {
+      vertex_order[i] = keyed[i].second;
+      new_vertex[keyed[i].second] = static_cast<VertexId>(i);
+    }
+  });
 
   // Tets by their smallest new vertex id, ties in id order: a counting
   // sort on the key (it is below the vertex count), which keeps the id
-  // order within a key.
-  const std::size_t nv = vertex_order.size();
-  std::vector<std::uint32_t> start(nv + 1, 0);
-  std::vector<VertexId> tet_key(tet_capacity(), kNoId);
-  std::size_t live = 0;
-  for (TetId t = 0; t < tet_capacity(); ++t) {
-    if (!tet_alive(t)) continue;
-    for (VertexId v : tets_[t]) {
-      if (v >= new_vertex.size() || new_vertex[v] == kNoId)
-        throw std::logic_error("Mesh::compact: a live tet has a dead or unknown vertex");
-      tet_key[t] = std::min(tet_key[t], new_vertex[v]);
+  // order within a key. Keys in parallel, the counting on one thread
+  // (two light passes).
+  std::vector<VertexId> tet_key(tcap, kNoId);
+  run(parts, [&](std::size_t p) {
+    const auto [first, last] = slice(tcap, parts, p);
+    for (std::size_t t = first; t < last; ++t) {
+      if (!tet_alive(static_cast<TetId>(t))) continue;
+      VertexId key = kNoId;
+      for (VertexId v : tets_[t]) {
+        if (v >= new_vertex.size() || new_vertex[v] == kNoId)
+          throw std::logic_error("Mesh::compact: a live tet has a dead or unknown vertex");
+        key = std::min(key, new_vertex[v]);
+      }
+      tet_key[t] = key;
     }
+  });
+  std::vector<std::uint32_t> start(nv + 1, 0);
+  std::size_t live = 0;
+  for (std::size_t t = 0; t < tcap; ++t) {
+    if (tet_key[t] == kNoId) continue;
     ++start[tet_key[t] + 1];
     ++live;
   }
   for (std::size_t i = 0; i < nv; ++i) start[i + 1] += start[i];
   std::vector<std::uint32_t> tet_order(live);
-  for (TetId t = 0; t < tet_capacity(); ++t)
-    if (tet_alive(t)) tet_order[start[tet_key[t]]++] = t;
-  std::vector<TetId> new_tet(tet_capacity(), kNoId);
-  for (std::size_t i = 0; i < tet_order.size(); ++i) new_tet[tet_order[i]] = static_cast<TetId>(i);
+  for (std::size_t t = 0; t < tcap; ++t)
+    if (tet_key[t] != kNoId) tet_order[start[tet_key[t]]++] = static_cast<std::uint32_t>(t);
+  std::vector<TetId> new_tet(tcap, kNoId);
+  run(parts, [&](std::size_t p) {
+    const auto [first, last] = slice(live, parts, p);
+    for (std::size_t i = first; i < last; ++i) new_tet[tet_order[i]] = static_cast<TetId>(i);
+  });
 
-  permute(points_, vertex_order);
-  permute(vertex_ref_, vertex_order);
-  permute(vert2tet_, vertex_order);
-  permute(vertex_class_, vertex_order);
-  permute(vertex_flags_, vertex_order);
-  permute(metric_, vertex_order);
-  permute(log_metric_, vertex_order);
-  permute(vertex_stamp_, vertex_order);
-  for (auto& t : vert2tet_) t = t < new_tet.size() ? new_tet[t] : kNoId;
+  permute(points_, vertex_order, run);
+  permute(vertex_ref_, vertex_order, run);
+  permute(vert2tet_, vertex_order, run);
+  permute(vertex_class_, vertex_order, run);
+  permute(vertex_flags_, vertex_order, run);
+  permute(metric_, vertex_order, run);
+  permute(log_metric_, vertex_order, run);
+  permute(vertex_stamp_, vertex_order, run);
+  run(parts, [&](std::size_t p) {
+    const auto [first, last] = slice(nv, parts, p);
+    for (std::size_t v = first; v < last; ++v) vert2tet_[v] = vert2tet_[v] < tcap ? new_tet[vert2tet_[v]] : kNoId;
+  });
 
-  permute(tets_, tet_order);
-  permute(tet2tets_, tet_order);
-  permute(face_surface_, tet_order);
-  permute(tet_ref_, tet_order);
-  permute(tet_stamp_, tet_order);
-  permute(tet_quality_, tet_order);
-  for (auto& tv : tets_)
-    for (auto& v : tv) v = new_vertex[v];
-  for (auto& adj : tet2tets_)
-    for (auto& n : adj)
-      if (n.valid()) n = FaceRef(new_tet[n.tet()], n.face());
+  permute(tets_, tet_order, run);
+  permute(tet2tets_, tet_order, run);
+  permute(face_surface_, tet_order, run);
+  permute(tet_ref_, tet_order, run);
+  permute(tet_stamp_, tet_order, run);
+  permute(tet_quality_, tet_order, run);
+  run(parts, [&](std::size_t p) {
+    const auto [first, last] = slice(live, parts, p);
+    for (std::size_t t = first; t < last; ++t) {
+      for (auto& v : tets_[t]) v = new_vertex[v];
+      for (auto& n : tet2tets_[t])
+        if (n.valid()) n = FaceRef(new_tet[n.tet()], n.face());
+    }
+  });
 
   auto remap = [&](const std::unordered_set<std::uint64_t>& edges) {
     std::unordered_set<std::uint64_t> out;
@@ -121,8 +204,8 @@ void Mesh::compact() {
   feature_edges_ = remap(feature_edges_);
   free_vertices_.clear();
   free_tets_.clear();
-  live_vertices_ = vertex_order.size();
-  live_tets_ = tet_order.size();
+  live_vertices_ = nv;
+  live_tets_ = live;
 }
 
 }  // namespace metrica

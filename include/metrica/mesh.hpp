@@ -26,6 +26,8 @@
 
 namespace metrica {
 
+struct PartRunner;
+
 enum class VertexClass : std::uint8_t { interior = 0, surface = 1, ridge = 2, corner = 3 };
 
 const char* to_string(VertexClass c);
@@ -217,8 +219,11 @@ class Mesh {
 
   // Removes dead entities and renumbers vertices along a Morton curve and
   // tets by their vertices, so that neighbours in space are neighbours in
-  // memory (compact.cpp). Invalidates every id held outside.
+  // memory (compact.cpp). Invalidates every id held outside. With a
+  // PartRunner (part_runner<C>() of a Concurrency policy) its sweeps run
+  // on that policy's threads; the result is the same for any runner.
   void compact();
+  void compact(const PartRunner& run);
 
   // Checks every invariant of DESIGN.md (validate.cpp).
   ValidationReport validate(const ValidateOptions& options) const;
