@@ -91,9 +91,10 @@ class SpeculativeLocks {
 
 // Threads: `Threads` when positive (tests pin 1, 2 and 8), else
 // thread_count() (--threads, OMP_NUM_THREADS, or one per core). A work
-// list shorter than `MinItems` runs on the calling thread, without pools:
-// the late cycles of an adaptation make many short lists (tens of
-// items), whose fork, join and reserve cost more than their work.
+// list shorter than `MinItems` runs on the calling thread, without pools,
+// while the mesh is small (under 16 MinItems tets: the first cycles, see
+// Speculative below) or the list very short (under MinItems / 16: tens of
+// items, whose fork, join and reserve cost more than their work).
 template <int Threads = 0, std::size_t MinItems = 0>
 struct SpeculativeThreads {
   static constexpr std::string_view name = "speculative";
@@ -202,7 +203,7 @@ struct SpeculativeThreads {
     PassTally tally;
     if (items.empty()) return tally;
     Stopwatch clock;
-    if (items.size() < MinItems) {
+    if (items.size() < MinItems && (items.size() < MinItems / 16 || mesh.num_tets() < 16 * MinItems)) {
       // Owner words for the vertices the items may create too (appended
       // past the capacity, no pool here): a split whose shell held a
       // vertex made earlier in the pass read past the table, met garbage,
@@ -324,6 +325,12 @@ struct SpeculativeThreads {
 // (min Q 0.015 against 0.059 after cycle 1, then 20-45% more splits and
 // collapses than on one thread). With 8192: as much work as one thread,
 // and 1.75x on two threads at 0.94M tets (was 1.50-1.61x; 256 before).
+// On a large mesh a short list is spread thin and rarely conflicts:
+// lists of 512-8191 items on meshes of 131k tets and more (late cycles,
+// the quality phase's flips) run on both threads since session 13; at
+// 0.94M tets the two-thread run went from 17.6 to 16.4 s (medians of 8
+// interleaved runs), 1.70x -> 1.83x, the same quality, and work within 1%
+// of one thread's (tries per operator).
 using Speculative = SpeculativeThreads<0, 8192>;
 
 static_assert(Concurrency<Speculative>);
