@@ -220,7 +220,7 @@ class Mesh {
   // Removes dead entities and renumbers vertices along a Morton curve and
   // tets by their vertices, so that neighbours in space are neighbours in
   // memory (compact.cpp). Invalidates every id held outside. With a
-  // PartRunner (part_runner<C>() of a Concurrency policy) its sweeps run
+  // PartRunner (part_runner<C>(n) of a Concurrency policy) its sweeps run
   // on that policy's threads; the result is the same for any runner.
   void compact();
   void compact(const PartRunner& run);

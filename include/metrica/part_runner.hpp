@@ -2,12 +2,11 @@
 // knowing about OpenMP: a Concurrency policy's parallel_for behind a
 // std::function, called once per sweep (not per element), so the type
 // erasure costs nothing measurable. Mesh::compact takes one; adapt hands
-// it part_runner<C>() (policies/concurrency.hpp).
+// it part_runner<C>(n) (policies/concurrency.hpp).
 #pragma once
 
 #include <cstddef>
 #include <functional>
-#include <utility>
 
 namespace metrica {
 
@@ -24,10 +23,6 @@ struct PartRunner {
       return;
     }
     for (std::size_t p = 0; p < n; ++p) f(p);
-  }
-  // [first, last) of part p of n items.
-  std::pair<std::size_t, std::size_t> slice(std::size_t n, std::size_t p) const {
-    return {n * p / parts, n * (p + 1) / parts};
   }
 };
 
