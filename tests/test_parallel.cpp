@@ -280,7 +280,7 @@ TEST_SUITE("parallel") {
     CHECK(changed_vertices<SpeculativeThreads<8>>(mesh, since) == marks);
   }
 
-  TEST_CASE("compact on 2, 3 and 8 parts renumbers as on one: the same mesh to the bit") {
+  TEST_CASE("compact on 2 and 8 threads and on 3 reversed parts renumbers as on one thread: the same mesh to the bit") {
     // A coarsened box: collapses leave dead vertices and tets all through
     // the id range, the case compaction exists for.
     auto coarsened = [] {
