@@ -181,21 +181,8 @@ struct SpeculativeThreads {
       std::sort(first, last, less);
       return;
     }
-    std::vector<It> cut(static_cast<std::size_t>(nt) + 1);
-    for (int i = 0; i <= nt; ++i)
-      cut[static_cast<std::size_t>(i)] = first + static_cast<std::ptrdiff_t>(n * static_cast<std::size_t>(i) / static_cast<std::size_t>(nt));
-#pragma omp parallel for num_threads(nt) schedule(static, 1)
-    for (int i = 0; i < nt; ++i) std::sort(cut[static_cast<std::size_t>(i)], cut[static_cast<std::size_t>(i) + 1], less);
-    for (int width = 1; width < nt; width *= 2) {
-      const int pairs = (nt + 2 * width - 1) / (2 * width);
-#pragma omp parallel for num_threads(std::min(nt, pairs)) schedule(static, 1)
-      for (int k = 0; k < pairs; ++k) {
-        const int lo = 2 * width * k, mid = std::min(nt, lo + width), hi = std::min(nt, lo + 2 * width);
-        if (mid < hi)
-          std::inplace_merge(cut[static_cast<std::size_t>(lo)], cut[static_cast<std::size_t>(mid)],
-                             cut[static_cast<std::size_t>(hi)], less);
-      }
-    }
+    sort_in_parts(first, last, less, static_cast<std::size_t>(nt),
+                  [](std::size_t k, auto&& f) { parallel_for(k, f); });
   }
 
   template <class Item, class Work>

@@ -9,6 +9,7 @@
 #include <metrica/part_runner.hpp>
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -43,22 +44,6 @@ void permute(std::vector<T>& a, const std::vector<std::uint32_t>& old_of_new, co
     for (std::size_t i = first; i < last; ++i) out[i] = a[old_of_new[i]];
   });
   a = std::move(out);
-}
-
-// Sorts v: each part's slice on its own, then slices merged pairwise in
-// rounds (the parts of a round in parallel).
-template <class T>
-void parallel_sort(std::vector<T>& v, const PartRunner& run) {
-  const std::size_t parts = run.parts;
-  auto cut = [&](std::size_t p) { return v.begin() + static_cast<std::ptrdiff_t>(v.size() * p / parts); };
-  run(parts, [&](std::size_t p) { std::sort(cut(p), cut(p + 1)); });
-  for (std::size_t width = 1; width < parts; width *= 2) {
-    const std::size_t pairs = (parts + 2 * width - 1) / (2 * width);
-    run(pairs, [&](std::size_t k) {
-      const std::size_t lo = 2 * width * k, mid = std::min(parts, lo + width), hi = std::min(parts, lo + 2 * width);
-      if (mid < hi) std::inplace_merge(cut(lo), cut(mid), cut(hi));
-    });
-  }
 }
 
 }  // namespace
@@ -116,7 +101,7 @@ void Mesh::compact(const PartRunner& given) {
       keyed[i++] = {code, static_cast<VertexId>(v)};
     }
   });
-  parallel_sort(keyed, run);
+  sort_in_parts(keyed.begin(), keyed.end(), std::less<>{}, parts, run);
   std::vector<std::uint32_t> vertex_order(nv);
   std::vector<VertexId> new_vertex(vcap, kNoId);
   run(parts, [&](std::size_t p) {

@@ -2,11 +2,14 @@
 // knowing about OpenMP: a Concurrency policy's parallel_for behind a
 // std::function, called once per sweep (not per element), so the type
 // erasure costs nothing measurable. Mesh::compact takes one; adapt hands
-// it part_runner<C>(n) (policies/concurrency.hpp).
+// it part_runner<C>(n) (policies/concurrency.hpp). sort_in_parts is the
+// parallel sort of both (compaction's and the Speculative policy's).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <functional>
+#include <iterator>
 
 namespace metrica {
 
@@ -25,5 +28,25 @@ struct PartRunner {
     for (std::size_t p = 0; p < n; ++p) f(p);
   }
 };
+
+// Sorts [first, last) by `less` in `parts` parts: each part's slice sorted
+// on its own, then neighbouring slices merged pairwise in rounds, where
+// run(n, f) runs f(0) .. f(n - 1), possibly concurrently (a PartRunner or
+// a policy's parallel_for). Not stable; the result is sorted for any
+// number of parts.
+template <class It, class Less, class Run>
+void sort_in_parts(It first, It last, Less less, std::size_t parts, Run&& run) {
+  const auto n = static_cast<std::size_t>(std::distance(first, last));
+  parts = std::max<std::size_t>(parts, 1);
+  auto cut = [&](std::size_t p) { return first + static_cast<std::ptrdiff_t>(n * p / parts); };
+  run(parts, [&](std::size_t p) { std::sort(cut(p), cut(p + 1), less); });
+  for (std::size_t width = 1; width < parts; width *= 2) {
+    const std::size_t pairs = (parts + 2 * width - 1) / (2 * width);
+    run(pairs, [&](std::size_t k) {
+      const std::size_t lo = 2 * width * k, mid = std::min(parts, lo + width), hi = std::min(parts, lo + 2 * width);
+      if (mid < hi) std::inplace_merge(cut(lo), cut(mid), cut(hi), less);
+    });
+  }
+}
 
 }  // namespace metrica
