@@ -46,7 +46,7 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
   // Each edge with a tet that held it when the work list was made (the
   // shell walk starts there when the tet still holds it, else from a's
   // ball).
-  std::vector<EdgeSeed> edges;
+  MeshArray<EdgeSeed> edges;
   struct Scratch {
     FlipScratch s;
     VertexList cavity;

@@ -31,19 +31,29 @@ struct EdgeSeed {
 // buckets (edge_buckets.hpp) on C's threads, the same list for any number
 // of threads: linear time where std::sort of the 6 keys per tet (about
 // five repeats of each edge) was 4% of an adaptation.
-template <class C = Serial, class VerticesOf>
-void unique_edge_seeds(std::span<const TetId> tets, VerticesOf&& vertices_of, std::size_t capacity,
-                       std::vector<EdgeSeed>& out) {
+template <class C = Serial, class VerticesOf, class Out>
+void unique_edge_seeds(std::span<const TetId> tets, VerticesOf&& vertices_of, std::size_t capacity, Out& out) {
   const std::size_t parts = sweep_parts<C>(tets.size());
-  std::vector<std::vector<EdgeSeed>> part_out(parts - 1);
-  out.clear();
+  std::vector<Out> part_out(parts);
   for_each_edge_bucket<C, UpperTet>(
       parts, tets.size(), [&](std::size_t i) { return tets[i]; }, vertices_of, capacity, true,
       [&](std::size_t p, VertexId a, std::span<const UpperTet> kept) {
-        std::vector<EdgeSeed>& mine = p == 0 ? out : part_out[p - 1];
+        Out& mine = part_out[p];
         for (const UpperTet& x : kept) mine.push_back({edge_key(a, x.upper), x.tet});
       });
-  for (const auto& part : part_out) out.insert(out.end(), part.begin(), part.end());
+  if (parts == 1) {
+    out = std::move(part_out[0]);
+    return;
+  }
+  // Joined in part order by the parts' threads: one thread copying part
+  // 1's half (about 40 MB per sweep at 4.4M tets) took a third of what
+  // building the list took on two.
+  std::vector<std::size_t> offset(parts + 1, 0);
+  for (std::size_t p = 0; p < parts; ++p) offset[p + 1] = offset[p] + part_out[p].size();
+  out.resize(offset[parts]);
+  C::parallel_for(parts, [&](std::size_t p) {
+    std::copy(part_out[p].begin(), part_out[p].end(), out.begin() + static_cast<std::ptrdiff_t>(offset[p]));
+  });
 }
 
 }  // namespace metrica

@@ -29,6 +29,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -113,8 +114,12 @@ struct SpeculativeThreads {
     return table.data();
   }
 
-  // A read-only sweep in static chunks; each thread appends to its own
-  // part, the parts joined in thread order (the order of i).
+  // A read-only sweep over blocks of [0, n) that the threads take in
+  // turn; each block appends to its own list, the lists joined in block
+  // order (the order of i) by the threads. Blocks, not one static half
+  // per thread: the costly items cluster (a pass's new tets sit at the
+  // end of the arrays, their qualities not cached yet), and with halves
+  // the flips' seed sweep ran 1.5x on two threads at 4.4M tets.
   template <class T, class F>
   static std::vector<T> collect(std::size_t n, F&& f) {
     const int nt = std::max(1, threads());
@@ -123,26 +128,29 @@ struct SpeculativeThreads {
       for (std::size_t i = 0; i < n; ++i) f(i, out);
       return out;
     }
-    std::vector<std::vector<T>> parts(static_cast<std::size_t>(nt));
+    const std::size_t blocks = std::min<std::size_t>(static_cast<std::size_t>(nt) * 16, n / 256);
+    std::vector<std::vector<T>> lists(blocks);
     std::exception_ptr error;
-#pragma omp parallel num_threads(nt)
-    {
-      std::vector<T>& mine = parts[static_cast<std::size_t>(omp_get_thread_num())];
-#pragma omp for schedule(static)
-      for (long i = 0; i < static_cast<long>(n); ++i) {
-        try {
-          f(static_cast<std::size_t>(i), mine);
-        } catch (...) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+    for (long b = 0; b < static_cast<long>(blocks); ++b) {
+      try {
+        const auto [first, last] = part_slice(n, blocks, static_cast<std::size_t>(b));
+        std::vector<T>& mine = lists[static_cast<std::size_t>(b)];
+        for (std::size_t i = first; i < last; ++i) f(i, mine);
+      } catch (...) {
 #pragma omp critical(metrica_collect_error)
-          if (!error) error = std::current_exception();
-        }
+        if (!error) error = std::current_exception();
       }
     }
     if (error) std::rethrow_exception(error);
-    std::size_t total = 0;
-    for (const auto& p : parts) total += p.size();
-    out.reserve(total);
-    for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
+    std::vector<std::size_t> offset(blocks + 1, 0);
+    for (std::size_t b = 0; b < blocks; ++b) offset[b + 1] = offset[b] + lists[b].size();
+    out.resize(offset[blocks]);
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for (long b = 0; b < static_cast<long>(blocks); ++b) {
+      const auto& list = lists[static_cast<std::size_t>(b)];
+      std::copy(list.begin(), list.end(), out.begin() + static_cast<std::ptrdiff_t>(offset[static_cast<std::size_t>(b)]));
+    }
     return out;
   }
 
@@ -215,7 +223,10 @@ struct SpeculativeThreads {
       return std::pair{need(room.vertices_per_item, room.max_vertices), need(room.tets_per_item, room.max_tets)};
     };
     const auto [v0, t0] = room_for(items.size(), nt);
-    mesh.begin_parallel(v0, t0);
+    // The arrays grow on the pass's threads (Mesh::begin_parallel).
+    const PartRunner grow_run{static_cast<std::size_t>(nt),
+                              [](std::size_t k, const std::function<void(std::size_t)>& f) { parallel_for(k, f); }};
+    mesh.begin_parallel(v0, t0, grow_run);
     std::vector<Mesh::AllocationPool> pools(static_cast<std::size_t>(nt));
     struct alignas(64) PerThread {
       std::vector<Item> deferred;
@@ -293,7 +304,7 @@ struct SpeculativeThreads {
       if (10 * round_conflicts > 9 * current.size()) threads_now = 1;
       if (out_of_room) {
         const auto [v, t] = room_for(next.size(), threads_now);
-        mesh.grow_parallel(v, t);
+        mesh.grow_parallel(v, t, grow_run);
       }
       std::swap(list, next);
       current = std::span<const Item>(list);

@@ -185,6 +185,47 @@ TEST_SUITE("parallel") {
     check(SpeculativeThreads<8>{});
   }
 
+  TEST_CASE("collect on 2, 3 and 8 threads lists what one thread lists, in the order of i; errors reach the caller") {
+    // Items at irregular places, some twice, more in the last part (where
+    // a pass's new tets sit), and blocks that end mid-run of items.
+    auto f = [](std::size_t i, std::vector<std::uint32_t>& out) {
+      if (i % 7 == 0 || i > 90000) out.push_back(static_cast<std::uint32_t>(i));
+      if (i % 1000 < 3) out.push_back(static_cast<std::uint32_t>(i + 1));
+    };
+    const std::size_t n = 100003;
+    const auto expect = Serial::collect<std::uint32_t>(n, f);
+    REQUIRE(expect.size() > 20000);
+    CHECK(SpeculativeThreads<2>::collect<std::uint32_t>(n, f) == expect);
+    CHECK(SpeculativeThreads<3>::collect<std::uint32_t>(n, f) == expect);
+    CHECK(SpeculativeThreads<8>::collect<std::uint32_t>(n, f) == expect);
+    auto fails = [](std::size_t i, std::vector<std::uint32_t>&) {
+      if (i == 77777) throw std::runtime_error("item 77777");
+    };
+    CHECK_THROWS_WITH(SpeculativeThreads<2>::collect<std::uint32_t>(n, fails), "item 77777");
+  }
+
+  TEST_CASE("grow_array on 2 and 8 threads and on 3 reversed parts: old elements kept, new ones filled") {
+    const PartRunner reversed{3, [](std::size_t n, const std::function<void(std::size_t)>& f) {
+                                for (std::size_t p = n; p-- > 0;) f(p);
+                              }};
+    for (const PartRunner& run : {PartRunner{}, part_runner<SpeculativeThreads<2>>(1 << 20), reversed,
+                                  part_runner<SpeculativeThreads<8>>(1 << 20)}) {
+      MeshArray<std::uint32_t> a;
+      for (std::uint32_t i = 0; i < 10001; ++i) a.push_back(3 * i);
+      a.shrink_to_fit();
+      grow_array(a, 25000, 7u, 30000, run);  // reallocates
+      REQUIRE(a.size() == 25000);
+      CHECK(a.capacity() >= 30000);
+      grow_array(a, 26003, 9u, 0, run);  // within the capacity
+      grow_array(a, 100, 5u, 0, run);    // never shrinks
+      REQUIRE(a.size() == 26003);
+      std::size_t right = 0;
+      for (std::size_t i = 0; i < a.size(); ++i)
+        right += a[i] == (i < 10001 ? 3 * i : i < 25000 ? 7u : 9u);
+      CHECK(right == a.size());
+    }
+  }
+
   TEST_CASE("edge buckets on 1, 2, 3 and 8 threads give one thread's buckets, distinct, in order") {
     // Random tets (with repeated edges) over 2000 vertices; the reference
     // is a stable sort of the tets' edges by lower vertex keeping the first

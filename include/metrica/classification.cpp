@@ -65,7 +65,7 @@ Classification compute_classification(const Mesh& mesh) {
 
 void Mesh::classify() {
   auto c = compute_classification(*this);
-  vertex_class_ = std::move(c.vertex_class);
+  vertex_class_.assign(c.vertex_class.begin(), c.vertex_class.end());
   ridges_ = std::move(c.ridges);
 }
 

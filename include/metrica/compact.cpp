@@ -29,18 +29,15 @@ std::uint64_t spread_bits(std::uint64_t x) {
   return x;
 }
 
-// [first, last) of part p when n items are cut into `parts`.
-std::pair<std::size_t, std::size_t> slice(std::size_t n, std::size_t parts, std::size_t p) {
-  return {n * p / parts, n * (p + 1) / parts};
-}
-
-// a[i] = old a[old_of_new[i]], the gather cut into parts.
+// a[i] = old a[old_of_new[i]], the gather cut into parts (into an array
+// that resizing did not write: each part writes its own slice first).
 template <class T>
-void permute(std::vector<T>& a, const std::vector<std::uint32_t>& old_of_new, const PartRunner& run) {
+void permute(MeshArray<T>& a, std::span<const std::uint32_t> old_of_new, const PartRunner& run) {
   if (a.empty()) return;
-  std::vector<T> out(old_of_new.size());
+  MeshArray<T> out;
+  out.resize(old_of_new.size());
   run(run.parts, [&](std::size_t p) {
-    const auto [first, last] = slice(old_of_new.size(), run.parts, p);
+    const auto [first, last] = part_slice(old_of_new.size(), run.parts, p);
     for (std::size_t i = first; i < last; ++i) out[i] = a[old_of_new[i]];
   });
   a = std::move(out);
@@ -64,7 +61,7 @@ void Mesh::compact(const PartRunner& given) {
   };
   std::vector<PartBox> boxes(parts);
   run(parts, [&](std::size_t p) {
-    const auto [first, last] = slice(vcap, parts, p);
+    const auto [first, last] = part_slice(vcap, parts, p);
     PartBox b;
     for (std::size_t v = first; v < last; ++v) {
       if (!vertex_alive(static_cast<VertexId>(v))) continue;
@@ -89,9 +86,15 @@ void Mesh::compact(const PartRunner& given) {
   // is the same for any number of parts.
   const Point lo = all.lo;
   const Point scale = ((all.hi - all.lo).array().max(1e-300).inverse() * double((1u << 21) - 1)).matrix();
-  std::vector<std::pair<std::uint64_t, VertexId>> keyed(nv);
+  struct Keyed {
+    std::uint64_t code;
+    VertexId v;
+    bool operator<(const Keyed& o) const { return code < o.code || (code == o.code && v < o.v); }
+  };
+  MeshArray<Keyed> keyed;
+  keyed.resize(nv);
   run(parts, [&](std::size_t p) {
-    const auto [first, last] = slice(vcap, parts, p);
+    const auto [first, last] = part_slice(vcap, parts, p);
     std::size_t i = offset[p];
     for (std::size_t v = first; v < last; ++v) {
       if (!vertex_alive(static_cast<VertexId>(v))) continue;
@@ -102,13 +105,14 @@ void Mesh::compact(const PartRunner& given) {
     }
   });
   sort_in_parts(keyed.begin(), keyed.end(), std::less<>{}, parts, run);
-  std::vector<std::uint32_t> vertex_order(nv);
+  MeshArray<std::uint32_t> vertex_order;
+  vertex_order.resize(nv);
   std::vector<VertexId> new_vertex(vcap, kNoId);
   run(parts, [&](std::size_t p) {
-    const auto [first, last] = slice(nv, parts, p);
+    const auto [first, last] = part_slice(nv, parts, p);
     for (std::size_t i = first; i < last; ++i) {
-      vertex_order[i] = keyed[i].second;
-      new_vertex[keyed[i].second] = static_cast<VertexId>(i);
+      vertex_order[i] = keyed[i].v;
+      new_vertex[keyed[i].v] = static_cast<VertexId>(i);
     }
   });
 
@@ -116,12 +120,16 @@ void Mesh::compact(const PartRunner& given) {
   // sort on the key (it is below the vertex count), which keeps the id
   // order within a key. Keys in parallel, the counting on one thread
   // (two light passes).
-  std::vector<VertexId> tet_key(tcap, kNoId);
+  MeshArray<VertexId> tet_key;
+  tet_key.resize(tcap);
   run(parts, [&](std::size_t p) {
-    const auto [first, last] = slice(tcap, parts, p);
+    const auto [first, last] = part_slice(tcap, parts, p);
     for (std::size_t t = first; t < last; ++t) {
-      if (!tet_alive(static_cast<TetId>(t))) continue;
       VertexId key = kNoId;
+      if (!tet_alive(static_cast<TetId>(t))) {
+        tet_key[t] = key;
+        continue;
+      }
       for (VertexId v : tets_[t]) {
         if (v >= new_vertex.size() || new_vertex[v] == kNoId)
           throw std::logic_error("Mesh::compact: a live tet has a dead or unknown vertex");
@@ -138,12 +146,18 @@ void Mesh::compact(const PartRunner& given) {
     ++live;
   }
   for (std::size_t i = 0; i < nv; ++i) start[i + 1] += start[i];
-  std::vector<std::uint32_t> tet_order(live);
+  MeshArray<std::uint32_t> tet_order;
+  tet_order.resize(live);
   for (std::size_t t = 0; t < tcap; ++t)
     if (tet_key[t] != kNoId) tet_order[start[tet_key[t]]++] = static_cast<std::uint32_t>(t);
-  std::vector<TetId> new_tet(tcap, kNoId);
+  MeshArray<TetId> new_tet;
+  new_tet.resize(tcap);
   run(parts, [&](std::size_t p) {
-    const auto [first, last] = slice(live, parts, p);
+    const auto [first, last] = part_slice(tcap, parts, p);
+    std::fill(new_tet.begin() + static_cast<std::ptrdiff_t>(first), new_tet.begin() + static_cast<std::ptrdiff_t>(last), kNoId);
+  });
+  run(parts, [&](std::size_t p) {
+    const auto [first, last] = part_slice(live, parts, p);
     for (std::size_t i = first; i < last; ++i) new_tet[tet_order[i]] = static_cast<TetId>(i);
   });
 
@@ -156,7 +170,7 @@ void Mesh::compact(const PartRunner& given) {
   permute(log_metric_, vertex_order, run);
   permute(vertex_stamp_, vertex_order, run);
   run(parts, [&](std::size_t p) {
-    const auto [first, last] = slice(nv, parts, p);
+    const auto [first, last] = part_slice(nv, parts, p);
     for (std::size_t v = first; v < last; ++v) vert2tet_[v] = vert2tet_[v] < tcap ? new_tet[vert2tet_[v]] : kNoId;
   });
 
@@ -167,7 +181,7 @@ void Mesh::compact(const PartRunner& given) {
   permute(tet_stamp_, tet_order, run);
   permute(tet_quality_, tet_order, run);
   run(parts, [&](std::size_t p) {
-    const auto [first, last] = slice(live, parts, p);
+    const auto [first, last] = part_slice(live, parts, p);
     for (std::size_t t = first; t < last; ++t) {
       for (auto& v : tets_[t]) v = new_vertex[v];
       for (auto& n : tet2tets_[t])

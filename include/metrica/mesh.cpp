@@ -174,45 +174,51 @@ bool Mesh::Reserve::take(std::vector<std::uint32_t>& out, std::size_t want) {
   return last - first >= want;
 }
 
-void Mesh::Reserve::drain_into(std::vector<std::uint32_t>& out) {
+void Mesh::Reserve::drain_into(MeshArray<std::uint32_t>& out) {
   const std::size_t first = std::min(cursor.load(), ids.size());
   out.insert(out.end(), ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end());
   ids.clear();
   cursor = 0;
 }
 
-void Mesh::append_dead(std::size_t vertex_room, std::size_t tet_room) {
+void Mesh::append_dead(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run) {
   const std::size_t nv = points_.size(), nt = tets_.size();
   // Grow by an eighth more than asked, not by doubling: the room is
   // mostly handed back, and doubling every array would double the peak.
-  if (points_.capacity() < nv + vertex_room || tets_.capacity() < nt + tet_room)
-    reserve(nv + vertex_room + nv / 8, nt + tet_room + nt / 8);
-  points_.resize(nv + vertex_room, Point::Zero());
-  vertex_ref_.resize(nv + vertex_room, 0);
-  vert2tet_.resize(nv + vertex_room, kNoId);
-  vertex_class_.resize(nv + vertex_room, VertexClass::interior);
-  vertex_flags_.resize(nv + vertex_room, 0);
-  vertex_stamp_.resize(nv + vertex_room, 0);
+  const std::size_t v_size = nv + vertex_room, t_size = nt + tet_room;
+  const std::size_t v_cap = v_size + nv / 8, t_cap = t_size + nt / 8;
+  grow_array(points_, v_size, Point(Point::Zero()), v_cap, run);
+  grow_array(vertex_ref_, v_size, 0, v_cap, run);
+  grow_array(vert2tet_, v_size, kNoId, v_cap, run);
+  grow_array(vertex_class_, v_size, VertexClass::interior, v_cap, run);
+  grow_array(vertex_flags_, v_size, std::uint8_t{0}, v_cap, run);
+  grow_array(vertex_stamp_, v_size, Epoch{0}, v_cap, run);
   if (has_metric()) {
-    metric_.resize(nv + vertex_room, Sym6{});
-    log_metric_.resize(nv + vertex_room, Sym6{});
+    grow_array(metric_, v_size, Sym6{}, v_cap, run);
+    grow_array(log_metric_, v_size, Sym6{}, v_cap, run);
   }
-  tets_.resize(nt + tet_room, {kNoId, kNoId, kNoId, kNoId});
-  tet2tets_.resize(nt + tet_room);
-  face_surface_.resize(nt + tet_room, {0, 0, 0, 0});
-  tet_ref_.resize(nt + tet_room, 0);
-  tet_stamp_.resize(nt + tet_room, 0);
-  tet_quality_.resize(nt + tet_room, kUnknownQuality);
+  grow_array(tets_, t_size, TetVertices{kNoId, kNoId, kNoId, kNoId}, t_cap, run);
+  grow_array(tet2tets_, t_size, std::array<FaceRef, 4>{}, t_cap, run);
+  grow_array(face_surface_, t_size, std::array<SurfaceId, 4>{0, 0, 0, 0}, t_cap, run);
+  grow_array(tet_ref_, t_size, 0, t_cap, run);
+  grow_array(tet_stamp_, t_size, Epoch{0}, t_cap, run);
+  grow_array(tet_quality_, t_size, kUnknownQuality, t_cap, run);
   // Unused reserve first, then the new ids.
   for (auto [reserve, first, room] : {std::tuple{&vertex_reserve_, nv, vertex_room}, std::tuple{&tet_reserve_, nt, tet_room}}) {
-    std::vector<std::uint32_t> ids;
+    MeshArray<std::uint32_t> ids;
     reserve->drain_into(ids);
-    for (std::size_t i = 0; i < room; ++i) ids.push_back(static_cast<std::uint32_t>(first + i));
+    const std::size_t kept = ids.size();
+    ids.resize(kept + room);
+    const std::size_t parts = std::max<std::size_t>(run.parts, 1);
+    run(parts, [&, first = first, room = room](std::size_t p) {
+      const auto [lo, hi] = part_slice(room, parts, p);
+      for (std::size_t i = lo; i < hi; ++i) ids[kept + i] = static_cast<std::uint32_t>(first + i);
+    });
     reserve->ids = std::move(ids);
   }
 }
 
-void Mesh::begin_parallel(std::size_t vertex_room, std::size_t tet_room) {
+void Mesh::begin_parallel(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run) {
   if (parallel_) throw std::logic_error("Mesh::begin_parallel: a parallel pass is already running");
   parallel_ = true;
   // The free lists first, then as many new ids as they lack.
@@ -223,10 +229,12 @@ void Mesh::begin_parallel(std::size_t vertex_room, std::size_t tet_room) {
   const std::size_t free_v = free_vertices_.size(), free_t = free_tets_.size();
   free_vertices_.clear();
   free_tets_.clear();
-  append_dead(vertex_room > free_v ? vertex_room - free_v : 0, tet_room > free_t ? tet_room - free_t : 0);
+  append_dead(vertex_room > free_v ? vertex_room - free_v : 0, tet_room > free_t ? tet_room - free_t : 0, run);
 }
 
-void Mesh::grow_parallel(std::size_t vertex_room, std::size_t tet_room) { append_dead(vertex_room, tet_room); }
+void Mesh::grow_parallel(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run) {
+  append_dead(vertex_room, tet_room, run);
+}
 
 bool Mesh::fill_pool(AllocationPool& pool, std::size_t vertices, std::size_t tets) {
   bool ok = true;

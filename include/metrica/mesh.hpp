@@ -13,6 +13,7 @@
 #pragma once
 
 #include <metrica/ids.hpp>
+#include <metrica/mesh_array.hpp>
 #include <metrica/spin_lock.hpp>
 #include <metrica/tet_topology.hpp>
 
@@ -26,7 +27,6 @@
 
 namespace metrica {
 
-struct PartRunner;
 
 enum class VertexClass : std::uint8_t { interior = 0, surface = 1, ridge = 2, corner = 3 };
 
@@ -202,10 +202,11 @@ class Mesh {
     std::ptrdiff_t vertex_delta = 0, tet_delta = 0;
   };
   // Moves the free lists and `vertex_room` / `tet_room` new dead ids to
-  // the shared reserve the pools draw from.
-  void begin_parallel(std::size_t vertex_room, std::size_t tet_room);
+  // the shared reserve the pools draw from. The arrays grow (copy, fill)
+  // in `run`'s parts, on the policy's threads.
+  void begin_parallel(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run = {});
   // Adds more room between rounds (no thread in a pass).
-  void grow_parallel(std::size_t vertex_room, std::size_t tet_room);
+  void grow_parallel(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run = {});
   // Tops `pool` up to at least the given numbers of ids from the reserve
   // (lock-free); false when the reserve cannot: the caller waits for the
   // next round.
@@ -241,29 +242,29 @@ class Mesh {
   }
   void init_vertex(VertexId v, const Point& p, int ref);
   void init_tet(TetId t, const TetVertices& vertices, int ref);
-  void append_dead(std::size_t vertex_room, std::size_t tet_room);
+  void append_dead(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run);
 
-  std::vector<Point> points_;
-  std::vector<int> vertex_ref_;
-  std::vector<TetId> vert2tet_;
-  std::vector<VertexClass> vertex_class_;
-  std::vector<std::uint8_t> vertex_flags_;
-  std::vector<Sym6> metric_;
-  std::vector<Sym6> log_metric_;
-  std::vector<Epoch> vertex_stamp_;
+  MeshArray<Point> points_;
+  MeshArray<int> vertex_ref_;
+  MeshArray<TetId> vert2tet_;
+  MeshArray<VertexClass> vertex_class_;
+  MeshArray<std::uint8_t> vertex_flags_;
+  MeshArray<Sym6> metric_;
+  MeshArray<Sym6> log_metric_;
+  MeshArray<Epoch> vertex_stamp_;
 
-  std::vector<TetVertices> tets_;
-  std::vector<std::array<FaceRef, 4>> tet2tets_;
-  std::vector<std::array<SurfaceId, 4>> face_surface_;
-  std::vector<int> tet_ref_;
-  std::vector<Epoch> tet_stamp_;
+  MeshArray<TetVertices> tets_;
+  MeshArray<std::array<FaceRef, 4>> tet2tets_;
+  MeshArray<std::array<SurfaceId, 4>> face_surface_;
+  MeshArray<int> tet_ref_;
+  MeshArray<Epoch> tet_stamp_;
   // Written through const access (a cache), one writer per tet at a time:
   // the holder of the tet's vertices' locks.
-  mutable std::vector<double> tet_quality_;
+  mutable MeshArray<double> tet_quality_;
   Epoch epoch_ = 0;
 
-  std::vector<VertexId> free_vertices_;
-  std::vector<TetId> free_tets_;
+  MeshArray<VertexId> free_vertices_;
+  MeshArray<TetId> free_tets_;
   std::size_t live_vertices_ = 0;
   std::size_t live_tets_ = 0;
 
@@ -274,7 +275,7 @@ class Mesh {
 
   // The reserve of a parallel pass: ids handed out from `cursor` on.
   struct Reserve {
-    std::vector<std::uint32_t> ids;
+    MeshArray<std::uint32_t> ids;
     std::atomic<std::size_t> cursor{0};
     Reserve() = default;
     Reserve(const Reserve& o) : ids(o.ids), cursor(o.cursor.load()) {}
@@ -284,7 +285,7 @@ class Mesh {
       return *this;
     }
     bool take(std::vector<std::uint32_t>& out, std::size_t want);
-    void drain_into(std::vector<std::uint32_t>& out);
+    void drain_into(MeshArray<std::uint32_t>& out);
   };
   Reserve vertex_reserve_, tet_reserve_;
   bool parallel_ = false;

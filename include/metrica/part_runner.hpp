@@ -10,8 +10,14 @@
 #include <cstddef>
 #include <functional>
 #include <iterator>
+#include <utility>
 
 namespace metrica {
+
+// [first, last) of part p when n items are cut into `parts`.
+inline std::pair<std::size_t, std::size_t> part_slice(std::size_t n, std::size_t parts, std::size_t p) {
+  return {n * p / parts, n * (p + 1) / parts};
+}
 
 struct PartRunner {
   // How many parts the sweeps are cut into (1: one part, this thread).
