@@ -27,7 +27,6 @@
 
 namespace metrica {
 
-
 enum class VertexClass : std::uint8_t { interior = 0, surface = 1, ridge = 2, corner = 3 };
 
 const char* to_string(VertexClass c);
