@@ -68,7 +68,7 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
   // part writes its own slice first (the pages are touched by the thread
   // that uses them).
   std::unique_ptr<std::uint32_t[]> per_part(new std::uint32_t[parts * cap]);
-  auto items_of = [&](std::size_t p) { return std::pair{n * p / parts, n * (p + 1) / parts}; };
+  auto items_of = [&](std::size_t p) { return part_slice(n, parts, p); };
   C::parallel_for(parts, [&](std::size_t p) {
     std::uint32_t* count = per_part.get() + p * cap;
     std::fill(count, count + cap, 0u);
@@ -84,7 +84,7 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
   // by a short prefix sum, then each slice turns counters into cursors.
   std::unique_ptr<std::uint32_t[]> start(new std::uint32_t[cap + 1]);
   std::vector<std::uint64_t> base(parts + 1, 0);
-  auto vertices_in = [&](std::size_t p) { return std::pair{cap * p / parts, cap * (p + 1) / parts}; };
+  auto vertices_in = [&](std::size_t p) { return part_slice(cap, parts, p); };
   C::parallel_for(parts, [&](std::size_t p) {
     std::uint64_t sum = 0;
     const auto [lo, hi] = vertices_in(p);
@@ -203,13 +203,7 @@ std::vector<T> collect_mesh_edges(const Mesh& mesh, F&& f) {
         for (std::size_t p = 0; p < parts; ++p) out[p].reserve(edges_in[p]);
       });
   if (parts == 1) return std::move(out[0]);
-  std::vector<std::size_t> offset(parts + 1, 0);
-  for (std::size_t p = 0; p < parts; ++p) offset[p + 1] = offset[p] + out[p].size();
-  std::vector<T> all(offset[parts]);
-  C::parallel_for(parts, [&](std::size_t p) {
-    std::copy(out[p].begin(), out[p].end(), all.begin() + static_cast<std::ptrdiff_t>(offset[p]));
-  });
-  return all;
+  return join_in_parts(out, [](std::size_t k, auto&& g) { C::parallel_for(k, g); });
 }
 
 }  // namespace metrica

@@ -267,7 +267,8 @@ OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
   const std::size_t nt = mesh.tet_capacity();
   const std::size_t parts = sweep_parts<C>(nt);
   C::parallel_for(parts, [&](std::size_t p) {
-    for (auto t = static_cast<TetId>(nt * p / parts); t < nt * (p + 1) / parts; ++t)
+    const auto [first, last] = part_slice(nt, parts, p);
+    for (auto t = static_cast<TetId>(first); t < last; ++t)
       if (mesh.tet_alive(t) && cached_mean_ratio<S>(mesh, t) < o.below)
         for (VertexId v : mesh.tet(t))
           if (changed[v]) std::atomic_ref<std::uint8_t>(marked[v]).store(1, std::memory_order_relaxed);

@@ -29,7 +29,6 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
-#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -143,15 +142,7 @@ struct SpeculativeThreads {
       }
     }
     if (error) std::rethrow_exception(error);
-    std::vector<std::size_t> offset(blocks + 1, 0);
-    for (std::size_t b = 0; b < blocks; ++b) offset[b + 1] = offset[b] + lists[b].size();
-    out.resize(offset[blocks]);
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for (long b = 0; b < static_cast<long>(blocks); ++b) {
-      const auto& list = lists[static_cast<std::size_t>(b)];
-      std::copy(list.begin(), list.end(), out.begin() + static_cast<std::ptrdiff_t>(offset[static_cast<std::size_t>(b)]));
-    }
-    return out;
+    return join_in_parts(lists, [](std::size_t k, auto&& g) { parallel_for(k, g); });
   }
 
   // f(i) for i in [0, n) on the policy's threads, one i per thread in
@@ -224,8 +215,7 @@ struct SpeculativeThreads {
     };
     const auto [v0, t0] = room_for(items.size(), nt);
     // The arrays grow on the pass's threads (Mesh::begin_parallel).
-    const PartRunner grow_run{static_cast<std::size_t>(nt),
-                              [](std::size_t k, const std::function<void(std::size_t)>& f) { parallel_for(k, f); }};
+    const PartRunner grow_run = part_runner<SpeculativeThreads>(mesh.tet_capacity());
     mesh.begin_parallel(v0, t0, grow_run);
     std::vector<Mesh::AllocationPool> pools(static_cast<std::size_t>(nt));
     struct alignas(64) PerThread {

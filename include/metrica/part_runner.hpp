@@ -11,6 +11,7 @@
 #include <functional>
 #include <iterator>
 #include <utility>
+#include <vector>
 
 namespace metrica {
 
@@ -53,6 +54,19 @@ void sort_in_parts(It first, It last, Less less, std::size_t parts, Run&& run) {
       if (mid < hi) std::inplace_merge(cut(lo), cut(mid), cut(hi), less);
     });
   }
+}
+
+// The lists joined in order into one; list p is copied by run's part p
+// (run(n, f) as in sort_in_parts), so no thread copies them all.
+template <class T, class Run>
+std::vector<T> join_in_parts(const std::vector<std::vector<T>>& lists, Run&& run) {
+  std::vector<std::size_t> offset(lists.size() + 1, 0);
+  for (std::size_t p = 0; p < lists.size(); ++p) offset[p + 1] = offset[p] + lists[p].size();
+  std::vector<T> all(offset.back());
+  run(lists.size(), [&](std::size_t p) {
+    std::copy(lists[p].begin(), lists[p].end(), all.begin() + static_cast<std::ptrdiff_t>(offset[p]));
+  });
+  return all;
 }
 
 }  // namespace metrica
