@@ -3,7 +3,8 @@
 //   cycle, until little changes or max_cycles:
 //     collapse short edges -> refine long edges -> reconnect (flips)
 //     -> collapse the short edges refinement made -> smooth poor tets
-//   quality phase: reconnect + smooth, quality_passes times
+//   quality phase: reconnect + smooth, quality_passes times; then, while a
+//   tet is below repair_below, a repair round around the poor tets
 //
 // A template over <Space, Precision, Concurrency>; adapt_<space>.cpp
 // instantiate the combinations the CLI offers (adapt_dispatch.hpp).
@@ -16,6 +17,7 @@
 #include <metrica/operators/refine_edges.hpp>
 #include <metrica/operators/smooth.hpp>
 
+#include <algorithm>
 #include <functional>
 #include <span>
 #include <vector>
@@ -25,6 +27,7 @@ namespace metrica {
 struct CycleReport {
   int cycle = 0;  // 0.. for adaptation cycles; quality passes follow
   bool quality_phase = false;
+  bool repair = false;  // a repair round of the quality phase
   std::size_t vertices = 0, tets = 0;
   OperatorStats collapse, refine, reconnect, smooth;
   double conformity = 0;  // share of edges with L in [1/sqrt 2, sqrt 2]
@@ -79,6 +82,18 @@ struct AdaptOptions {
   // Smoothing threshold during the quality phase: every vertex (measured:
   // min Q 0.40 -> 0.64 on the UGAWG linear case against 0.4).
   double quality_phase_smooth_below = 1.0;
+  // Repair: tets still below repair_below after the quality passes (0.3,
+  // the "poor" of the flips and the cycles' smoothing) are held by what
+  // flips and smoothing cannot change: a short edge whose collapse was
+  // refused when the cycles last tried it, a long ridge edge a split
+  // skipped, a surface vertex pinned against a ridge. A round runs the
+  // cycle's operators (edge splits whatever the point rule) on the balls
+  // of the poor tets' vertices and what those operators change, then one
+  // quality pass; at most repair_rounds rounds. Measured on 400 two-thread
+  // adaptations of the parallel tests' case (about 1,500 tets): see
+  // README, session 15.
+  double repair_below = 0.3;
+  int repair_rounds = 2;
   // When set, new and moved vertices take this metric (analytic cases).
   const MetricFunction* metric = nullptr;
   // Called after every cycle and quality pass (progress output).
@@ -130,6 +145,30 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
     *min_quality = mins.empty() ? 1.0 : *std::min_element(mins.begin(), mins.end());
   }
   return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
+}
+
+// Touches the balls of the vertices of the tets whose mean ratio (cached,
+// as adapt keeps it) is below `below`, so that passes limited to the tets
+// changed since the current epoch work around them. Returns how many tets
+// were below.
+template <MetricSpace S, Concurrency C>
+std::size_t touch_around_poor_tets(Mesh& mesh, double below) {
+  constexpr std::size_t kBlock = 256;
+  const std::size_t nt = mesh.tet_capacity();
+  const auto poor = C::template collect<TetId>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<TetId>& part) {
+    for (auto t = static_cast<TetId>(b * kBlock); t < std::min(nt, (b + 1) * kBlock); ++t)
+      if (mesh.tet_alive(t) && cached_mean_ratio<S>(mesh, t) < below) part.push_back(t);
+  });
+  std::vector<VertexId> vertices;
+  for (TetId t : poor) vertices.insert(vertices.end(), mesh.tet(t).begin(), mesh.tet(t).end());
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  TetList ball;
+  for (VertexId v : vertices) {
+    vertex_ball(mesh, v, ball);
+    for (TetId t : ball) mesh.touch_tet(t);
+  }
+  return poor.size();
 }
 
 template <MetricSpace S, Precision P, Concurrency C>
@@ -212,6 +251,26 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
     c.quality_phase = true;
     c.reconnect = run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
     c.smooth = run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
+    finish(c, clock);
+  }
+  for (int round = 0; round < o.repair_rounds; ++round) {
+    if (report.cycles.empty() || report.cycles.back().min_quality >= o.repair_below) break;
+    Stopwatch clock;
+    CycleReport c;
+    c.cycle = static_cast<int>(report.cycles.size());
+    c.quality_phase = c.repair = true;
+    const Mesh::Epoch start = mesh.next_epoch();
+    touch_around_poor_tets<S, C>(mesh, o.repair_below);
+    collapse_o.changed_since = flip_o.changed_since = smooth_o.changed_since = start;
+    RefineOptions refine_o = o.refine;
+    refine_o.changed_since = start;
+    c.collapse = run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
+    c.refine = refine_edges<S, P, C>(mesh, refine_o);
+    c.reconnect = run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
+    c.collapse += run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
+    c.smooth = run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
+    c.reconnect += run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
+    c.smooth += run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
     finish(c, clock);
   }
   report.seconds = total.seconds();

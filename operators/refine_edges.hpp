@@ -24,6 +24,9 @@ struct RefineOptions {
   double min_new_distance = 1.0 / std::sqrt(2.0);
   // When set, new vertices take this metric instead of an interpolated one.
   const MetricFunction* metric = nullptr;
+  // Only edges with an end whose ball changed since this epoch are split
+  // (0: all): the quality phase's repair works near its poor tets only.
+  Mesh::Epoch changed_since = 0;
 };
 
 // The parameter t in [0,1] of the point of ab at equal metric distance from
@@ -40,7 +43,11 @@ template <MetricSpace S, Precision P, Concurrency C>
 OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  const auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first);
+  auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first);
+  if (o.changed_since > 0) {
+    const std::vector<std::uint8_t> changed = changed_vertices<C>(mesh, o.changed_since);
+    std::erase_if(todo, [&](const EdgeCandidate& c) { return !changed[c.a] && !changed[c.b]; });
+  }
   // Vertices stamped with this epoch or later were created by this pass.
   const Mesh::Epoch pass_epoch = mesh.next_epoch();
   struct Scratch {

@@ -41,7 +41,7 @@ void print_parallel_stats(const AdaptReport& r) {
 
 void print_cycle(const CycleReport& c) {
   fmt::print("  {} {:>2}: {:>9} vertices {:>10} tets | {} | {} | {} | {} | in range {:5.1f}% min Q {:.3f} | {:.2f} s\n",
-             c.quality_phase ? "polish" : "cycle ", c.cycle, count_text(c.vertices), count_text(c.tets),
+             c.repair ? "repair" : c.quality_phase ? "polish" : "cycle ", c.cycle, count_text(c.vertices), count_text(c.tets),
              stats_text("collapse", c.collapse), stats_text("split", c.refine), stats_text("flip", c.reconnect),
              stats_text("smooth", c.smooth), 100.0 * c.conformity, c.min_quality, c.seconds);
   std::fflush(stdout);
@@ -61,9 +61,10 @@ int run_adapt(const std::vector<std::string>& args) {
   Options o("adapt", "[-i] MESH (-m METRIC | --analytic NAME) [-o] OUTPUT [options]",
             "Adapts a tetrahedral mesh to a metric: cycles of edge collapse, edge split, flips and vertex\n"
             "smoothing until the mesh is a unit mesh (edge lengths near 1 in the metric), then a quality\n"
-            "phase of flips and smoothing. Prints one line per cycle (vertices, tets, applied/tried per\n"
-            "operator with its time, share of edges in [1/sqrt2, sqrt2], worst mean ratio) and ends with\n"
-            "the UGAWG quality report. With --analytic, new vertices take the exact metric, and\n"
+            "phase of flips and smoothing, and repair rounds around any tet still below --repair-below.\n"
+            "Prints one line per cycle, pass and round (vertices, tets, applied/tried per operator with\n"
+            "its time, share of edges in [1/sqrt2, sqrt2], worst mean ratio) and ends with the UGAWG\n"
+            "quality report. With --analytic, new vertices take the exact metric, and\n"
             "--iterations N repeats the adaptation N times, re-evaluating the metric on the new mesh each\n"
             "time (the UGAWG loop). The output is checked with validate() before it is written.\n"
             "By default every operator runs on all cores (--threads N to choose, --concurrency serial\n"
@@ -91,6 +92,11 @@ int run_adapt(const std::vector<std::string>& args) {
       "of tets with a long edge, moved to a boundary face or ridge they encroach)")(
       "cycles", po::value<int>()->default_value(15)->value_name("N"), "most adaptation cycles per adaptation")(
       "quality-passes", po::value<int>()->default_value(4)->value_name("N"), "flip + smooth passes at the end")(
+      "repair-rounds", po::value<int>()->default_value(2)->value_name("N"),
+      "after the quality passes, at most N rounds of collapse, split, flips and smoothing around the tets "
+      "still below --repair-below")(
+      "repair-below", po::value<double>()->default_value(0.3, "0.3")->value_name("Q"),
+      "mean ratio below which a tet left by the quality passes gets repair rounds")(
       "max-length", po::value<double>()->value_name("L"), "split edges longer than L (default sqrt 2)")(
       "min-length", po::value<double>()->value_name("L"), "collapse edges shorter than L (default 1/sqrt 2)")(
       "collapse-max-length", po::value<double>()->value_name("L"),
@@ -118,6 +124,8 @@ int run_adapt(const std::vector<std::string>& args) {
   ao.max_cycles = o.get<int>("cycles");
   ao.points = point_rule_from_name(o.get<std::string>("points"));
   ao.quality_passes = o.get<int>("quality-passes");
+  ao.repair_rounds = o.get<int>("repair-rounds");
+  ao.repair_below = o.get<double>("repair-below");
   if (o.has("max-length")) ao.refine.max_length = o.get<double>("max-length");
   if (o.has("min-length")) ao.collapse.min_length = o.get<double>("min-length");
   ao.collapse.quality_floor = o.get<double>("quality-floor");
@@ -126,7 +134,10 @@ int run_adapt(const std::vector<std::string>& args) {
   if (!(ao.refine.max_length > ao.collapse.min_length) || !(ao.collapse.min_length > 0.0))
     throw UsageError(fmt::format("adapt: need 0 < --min-length < --max-length (got {} and {})", ao.collapse.min_length,
                                  ao.refine.max_length));
-  if (ao.max_cycles < 0 || ao.quality_passes < 0) throw UsageError("adapt: --cycles and --quality-passes must be >= 0");
+  if (ao.max_cycles < 0 || ao.quality_passes < 0 || ao.repair_rounds < 0)
+    throw UsageError("adapt: --cycles, --quality-passes and --repair-rounds must be >= 0");
+  if (!(ao.repair_below >= 0.0 && ao.repair_below <= 1.0))
+    throw UsageError(fmt::format("adapt: --repair-below must be in [0, 1] (got {})", ao.repair_below));
 
   Stopwatch clock;
   auto loaded = load_mesh(input);
