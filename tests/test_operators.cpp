@@ -320,7 +320,7 @@ TEST_SUITE("invariant") {
       return std::pair{r.cycles.back(), worst_quality<S>(mesh)};
     };
     const auto [without, worst_without] = polish(0);
-    const auto [with, worst_with] = polish(2);
+    const auto [with, worst_with] = polish(AdaptOptions{}.repair_rounds);
     INFO("without repair: min Q " << worst_without << ", conformity " << without.conformity << "; with: min Q "
                                   << worst_with << ", conformity " << with.conformity);
     if constexpr (std::is_same_v<C, Serial>) CHECK(worst_without < 0.3);  // the fixture still holds the case
