@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -89,14 +90,14 @@ struct AdaptOptions {
   // skipped, a surface vertex pinned against a ridge. A round runs the
   // cycle's operators (edge splits whatever the point rule) on the balls
   // of the poor tets' vertices and what those operators change, then one
-  // quality pass; at most repair_rounds rounds. A round that leaves the
-  // worst tet where it was can still prepare the next (the fixture of the
-  // repair test on one Speculative thread: 0.255, 0.255, then 0.61), and
-  // a tet at Q 0.001 needed more than two (0.005, then 0.29). Measured on
-  // two-thread adaptations of the parallel tests' case (about 1,500
-  // tets): README, session 15.
+  // quality pass; at most repair_rounds rounds, and none after two in a
+  // row that left the worst tet where it was. One such round can prepare
+  // the next (the repair test's fixture on one Speculative thread: 0.255,
+  // 0.255, then 0.61), and slow climbs need many (a two-thread run: 0.075,
+  // 0.092, 0.181, 0.197 in four). Measured on two-thread adaptations of
+  // the parallel tests' case (about 3,200 tets): README, session 15.
   double repair_below = 0.3;
-  int repair_rounds = 4;
+  int repair_rounds = 8;
   // When set, new and moved vertices take this metric (analytic cases).
   const MetricFunction* metric = nullptr;
   // Called after every cycle and quality pass (progress output).
@@ -150,20 +151,31 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
   return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
 }
 
-// Touches the balls of the vertices of the tets whose mean ratio (cached,
-// as adapt keeps it) is below `below`, so that passes limited to the tets
-// changed since the current epoch work around them. Returns how many tets
-// were below.
+// The tets whose mean ratio (cached, as adapt keeps it) is below `below`.
 template <MetricSpace S, Concurrency C>
-std::size_t touch_around_poor_tets(Mesh& mesh, double below) {
+std::vector<TetId> poor_tets(const Mesh& mesh, double below) {
   constexpr std::size_t kBlock = 256;
   const std::size_t nt = mesh.tet_capacity();
-  const auto poor = C::template collect<TetId>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<TetId>& part) {
+  return C::template collect<TetId>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<TetId>& part) {
     for (auto t = static_cast<TetId>(b * kBlock); t < std::min(nt, (b + 1) * kBlock); ++t)
       if (mesh.tet_alive(t) && cached_mean_ratio<S>(mesh, t) < below) part.push_back(t);
   });
+}
+
+// Touches the tets below `below`, so that a pass limited to the tets
+// changed since the current epoch works at their vertices.
+template <MetricSpace S, Concurrency C>
+void touch_poor_tets(Mesh& mesh, double below) {
+  for (TetId t : poor_tets<S, C>(mesh, below)) mesh.touch_tet(t);
+}
+
+// Touches the balls of the vertices of the tets below `below`, so that
+// passes limited to the tets changed since the current epoch work around
+// them.
+template <MetricSpace S, Concurrency C>
+void touch_around_poor_tets(Mesh& mesh, double below) {
   std::vector<VertexId> vertices;
-  for (TetId t : poor) vertices.insert(vertices.end(), mesh.tet(t).begin(), mesh.tet(t).end());
+  for (TetId t : poor_tets<S, C>(mesh, below)) vertices.insert(vertices.end(), mesh.tet(t).begin(), mesh.tet(t).end());
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
   TetList ball;
@@ -171,7 +183,6 @@ std::size_t touch_around_poor_tets(Mesh& mesh, double below) {
     vertex_ball(mesh, v, ball);
     for (TetId t : ball) mesh.touch_tet(t);
   }
-  return poor.size();
 }
 
 template <MetricSpace S, Precision P, Concurrency C>
@@ -256,18 +267,31 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
     c.smooth = run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
     finish(c, clock);
   }
-  for (int round = 0; round < o.repair_rounds; ++round) {
-    if (report.cycles.empty() || report.cycles.back().min_quality >= o.repair_below) break;
+  int idle_rounds = 0;  // in a row, without a gain in the worst tet
+  for (int round = 0; round < o.repair_rounds && idle_rounds < 2; ++round) {
+    if (report.cycles.empty()) break;
+    const double worst = report.cycles.back().min_quality;
+    if (worst >= o.repair_below) break;
     Stopwatch clock;
     CycleReport c;
     c.cycle = static_cast<int>(report.cycles.size());
     c.quality_phase = c.repair = true;
+    // First the edges at the poor tets' vertices, of any length, where a
+    // collapse lifts the worst tet of its ball (a surface vertex nearly on
+    // a ridge in the metric makes a flat tet of unit edges, which neither
+    // a short-edge collapse nor smoothing in its plane removed).
+    CollapseOptions lift_o = collapse_o;
+    lift_o.min_length = std::numeric_limits<double>::infinity();
+    lift_o.require_gain = true;
+    lift_o.changed_since = mesh.next_epoch();
+    touch_poor_tets<S, C>(mesh, o.repair_below);
+    c.collapse = collapse_edges<S, P, C>(mesh, lift_o);
     const Mesh::Epoch start = mesh.next_epoch();
     touch_around_poor_tets<S, C>(mesh, o.repair_below);
     collapse_o.changed_since = flip_o.changed_since = smooth_o.changed_since = start;
     RefineOptions refine_o = o.refine;
     refine_o.changed_since = start;
-    c.collapse = run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
+    c.collapse += run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
     c.refine = refine_edges<S, P, C>(mesh, refine_o);
     c.reconnect = run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
     c.collapse += run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
@@ -275,6 +299,7 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
     c.reconnect += run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
     c.smooth += run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
     finish(c, clock);
+    idle_rounds = c.min_quality > worst ? 0 : idle_rounds + 1;
   }
   report.seconds = total.seconds();
   return report;

@@ -41,6 +41,10 @@ struct CollapseOptions {
   double quality_floor = 0.1;
   // Largest 1 - cos between a boundary face's normal before and after.
   double max_normal_deviation = 1.0 - std::cos(2.0 * 3.14159265358979323846 / 180.0);
+  // When set, a collapse must raise the worst tet of the ball (both balls
+  // for a merge at the midpoint): the repair rounds collapse edges of any
+  // length at a poor tet, and only to lift it.
+  bool require_gain = false;
   // When set, a vertex merged at an edge's midpoint takes this metric.
   const MetricFunction* metric = nullptr;
   // Only edges with an end whose ball changed since this epoch are tried
@@ -141,20 +145,25 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
   if (!plan_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, a, b)) return FlipResult::rejected;
   // Refused when the worst new tet is below the floor and below the worst
   // old one: when some new tet is below both.
+  // With require_gain, refused unless every new tet beats the worst old.
   double q_old = Mesh::kUnknownQuality;
+  auto worst_old = [&] {
+    if (q_old == Mesh::kUnknownQuality) {
+      q_old = std::numeric_limits<double>::infinity();
+      for (TetId u : s.ball) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, u));
+      if (moved != nullptr)
+        for (TetId u : s.ball_b) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, u));
+    }
+    return q_old;
+  };
   s.new_quality.clear();
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
       const double q = S::mean_ratio(mesh, t, points_of(t));
       if (list == &s.new_tets) s.new_quality.push_back(q);
+      if (o.require_gain && q <= worst_old()) return FlipResult::rejected;
       if (q >= o.quality_floor) continue;
-      if (q_old == Mesh::kUnknownQuality) {
-        q_old = std::numeric_limits<double>::infinity();
-        for (TetId u : s.ball) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, u));
-        if (moved != nullptr)
-          for (TetId u : s.ball_b) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, u));
-      }
-      if (q < q_old) return FlipResult::rejected;
+      if (q < worst_old()) return FlipResult::rejected;
     }
   apply_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, ref, s.created);
   // The new tets' mean ratios, measured above at their final points in

@@ -92,9 +92,9 @@ int run_adapt(const std::vector<std::string>& args) {
       "of tets with a long edge, moved to a boundary face or ridge they encroach)")(
       "cycles", po::value<int>()->default_value(15)->value_name("N"), "most adaptation cycles per adaptation")(
       "quality-passes", po::value<int>()->default_value(4)->value_name("N"), "flip + smooth passes at the end")(
-      "repair-rounds", po::value<int>()->default_value(4)->value_name("N"),
+      "repair-rounds", po::value<int>()->default_value(8)->value_name("N"),
       "after the quality passes, at most N rounds of collapse, split, flips and smoothing around the tets "
-      "still below --repair-below")(
+      "still below --repair-below (none after two in a row that leave the worst tet)")(
       "repair-below", po::value<double>()->default_value(0.3, "0.3")->value_name("Q"),
       "mean ratio below which a tet left by the quality passes gets repair rounds")(
       "max-length", po::value<double>()->value_name("L"), "split edges longer than L (default sqrt 2)")(
