@@ -352,8 +352,13 @@ TEST_SUITE("invariant") {
       require_valid(mesh, 1.0);
       return std::pair{r.cycles.back(), worst_quality<S>(mesh)};
     };
-    const auto [without, worst_without] = polish(0);
-    const auto [with, worst_with] = polish(AdaptOptions{}.repair_rounds);
+    // Plain variables, not structured bindings: clang 14 cannot capture
+    // those in INFO's lambda.
+    const auto first = polish(0);
+    const auto second = polish(AdaptOptions{}.repair_rounds);
+    const CycleReport& without = first.first;
+    const CycleReport& with = second.first;
+    const double worst_without = first.second, worst_with = second.second;
     INFO("without repair: min Q " << worst_without << ", conformity " << without.conformity << "; with: min Q "
                                   << worst_with << ", conformity " << with.conformity);
     if constexpr (std::is_same_v<C, Serial>) CHECK(worst_without < 0.3);  // the fixture still holds the case
