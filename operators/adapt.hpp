@@ -87,10 +87,12 @@ struct AdaptOptions {
   // the "poor" of the flips and the cycles' smoothing) are held by what
   // flips and smoothing cannot change: a short edge whose collapse was
   // refused when the cycles last tried it, a long ridge edge a split
-  // skipped, a surface vertex pinned against a ridge. A round runs the
-  // cycle's operators (edge splits whatever the point rule) on the balls
-  // of the poor tets' vertices and what those operators change, then one
-  // quality pass; at most repair_rounds rounds, and none after two in a
+  // skipped, a surface vertex nearly on a ridge in the metric. A round
+  // first collapses edges of any length at the poor tets' vertices where
+  // that lifts the worst tet of the ball, then runs the cycle's operators
+  // (edge splits whatever the point rule) on the balls of the poor tets'
+  // vertices and what those operators change, then one quality pass; at
+  // most repair_rounds rounds, and none after two in a
   // row that left the worst tet where it was. One such round can prepare
   // the next (the repair test's fixture on one Speculative thread: 0.255,
   // 0.255, then 0.61), and slow climbs need many (a two-thread run: 0.075,
