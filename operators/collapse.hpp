@@ -189,12 +189,7 @@ template <MetricSpace S, Precision P, Concurrency C>
 OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  auto todo = edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first);
-  if (o.changed_since > 0) {
-    // A collapse of ab reads the balls of a and b only.
-    const std::vector<std::uint8_t> changed = changed_vertices<C>(mesh, o.changed_since);
-    std::erase_if(todo, [&](const EdgeCandidate& c) { return !changed[c.a] && !changed[c.b]; });
-  }
+  const auto todo = edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first, o.changed_since);
   struct Scratch {
     CollapseScratch s;
     VertexList cavity;

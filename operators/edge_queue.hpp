@@ -20,6 +20,7 @@
 #pragma once
 
 #include <metrica/operators/edge_buckets.hpp>
+#include <metrica/operators/shell.hpp>
 #include <metrica/metrics/space.hpp>
 #include <metrica/policies/concurrency.hpp>
 
@@ -46,12 +47,19 @@ struct EdgeCandidate {
 enum class EdgeOrder { longest_first, shortest_first };
 
 // Edges longer than `bound` (longest_first) or shorter (shortest_first);
-// the lengths measured on C's threads.
+// the lengths measured on C's threads. With `changed_since` > 0, only the
+// edges with an end whose ball changed since that epoch (an edge
+// operator reads the balls of its ends only), left out before they are
+// measured and sorted.
 template <MetricSpace S, class C = Serial>
-std::vector<EdgeCandidate> edges_beyond(const Mesh& mesh, double bound, EdgeOrder order) {
+std::vector<EdgeCandidate> edges_beyond(const Mesh& mesh, double bound, EdgeOrder order,
+                                        Mesh::Epoch changed_since = 0) {
   const bool longer = order == EdgeOrder::longest_first;
+  const std::vector<std::uint8_t> changed =
+      changed_since > 0 ? changed_vertices<C>(mesh, changed_since) : std::vector<std::uint8_t>{};
   std::vector<EdgeCandidate> out =
       collect_mesh_edges<C, EdgeCandidate>(mesh, [&](VertexId a, VertexId b, std::vector<EdgeCandidate>& part) {
+        if (!changed.empty() && !changed[a] && !changed[b]) return;
         const double l = S::edge_length(mesh, a, b);
         if (longer ? l > bound : l < bound) part.push_back({length_class(l), a, b});
       });

@@ -43,11 +43,7 @@ template <MetricSpace S, Precision P, Concurrency C>
 OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first);
-  if (o.changed_since > 0) {
-    const std::vector<std::uint8_t> changed = changed_vertices<C>(mesh, o.changed_since);
-    std::erase_if(todo, [&](const EdgeCandidate& c) { return !changed[c.a] && !changed[c.b]; });
-  }
+  const auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first, o.changed_since);
   // Vertices stamped with this epoch or later were created by this pass.
   const Mesh::Epoch pass_epoch = mesh.next_epoch();
   struct Scratch {

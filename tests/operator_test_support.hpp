@@ -9,7 +9,9 @@
 
 #include <metrica/box.hpp>
 #include <metrica/mesh_edges.hpp>
+#include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_field.hpp>
+#include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/flip_criterion.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/predicates/precision.hpp>
@@ -28,6 +30,21 @@ namespace metrica::test {
 inline void set_uniform_metric(Mesh& mesh, double h) {
   std::vector<Sym6> f(mesh.vertex_capacity(), isotropic_metric(h));
   assign_metric(mesh, f);
+}
+
+// `metric` evaluated at every vertex.
+inline void set_metric_function(Mesh& mesh, const MetricFunction& metric) {
+  std::vector<Sym6> f(mesh.vertex_capacity());
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) f[v] = metric(mesh.point(v));
+  assign_metric(mesh, f);
+}
+
+// The UGAWG linear metric with sizes x 2.5: about 300 vertices from the
+// 4x4x4 cube (the parallel tests' adaptation, the repair fixture's metric).
+inline Sym6 small_linear(const Point& p) {
+  Sym6 m = evaluate(AnalyticMetric::linear, p);
+  for (double& x : m) x /= 2.5 * 2.5;
+  return m;
 }
 
 inline void require_valid(const Mesh& mesh, double volume) {

@@ -7,7 +7,6 @@
 #include <metrica/io/meshb.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_edges.hpp>
-#include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/operators/adapt_dispatch.hpp>
 #include <metrica/operators/collapse.hpp>
@@ -315,15 +314,6 @@ TEST_SUITE("property") {
   }
 }
 
-namespace {
-// The UGAWG linear metric with sizes x 2.5 (the parallel tests' case).
-Sym6 small_linear(const Point& p) {
-  Sym6 m = evaluate(AnalyticMetric::linear, p);
-  for (double& x : m) x /= 2.5 * 2.5;
-  return m;
-}
-}  // namespace
-
 TEST_SUITE("invariant") {
   // The fixture is what a 2-thread adaptation of the parallel tests' case
   // left (1 in 200 such runs did before the repair rounds): a tet at Q
@@ -341,9 +331,7 @@ TEST_SUITE("invariant") {
     const MetricFunction metric = small_linear;
     auto polish = [&](int rounds) {
       Mesh mesh = build_mesh(data);
-      std::vector<Sym6> f(mesh.vertex_capacity());
-      for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) f[v] = metric(mesh.point(v));
-      assign_metric(mesh, f);
+      set_metric_function(mesh, metric);
       AdaptOptions o;
       o.metric = &metric;
       o.max_cycles = 0;  // the quality phase alone
@@ -374,14 +362,8 @@ TEST_SUITE("regression") {
     const auto data = io::read_meshb(test::ugawg("cube-linear-00.meshb"));
     Mesh mesh = build_mesh(data);
     // Sizes x 2.5: the complexity falls by 2.5^3 (about 300 vertices).
-    const MetricFunction metric = [](const Point& p) {
-      Sym6 m = evaluate(AnalyticMetric::linear, p);
-      for (double& x : m) x /= 2.5 * 2.5;
-      return m;
-    };
-    std::vector<Sym6> f(mesh.vertex_capacity());
-    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) f[v] = metric(mesh.point(v));
-    assign_metric(mesh, f);
+    const MetricFunction metric = small_linear;
+    set_metric_function(mesh, metric);
     AdaptOptions o;
     o.metric = &metric;
     const auto report = adapt(mesh, o, SpaceKind::log_euclidean, PrecisionKind::filtered);

@@ -9,7 +9,6 @@
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_edges.hpp>
 #include <metrica/part_runner.hpp>
-#include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/operators/adapt.hpp>
 #include <metrica/operators/adapt_dispatch.hpp>
 #include <metrica/operators/collapse.hpp>
@@ -31,13 +30,6 @@ using namespace metrica::test;
 
 namespace {
 
-// The linear UGAWG metric with sizes x 2.5 (about 300 vertices).
-Sym6 small_linear(const Point& p) {
-  Sym6 m = evaluate(AnalyticMetric::linear, p);
-  for (double& x : m) x /= 2.5 * 2.5;
-  return m;
-}
-
 struct Adapted {
   Mesh mesh;
   AdaptReport report;
@@ -48,9 +40,7 @@ template <class Run>
 Adapted adapt_linear_by(Run&& run) {
   Adapted a{make_box({.nx = 3, .ny = 3, .nz = 3}), {}};
   const MetricFunction metric = small_linear;
-  std::vector<Sym6> f(a.mesh.vertex_capacity());
-  for (VertexId v = 0; v < a.mesh.vertex_capacity(); ++v) f[v] = metric(a.mesh.point(v));
-  assign_metric(a.mesh, f);
+  set_metric_function(a.mesh, metric);
   AdaptOptions o;
   o.metric = &metric;
   a.report = run(a.mesh, o);
@@ -384,7 +374,7 @@ TEST_SUITE("parallel") {
     }
   }
 
-  TEST_CASE("edges_beyond: every edge past the bound once, longest (shortest) first to a factor 2^(1/8), the same on 2 and 8 threads") {
+  TEST_CASE("edges_beyond: every edge past the bound once, longest (shortest) first to a factor 2^(1/8), the same on 2 and 8 threads, limited to changed balls") {
     Mesh mesh = make_box({.nx = 16, .ny = 16, .nz = 16});
     // Sizes graded along x and random anisotropy, so lengths spread over
     // several classes.
@@ -397,6 +387,10 @@ TEST_SUITE("parallel") {
     }
     assign_metric(mesh, field);
     const double step = std::exp2(1.0 / kLengthClassesPerDoubling);
+    // Some tets written in a later epoch: the lists limited to it.
+    const Mesh::Epoch since = mesh.next_epoch();
+    for (TetId t = 0; t < mesh.tet_capacity(); t += 97) mesh.touch_tet(t);
+    const std::vector<std::uint8_t> changed = changed_vertices(mesh, since);
     for (const EdgeOrder order : {EdgeOrder::longest_first, EdgeOrder::shortest_first}) {
       const bool longer = order == EdgeOrder::longest_first;
       const double bound = 1.0;
@@ -432,6 +426,14 @@ TEST_SUITE("parallel") {
       CHECK(classes.size() >= 4);
       CHECK(edges_beyond<LogEuclidean, SpeculativeThreads<2>>(mesh, bound, order) == list);
       CHECK(edges_beyond<LogEuclidean, SpeculativeThreads<8>>(mesh, bound, order) == list);
+      // With changed_since: the same list, less the edges with no end in a
+      // changed ball, in the same order.
+      auto limited = list;
+      std::erase_if(limited, [&](const EdgeCandidate& c) { return !changed[c.a] && !changed[c.b]; });
+      REQUIRE(limited.size() > 10);
+      REQUIRE(limited.size() < list.size());
+      CHECK(edges_beyond<LogEuclidean, Serial>(mesh, bound, order, since) == limited);
+      CHECK(edges_beyond<LogEuclidean, SpeculativeThreads<2>>(mesh, bound, order, since) == limited);
     }
   }
 
