@@ -27,12 +27,12 @@
 
 #include <metrica/ids.hpp>
 #include <metrica/mesh.hpp>
+#include <metrica/mesh_array.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/tet_topology.hpp>
 
 #include <algorithm>
 #include <cstdint>
-#include <memory>
 #include <span>
 #include <stdexcept>
 #include <type_traits>
@@ -67,10 +67,11 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
   // Per part: counters, then cursors, then marks. Not zeroed here: each
   // part writes its own slice first (the pages are touched by the thread
   // that uses them).
-  std::unique_ptr<std::uint32_t[]> per_part(new std::uint32_t[parts * cap]);
+  MeshArray<std::uint32_t> per_part;
+  per_part.resize(parts * cap);
   auto items_of = [&](std::size_t p) { return part_slice(n, parts, p); };
   C::parallel_for(parts, [&](std::size_t p) {
-    std::uint32_t* count = per_part.get() + p * cap;
+    std::uint32_t* count = per_part.data() + p * cap;
     std::fill(count, count + cap, 0u);
     const auto [first, last] = items_of(p);
     for (std::size_t i = first; i < last; ++i) {
@@ -82,14 +83,15 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
   });
   // Bucket starts: each part sums a slice of vertices, the slices' bases
   // by a short prefix sum, then each slice turns counters into cursors.
-  std::unique_ptr<std::uint32_t[]> start(new std::uint32_t[cap + 1]);
+  MeshArray<std::uint32_t> start;
+  start.resize(cap + 1);
   std::vector<std::uint64_t> base(parts + 1, 0);
   auto vertices_in = [&](std::size_t p) { return part_slice(cap, parts, p); };
   C::parallel_for(parts, [&](std::size_t p) {
     std::uint64_t sum = 0;
     const auto [lo, hi] = vertices_in(p);
     for (std::size_t q = 0; q < parts; ++q) {
-      const std::uint32_t* count = per_part.get() + q * cap;
+      const std::uint32_t* count = per_part.data() + q * cap;
       for (std::size_t a = lo; a < hi; ++a) sum += count[a];
     }
     base[p + 1] = sum;
@@ -111,9 +113,10 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
     }
   });
   start[cap] = static_cast<std::uint32_t>(total);
-  std::unique_ptr<Entry[]> entries(new Entry[total]);
+  MeshArray<Entry> entries;
+  entries.resize(total);
   C::parallel_for(parts, [&](std::size_t p) {
-    std::uint32_t* cursor = per_part.get() + p * cap;
+    std::uint32_t* cursor = per_part.data() + p * cap;
     const auto [first, last] = items_of(p);
     for (std::size_t i = first; i < last; ++i) {
       const TetId t = tet_of(i);
@@ -134,7 +137,7 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
   cut[0] = 0;
   for (std::size_t p = 1; p < parts; ++p)
     cut[p] = static_cast<std::size_t>(
-        std::lower_bound(start.get(), start.get() + cap, static_cast<std::uint32_t>(total * p / parts)) - start.get());
+        std::lower_bound(start.data(), start.data() + cap, static_cast<std::uint32_t>(total * p / parts)) - start.data());
   auto upper_of = [](const Entry& x) {
     if constexpr (std::is_same_v<Entry, UpperTet>)
       return x.upper;
@@ -142,17 +145,18 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
       return x;
   };
   // kept[a]: how many of bucket a's entries are distinct (at its front).
-  std::unique_ptr<std::uint32_t[]> kept(new std::uint32_t[cap]);
+  MeshArray<std::uint32_t> kept;
+  kept.resize(cap);
   std::vector<std::size_t> edges_in(parts, 0);
   C::parallel_for(parts, [&](std::size_t p) {
     // last[b] == a: edge ab already kept (the part's counters, done with).
-    std::uint32_t* last = per_part.get() + p * cap;
+    std::uint32_t* last = per_part.data() + p * cap;
     std::fill(last, last + cap, kNoId);
     std::size_t edges = 0;
     for (std::size_t a = cut[p]; a < cut[p + 1]; ++a) {
-      Entry* const first = entries.get() + start[a];
+      Entry* const first = entries.data() + start[a];
       Entry* end = first;
-      for (Entry* x = first; x != entries.get() + start[a + 1]; ++x) {
+      for (Entry* x = first; x != entries.data() + start[a + 1]; ++x) {
         const VertexId b = upper_of(*x);
         if (last[b] == static_cast<std::uint32_t>(a)) continue;
         last[b] = static_cast<std::uint32_t>(a);
@@ -170,7 +174,7 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
   sizes(std::span<const std::size_t>(edges_in));
   C::parallel_for(parts, [&](std::size_t p) {
     for (std::size_t a = cut[p]; a < cut[p + 1]; ++a)
-      if (kept[a] > 0) visit(p, static_cast<VertexId>(a), std::span<const Entry>(entries.get() + start[a], kept[a]));
+      if (kept[a] > 0) visit(p, static_cast<VertexId>(a), std::span<const Entry>(entries.data() + start[a], kept[a]));
   });
 }
 

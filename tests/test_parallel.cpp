@@ -6,6 +6,7 @@
 // conflict on one thread. Serial runs are the same to the bit.
 #include "operator_test_support.hpp"
 
+#include <metrica/allocator.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_edges.hpp>
 #include <metrica/part_runner.hpp>
@@ -20,6 +21,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <set>
 #include <sstream>
@@ -238,6 +240,35 @@ TEST_SUITE("parallel") {
         right += a[i] == (i < 10001 ? 3 * i : i < 25000 ? 7u : 9u);
       CHECK(right == a.size());
     }
+  }
+
+  TEST_CASE("grow_array across the large-block size: elements kept and filled, large blocks on 2 MiB boundaries") {
+    // The adjacency's element: trivially copyable with a member
+    // initialiser, which MeshArray's resize leaves unwritten
+    // (mesh_array.hpp); grow_array's fill must set every new one.
+    using Adjacency = std::array<FaceRef, 4>;
+    static_assert(sizeof(Adjacency) * 100000 < kLargeBlock && sizeof(Adjacency) * 1000000 > kLargeBlock);
+    for (const PartRunner& run : {PartRunner{}, part_runner<SpeculativeThreads<2>>(1 << 20)}) {
+      MeshArray<Adjacency> a;
+      grow_array(a, 100000, Adjacency{FaceRef(1, 2), FaceRef(), FaceRef(), FaceRef()}, 0, run);
+      grow_array(a, 1000000, Adjacency{}, 1000000, run);  // from a small block to a large one
+      REQUIRE(a.size() == 1000000);
+      CHECK(reinterpret_cast<std::uintptr_t>(a.data()) % (std::size_t{2} << 20) == 0);
+      std::size_t right = 0;
+      for (std::size_t i = 0; i < a.size(); ++i)
+        right += a[i][0] == (i < 100000 ? FaceRef(1, 2) : FaceRef::none()) && a[i][3] == FaceRef::none();
+      CHECK(right == a.size());
+      MeshArray<Adjacency> b;
+      b = a;  // a copy allocates its own large block
+      CHECK(b == a);
+      a.clear();
+      a.shrink_to_fit();  // back to no block: freed through free_large
+      CHECK(a.capacity() == 0);
+    }
+    void* p = allocate_large(kLargeBlock + 1);
+    CHECK(reinterpret_cast<std::uintptr_t>(p) % (std::size_t{2} << 20) == 0);
+    static_cast<char*>(p)[kLargeBlock] = 1;  // the whole block is ours
+    free_large(p);
   }
 
   TEST_CASE("edge buckets on 1, 2, 3 and 8 threads give one thread's buckets, distinct, in order") {

@@ -12,6 +12,7 @@
 // the parallel gather overwrote it.
 #pragma once
 
+#include <metrica/allocator.hpp>
 #include <metrica/part_runner.hpp>
 
 #include <algorithm>
@@ -34,6 +35,19 @@ struct DefaultInitAllocator : std::allocator<T> {
   DefaultInitAllocator() noexcept = default;
   template <class U>
   DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
+
+  // Blocks of kLargeBlock bytes and more on huge pages (allocator.hpp).
+  T* allocate(std::size_t n) {
+    if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
+    if (n * sizeof(T) < kLargeBlock) return std::allocator<T>::allocate(n);
+    return static_cast<T*>(allocate_large(n * sizeof(T)));
+  }
+  void deallocate(T* p, std::size_t n) noexcept {
+    if (n * sizeof(T) < kLargeBlock)
+      std::allocator<T>::deallocate(p, n);
+    else
+      free_large(p);
+  }
 
   // No value: nothing written. Default-initialisation for a class type
   // with a default constructor of its own; the bytes left as they are for
