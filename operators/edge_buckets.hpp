@@ -10,7 +10,7 @@
 //   2. bucket starts by a prefix sum over (vertex, part): bucket a holds
 //      part 0's edges, then part 1's, each in item order, so the buckets
 //      are those of one thread going through the items in order, for any
-//      number of parts;
+//      number of parts (1 and 2: bucket_cursors, shared with compaction);
 //   3. each part scatters its edges to its own cursors;
 //   4. slices of buckets of about equal size are made distinct in place
 //      (the first entry of each higher vertex kept, with per-part marks),
@@ -25,6 +25,7 @@
 // and part.
 #pragma once
 
+#include <metrica/bucket_cursors.hpp>
 #include <metrica/ids.hpp>
 #include <metrica/mesh.hpp>
 #include <metrica/mesh_array.hpp>
@@ -34,7 +35,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
-#include <stdexcept>
 #include <type_traits>
 #include <vector>
 
@@ -64,55 +64,18 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
   static_assert(std::is_same_v<Entry, VertexId> || std::is_same_v<Entry, UpperTet>);
   parts = std::max<std::size_t>(parts, 1);
   const std::size_t cap = capacity;
-  // Per part: counters, then cursors, then marks. Not zeroed here: each
-  // part writes its own slice first (the pages are touched by the thread
-  // that uses them).
-  MeshArray<std::uint32_t> per_part;
-  per_part.resize(parts * cap);
+  // Per part: counters, then cursors (bucket_cursors), then marks.
+  MeshArray<std::uint32_t> per_part, start;
   auto items_of = [&](std::size_t p) { return part_slice(n, parts, p); };
-  C::parallel_for(parts, [&](std::size_t p) {
-    std::uint32_t* count = per_part.data() + p * cap;
-    std::fill(count, count + cap, 0u);
-    const auto [first, last] = items_of(p);
-    for (std::size_t i = first; i < last; ++i) {
-      const TetId t = tet_of(i);
-      if (t == kNoId) continue;
-      const TetVertices& v = vertices_of(t);
-      for (const auto& e : kEdgeVertex) ++count[std::min(v[e[0]], v[e[1]])];
-    }
-  });
-  // Bucket starts: each part sums a slice of vertices, the slices' bases
-  // by a short prefix sum, then each slice turns counters into cursors.
-  MeshArray<std::uint32_t> start;
-  start.resize(cap + 1);
-  std::vector<std::uint64_t> base(parts + 1, 0);
-  auto vertices_in = [&](std::size_t p) { return part_slice(cap, parts, p); };
-  C::parallel_for(parts, [&](std::size_t p) {
-    std::uint64_t sum = 0;
-    const auto [lo, hi] = vertices_in(p);
-    for (std::size_t q = 0; q < parts; ++q) {
-      const std::uint32_t* count = per_part.data() + q * cap;
-      for (std::size_t a = lo; a < hi; ++a) sum += count[a];
-    }
-    base[p + 1] = sum;
-  });
-  for (std::size_t p = 0; p < parts; ++p) base[p + 1] += base[p];
-  const std::uint64_t total = base[parts];
-  if (total > std::uint64_t{0xfffffffe}) throw std::length_error("edge buckets: more than 2^32 edge entries");
-  C::parallel_for(parts, [&](std::size_t p) {
-    auto run = static_cast<std::uint32_t>(base[p]);
-    const auto [lo, hi] = vertices_in(p);
-    for (std::size_t a = lo; a < hi; ++a) {
-      start[a] = run;
-      for (std::size_t q = 0; q < parts; ++q) {
-        std::uint32_t& c = per_part[q * cap + a];
-        const std::uint32_t k = c;
-        c = run;
-        run += k;
-      }
-    }
-  });
-  start[cap] = static_cast<std::uint32_t>(total);
+  const std::size_t total = bucket_cursors(
+      n, cap, parts,
+      [&](std::size_t i, auto&& add) {
+        const TetId t = tet_of(i);
+        if (t == kNoId) return;
+        const TetVertices& v = vertices_of(t);
+        for (const auto& e : kEdgeVertex) add(std::min(v[e[0]], v[e[1]]));
+      },
+      [](std::size_t k, auto&& f) { C::parallel_for(k, f); }, per_part, start);
   MeshArray<Entry> entries;
   entries.resize(total);
   C::parallel_for(parts, [&](std::size_t p) {

@@ -5,6 +5,7 @@
 // touches nearby memory. Morton rather than Hilbert: one line of bit
 // interleaving, and within a few percent of Hilbert's cache behaviour on
 // tet meshes.
+#include <metrica/bucket_cursors.hpp>
 #include <metrica/mesh.hpp>
 #include <metrica/part_runner.hpp>
 
@@ -45,48 +46,21 @@ void permute(MeshArray<T>& a, std::span<const std::uint32_t> old_of_new, const P
 }
 
 // order = the i with key[i] != kNoId, by key (each below `keys`), ties
-// in order of i: a stable counting sort in run.parts parts. Part p counts
-// the keys of its slice of i, the cursors come from a prefix sum over
-// (key, part), so that within a key part 0's items come first, then part
-// 1's: the order of one thread, for any number of parts. It was one
-// thread's two passes over the tets in each compaction (with the gathers'
-// value-initialisation, 20 of the 110 one-thread samples of a 2-thread
-// adaptation at 0.94M tets). parts x keys 4-byte counters.
+// in order of i: a stable counting sort in run.parts parts
+// (bucket_cursors), the order of one thread for any number of parts. It
+// was one thread's two passes over the tets in each compaction (with the
+// gathers' value-initialisation, 20 of the 110 one-thread samples of a
+// 2-thread adaptation at 0.94M tets).
 void tets_by_key(std::span<const VertexId> key, std::size_t keys, const PartRunner& run,
                  MeshArray<std::uint32_t>& order) {
   const std::size_t parts = std::max<std::size_t>(run.parts, 1), n = key.size();
-  MeshArray<std::uint32_t> cursor;  // [p * keys + k]
-  cursor.resize(parts * keys);
-  run(parts, [&](std::size_t p) {
-    std::uint32_t* count = cursor.data() + p * keys;
-    std::fill(count, count + keys, 0u);
-    const auto [first, last] = part_slice(n, parts, p);
-    for (std::size_t i = first; i < last; ++i)
-      if (key[i] != kNoId) ++count[key[i]];
-  });
-  // Each part sums a slice of keys; the slices' bases by a short prefix
-  // sum; then each slice turns its counters into cursors.
-  std::vector<std::size_t> base(parts + 1, 0);
-  run(parts, [&](std::size_t q) {
-    const auto [lo, hi] = part_slice(keys, parts, q);
-    std::size_t sum = 0;
-    for (std::size_t p = 0; p < parts; ++p)
-      for (std::size_t k = lo; k < hi; ++k) sum += cursor[p * keys + k];
-    base[q + 1] = sum;
-  });
-  for (std::size_t q = 0; q < parts; ++q) base[q + 1] += base[q];
-  run(parts, [&](std::size_t q) {
-    const auto [lo, hi] = part_slice(keys, parts, q);
-    auto at = static_cast<std::uint32_t>(base[q]);
-    for (std::size_t k = lo; k < hi; ++k)
-      for (std::size_t p = 0; p < parts; ++p) {
-        std::uint32_t& c = cursor[p * keys + k];
-        const std::uint32_t m = c;
-        c = at;
-        at += m;
-      }
-  });
-  order.resize(base[parts]);
+  MeshArray<std::uint32_t> cursor, start;  // cursor[p * keys + k]
+  order.resize(bucket_cursors(
+      n, keys, parts,
+      [&](std::size_t i, auto&& add) {
+        if (key[i] != kNoId) add(key[i]);
+      },
+      run, cursor, start));
   run(parts, [&](std::size_t p) {
     std::uint32_t* next = cursor.data() + p * keys;
     const auto [first, last] = part_slice(n, parts, p);
