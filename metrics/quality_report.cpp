@@ -3,6 +3,7 @@
 #include <metrica/metrics/complexity.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/metrics/space.hpp>
+#include <metrica/metrics/unit_band.hpp>
 
 #include <fmt/core.h>
 
@@ -86,12 +87,11 @@ QualityReport report_in(const Mesh& mesh) {
   std::size_t unit = 0;
   const auto edges = unique_edges(mesh);
   r.edges = edges.size();
-  const double lo = 1.0 / std::sqrt(2.0), hi = std::sqrt(2.0);
   for (const auto& [a, b] : edges) {
     const double l = S::edge_length(mesh, a, b);
     len.add(l);
     add(r.length_histogram, l);
-    unit += (l >= lo && l <= hi);
+    unit += kUnitBand.contains(l);
   }
   std::size_t below01 = 0, below03 = 0;
   for (TetId t = 0; t < mesh.tet_capacity(); ++t) {

@@ -129,7 +129,7 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
     std::size_t in = 0;
     for (VertexId b : kept) {
       const double l = S::edge_length(mesh, a, b);
-      in += (l >= 1.0 / std::sqrt(2.0) && l <= std::sqrt(2.0));
+      in += kUnitBand.contains(l);
     }
     counts[p].in += in;
     counts[p].all += kept.size();

@@ -20,7 +20,7 @@
 #include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/flips.hpp>
 #include <metrica/operators/metric_source.hpp>
-#include <metrica/operators/operator_stats.hpp>
+#include <metrica/operators/operation.hpp>
 #include <metrica/operators/refine_edges.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
@@ -32,11 +32,11 @@ namespace metrica {
 
 struct CollapseOptions {
   // Edges shorter than this (metric length) are collapsed.
-  double min_length = 1.0 / std::sqrt(2.0);
+  double min_length = kUnitBand.lo;
   // A collapse may not create an edge longer than this. Above the split
   // threshold the two operators undo a little of each other's work, but
-  // more short edges go: on the UGAWG linear case 1.5 gave 92.6% of edges
-  // in range against 91.0% for sqrt 2, and 86.7% for 1.7.
+  // more short edges go (UGAWG linear: 92.6% of edges in range against
+  // 91.0% with sqrt 2).
   double max_new_length = 1.5;
   double quality_floor = 0.1;
   // Largest 1 - cos between a boundary face's normal before and after.
@@ -75,24 +75,31 @@ inline bool collapse_allowed(const Mesh& mesh, VertexId a, VertexId b, bool boun
   return false;
 }
 
-// Decide and apply the collapse of a onto b, with b left where it is or,
-// when `moved` is given (both ends interior), moved to that point with
-// metric `moved_metric` (the merge at the edge's metric midpoint, which
-// makes shorter edges than either end). The caller holds the locks on the
-// vertices of ball(a) and ball(b) (s.ball, s.ball_b, s.neighbours and
-// s.neighbours_b filled).
-template <MetricSpace S, Precision P>
-FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s, const CollapseOptions& o,
-                         const Point* moved = nullptr, const VertexMetric* moved_metric = nullptr) {
-  if (!edge_shell(mesh, a, b, s.ball, s.shell)) return FlipResult::not_applicable;
-  if (!collapse_allowed(mesh, a, b, !s.shell.closed)) return FlipResult::not_applicable;
+struct CollapsePlan {
+  VertexId from = kNoId, to = kNoId;
+  bool moved = false;  // `to` moves to `at` with metric `metric`
+  Point at = Point::Zero();
+  VertexMetric metric;
+};
+
+// Decide the collapse of a onto b, with b left where it is or, when
+// `moved` is given (both ends interior), moved to that point with metric
+// `moved_metric` (the merge at the edge's metric midpoint, which makes
+// shorter edges than either end). s.ball, s.ball_b, s.neighbours and
+// s.neighbours_b hold the two balls (the caller holds their vertices).
+template <MetricSpace S, Precision P, class Criterion = ShapeOnly>
+Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
+                                       const CollapseOptions& o, const Point* moved = nullptr,
+                                       const VertexMetric* moved_metric = nullptr) {
+  if (!edge_shell(mesh, a, b, s.ball, s.shell)) return Refusal::not_applicable;
+  if (!collapse_allowed(mesh, a, b, !s.shell.closed)) return Refusal::not_applicable;
   if (moved != nullptr && (mesh.vertex_class(b) != VertexClass::interior || mesh.is_required(b)))
-    return FlipResult::not_applicable;
+    return Refusal::not_applicable;
   const int ref = mesh.tet_ref(s.ball[0]);
   s.old_tets.clear();
   s.new_tets.clear();
   for (TetId t : s.ball) {
-    if (mesh.tet_ref(t) != ref) return FlipResult::not_applicable;
+    if (mesh.tet_ref(t) != ref) return Refusal::not_applicable;
     TetVertices v = mesh.tet(t);
     s.old_tets.push_back(v);
     if (local_index(v, b) >= 0) continue;
@@ -116,14 +123,14 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
       const TetPoints x = points_of(t);
-      if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0) return FlipResult::rejected;
+      if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0) return Refusal::rejected;
     }
   // New edges: b to a's neighbours; when b moves, all of b's edges too.
   for (const auto* list : {&s.neighbours, &s.neighbours_b}) {
     if (list == &s.neighbours_b && moved == nullptr) break;
     for (VertexId x : *list)
       if (x != a && x != b && ugawg_length(mesh.point(x) - pb, mb, S::vertex_metric(mesh, x)) > o.max_new_length)
-        return FlipResult::rejected;
+        return Refusal::rejected;
   }
   if (mesh.vertex_class(a) != VertexClass::interior) {
     // Boundary faces through a (and not b) keep their plane.
@@ -138,14 +145,14 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
           if (x == a) x = b;
         const Eigen::Vector3d after = face_normal(mesh, fv[0], fv[1], fv[2]);
         if (before.dot(after) <= 0.0 || normal_deviation(before, after) > o.max_normal_deviation)
-          return FlipResult::rejected;
+          return Refusal::rejected;
       }
     }
   }
-  if (!plan_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, a, b)) return FlipResult::rejected;
-  // Refused when the worst new tet is below the floor and below the worst
-  // old one: when some new tet is below both.
-  // With require_gain, refused unless every new tet beats the worst old.
+  if (!plan_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, a, b)) return Refusal::rejected;
+  // The shape floor: refused when some new tet is below both the floor
+  // and the worst old one. With require_gain, refused unless every new
+  // tet beats the worst old.
   double q_old = Mesh::kUnknownQuality;
   auto worst_old = [&] {
     if (q_old == Mesh::kUnknownQuality) {
@@ -156,84 +163,107 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
     }
     return q_old;
   };
+  const ShapeFloor shape(o.quality_floor);
   s.new_quality.clear();
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
       const double q = S::mean_ratio(mesh, t, points_of(t));
       if (list == &s.new_tets) s.new_quality.push_back(q);
-      if (o.require_gain && q <= worst_old()) return FlipResult::rejected;
-      if (q >= o.quality_floor) continue;
-      if (q < worst_old()) return FlipResult::rejected;
+      if (o.require_gain && q <= worst_old()) return Refusal::rejected;
+      if (!shape.admits(q, worst_old)) return Refusal::rejected;
     }
-  apply_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, ref, s.created);
-  // The new tets' mean ratios, measured above at their final points in
-  // their final metric, go to the quality cache (not when b moves: its
-  // metric changes below).
-  if (moved == nullptr)
+  if constexpr (!kIndifferent<Criterion>) {
+    double old_score = min_score_of<Criterion, S>(mesh, view(s.ball));
+    if (moved != nullptr) old_score = std::min(old_score, min_score_of<Criterion, S>(mesh, view(s.ball_b)));
+    const double bar = Criterion::bar(old_score);
+    for (const auto* list : {&s.new_tets, &s.dragged})
+      for (const auto& t : *list)
+        if (Criterion::template tet_score_at<S>(mesh, t, points_of(t)) <= bar) return Refusal::rejected;
+  }
+  CollapsePlan plan{a, b, moved != nullptr, pb, {}};
+  if (moved_metric != nullptr) plan.metric = *moved_metric;
+  return plan;
+}
+
+// Apply a decided collapse (the scratch as decide_collapse left it).
+inline void apply_collapse(Mesh& mesh, const CollapsePlan& plan, CollapseScratch& s) {
+  apply_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, mesh.tet_ref(s.ball[0]), s.created);
+  // The new tets' mean ratios, measured at their final points in their
+  // final metric, go to the quality cache (not when b moves: its metric
+  // changes below).
+  if (!plan.moved)
     for (std::size_t i = 0; i < s.created.size(); ++i) mesh.cache_quality(s.created[i], s.new_quality[i]);
-  mesh.merge_edge_tags(a, b, view(s.neighbours));
-  mesh.remove_vertex(a);
-  if (moved != nullptr) {
-    mesh.point(b) = pb;
-    mesh.set_metric(b, moved_metric->m, moved_metric->log_m);
+  mesh.merge_edge_tags(plan.from, plan.to, view(s.neighbours));
+  mesh.remove_vertex(plan.from);
+  if (plan.moved) {
+    mesh.point(plan.to) = plan.at;
+    mesh.set_metric(plan.to, plan.metric.m, plan.metric.log_m);
     for (TetId t : s.ball_b)
       if (mesh.tet_alive(t)) mesh.touch_tet(t);  // dragged along
   }
+}
+
+// Decide and apply on one edge (the balls in s, their vertices held).
+template <MetricSpace S, Precision P, class Criterion = ShapeOnly>
+FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s, const CollapseOptions& o,
+                         const Point* moved = nullptr, const VertexMetric* moved_metric = nullptr) {
+  const auto d = decide_collapse<S, P, Criterion>(mesh, a, b, s, o, moved, moved_metric);
+  if (!d) return flip_result(d.why());
+  apply_collapse(mesh, d.plan(), s);
   return FlipResult::applied;
 }
 
-// The collapse pass: edges shorter than min_length, shortest first; each
-// tries to remove its end of lower class (interior before surface before
-// ridge), then the other.
-template <MetricSpace S, Precision P, Concurrency C>
-OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
-  Stopwatch clock;
-  OperatorStats stats;
-  const auto todo = edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first, o.changed_since);
-  struct Scratch {
-    CollapseScratch s;
-    VertexList cavity;
-  };
-  std::vector<PerThread<Scratch>> threads(static_cast<std::size_t>(C::threads()));
-  auto work = [&](const EdgeCandidate& c, int thread, typename C::Locks& locks) {
-    auto& [x, st] = threads[static_cast<std::size_t>(thread)];
-    CollapseScratch& s = x.s;
-    VertexList& cavity = x.cavity;
-    // The two ends first (their balls may then be read), then both balls:
-    // the endpoint collapses change ball(from), the merge at the midpoint
-    // moves b too.
-    if (!locks.acquire({c.a, c.b})) return Attempt::conflict;
-    if (!mesh.vertex_alive(c.a) || !mesh.vertex_alive(c.b)) return Attempt::done;
+// The collapse of a short edge as an operation: it tries to remove the
+// end of lower class (interior before surface before ridge), then the
+// other, then (two interior ends) to merge them at the edge's metric
+// midpoint.
+template <MetricSpace S, Precision P, class Criterion = ShapeOnly>
+struct Collapse {
+  using Item = EdgeCandidate;
+  using Scratch = CollapseScratch;
+  using Plan = CollapsePlan;
+  static constexpr std::string_view name = "collapse";
+  CollapseOptions options;
+
+  // A collapse frees tets (net); a thread reuses its own at once.
+  PassRoom room() const { return {.vertices_per_item = 0, .tets_per_item = 0}; }
+  Found seed(const Mesh&, const Item& c, Scratch&, VertexList& hold) const {
+    hold.push_back(c.a);
+    hold.push_back(c.b);
+    return Found::cavity;
+  }
+  // Both balls: the endpoint collapses change ball(from), the merge at the
+  // midpoint moves b too. The cavity is the union of the two neighbour
+  // lists (each holds the other end).
+  Found find(const Mesh& mesh, const Item& c, Scratch& s, VertexList& hold) const {
     vertex_ball(mesh, c.a, s.ball);
     vertex_neighbours(mesh, s.ball, c.a, s.neighbours);
-    if (std::find(s.neighbours.begin(), s.neighbours.end(), c.b) == s.neighbours.end()) return Attempt::done;  // edge gone
+    if (std::find(s.neighbours.begin(), s.neighbours.end(), c.b) == s.neighbours.end()) return Found::gone;
     vertex_ball(mesh, c.b, s.ball_b);
     vertex_neighbours(mesh, s.ball_b, c.b, s.neighbours_b);
-    // The cavity: both balls' vertices, the union of the two neighbour
-    // lists (each holds the other end).
-    cavity = s.neighbours;
-    append_new(s.neighbours_b, cavity);
-    if (!locks.acquire(view(cavity))) return Attempt::conflict;
-    ++st.tried;
+    hold = s.neighbours;
+    append_new(s.neighbours_b, hold);
+    return Found::cavity;
+  }
+  Decision<Plan> decide(const Mesh& mesh, const Item& c, Scratch& s) const {
     VertexId from = c.a, to = c.b;
     if (mesh.vertex_class(to) < mesh.vertex_class(from)) std::swap(from, to);
-    FlipResult r = FlipResult::not_applicable;
-    bool rejected = false;
-    // The balls and neighbours found for locking are those of the first
-    // attempt (the attempts that fail write nothing, so they stay valid
-    // for the others).
+    // The balls found for locking serve every attempt (the attempts that
+    // fail write nothing); s.ball is always the ball of `from`.
     if (from != c.a) {
       std::swap(s.ball, s.ball_b);
       std::swap(s.neighbours, s.neighbours_b);
     }
-    for (int attempt = 0; attempt < 3 && r != FlipResult::applied; ++attempt) {
+    bool rejected = false;
+    for (int attempt = 0; attempt < 3; ++attempt) {
       if (attempt == 1) {
         std::swap(from, to);
         std::swap(s.ball, s.ball_b);
         std::swap(s.neighbours, s.neighbours_b);
       }
+      Decision<Plan> d = Refusal::not_applicable;
       if (attempt < 2) {
-        r = collapse_edge<S, P>(mesh, from, to, s, o);
+        d = decide_collapse<S, P, Criterion>(mesh, from, to, s, options);
       } else {
         if (mesh.vertex_class(from) != VertexClass::interior || mesh.vertex_class(to) != VertexClass::interior) break;
         const auto& ma = S::vertex_metric(mesh, from);
@@ -243,18 +273,32 @@ OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
         const Point p = mesh.point(from) + t * e;
         const std::array<VertexId, 2> ends{from, to};
         const std::array<double, 2> w{1.0 - t, t};
-        const VertexMetric m = new_vertex_metric<S>(mesh, o.metric, ends, w, p);
-        r = collapse_edge<S, P>(mesh, from, to, s, o, &p, &m);
+        const VertexMetric m = new_vertex_metric<S>(mesh, options.metric, ends, w, p);
+        d = decide_collapse<S, P, Criterion>(mesh, from, to, s, options, &p, &m);
       }
-      rejected = rejected || r == FlipResult::rejected;
+      if (d) return d;
+      rejected = rejected || d.why() == Refusal::rejected;
     }
-    if (r == FlipResult::applied) ++st.applied;
-    else if (rejected) ++st.rejected;
-    return Attempt::done;
-  };
-  // A collapse frees tets (net); a thread reuses its own at once.
-  stats.add(C::for_each(mesh, std::span<const EdgeCandidate>(todo), PassRoom{.vertices_per_item = 0, .tets_per_item = 0}, work));
-  add_thread_counts(stats, threads);
+    return rejected ? Refusal::rejected : Refusal::not_applicable;
+  }
+  void apply(Mesh& mesh, const Item&, const Plan& plan, Scratch& s) const { apply_collapse(mesh, plan, s); }
+  void preview(const Mesh& mesh, const Item&, const Plan& plan, const Scratch& s, PlannedTets& out) const {
+    out.clear();
+    for (const auto* list : {&s.new_tets, &s.dragged})
+      for (const auto& t : *list) {
+        TetPoints x = detail::tet_points(mesh, t);
+        x[local_index(t, plan.to)] = plan.at;
+        out.push_back({t, x});
+      }
+  }
+};
+
+// The collapse pass: edges shorter than min_length, shortest first.
+template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly>
+OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
+  Stopwatch clock;
+  const auto todo = edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first, o.changed_since);
+  OperatorStats stats = run_pass<C>(mesh, Collapse<S, P, Criterion>{o}, todo);
   stats.seconds = clock.seconds();
   return stats;
 }

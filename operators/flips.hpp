@@ -15,15 +15,17 @@
 //        polygon v0..vn). The boundary faces must stay in their plane
 //        (normal deviation below a tolerance) so the volume is conserved.
 //
-// Each function is find (read connectivity), decide (orientation with the
-// Precision, then the Criterion) and, when it says yes, apply. Locks are
-// taken by the caller (the reconnect pass) over the cavity's vertices.
+// Each flip is an operation (operation.hpp): find (read connectivity),
+// decide (orientation with the Precision, the Criterion, the shape floor)
+// and, when it says yes, apply. The pass runner holds the locks.
 #pragma once
 
 #include <metrica/geometry.hpp>
 #include <metrica/operators/cavity.hpp>
-#include <metrica/operators/flip_criterion.hpp>
+#include <metrica/operators/criterion.hpp>
+#include <metrica/operators/operation.hpp>
 #include <metrica/operators/shell.hpp>
+#include <metrica/operators/work_list.hpp>
 #include <metrica/predicates/precision.hpp>
 
 #include <array>
@@ -40,40 +42,18 @@ struct FlipOptions {
   // Edge removals not tried: an edge of metric length below
   // short_edge_ring4 with a ring of 4 vertices, below short_edge_ring5
   // with 5 or more (0: every edge is tried). The new tets are the ring's
-  // triangles joined to a and b, flat when ab is short against its ring.
-  // On a 224k-tet linear adaptation under MinQuality (tries / applied):
-  // ring 4 and L < 0.8, 127k / 1.1k; ring >= 5 and L < 1, 880k / 3.2k;
-  // the other tries, 1.4M / 232k.
+  // triangles joined to a and b, flat when ab is short against its ring
+  // (few such removals are applied: docs/benchmarks.md).
   double short_edge_ring4 = 0.0;
   double short_edge_ring5 = 0.0;
   // Boundary faces of a 2-2 flip: largest angle between old and new
   // normals, as 1 - cos (flat surfaces: round-off only).
   double max_normal_deviation = 1e-9;
-  // Criteria other than MinQuality (metric Delaunay, edge weight) do not
-  // see shape: a flip under them may not make a tet below this mean ratio
-  // (unless the old tets had a worse one). Without it, Delaunay flips on a
-  // flat boundary made tets of Q ~ 1e-11 whose four vertices lie in the
-  // boundary plane up to round-off: positive for the exact predicate, a
-  // fold of the surface for everything else.
+  // The shape floor (criterion.hpp) of every criterion that does not
+  // measure shape: no new tet below this mean ratio, unless the old tets
+  // had a worse one.
   double min_quality = 1e-3;
 };
-
-// Does a flip under `Criterion` keep every new tet above the floor (or the
-// worst old tet)? Always true for MinQuality, which compares exactly that.
-template <MetricSpace S, class Criterion>
-bool keeps_shape(const Mesh& mesh, std::span<const TetId> old_tets, std::span<const TetVertices> new_tets,
-                 const FlipOptions& o) {
-  if constexpr (std::is_same_v<Criterion, MinQuality>) {
-    return true;
-  } else {
-    double worst_old = std::numeric_limits<double>::infinity();
-    for (TetId t : old_tets) worst_old = std::min(worst_old, cached_mean_ratio<S>(mesh, t));
-    const double floor = std::min(o.min_quality, worst_old);
-    for (const auto& t : new_tets)
-      if (S::mean_ratio(mesh, t) < floor) return false;
-    return true;
-  }
-}
 
 // The ring of edge ab from its shell: tet k of the shell is (a, b, v_k,
 // v_{k+1}); closed shells have as many ring vertices as tets, open ones
@@ -177,24 +157,31 @@ struct FlipScratch {
 };
 
 // Edge removal of ab (3-2, 4-4, n -> 2n-4) or, on the boundary, the 2-2
-// flip. The shell is in s.shell (edge_shell), the vertices locked.
+// flip: the best fan of the ring is in s.best, its cavity plan in s.plan.
+struct EdgeRemovalPlan {
+  VertexId a = kNoId, b = kNoId;
+  int ref = 0;
+};
+
+// Decide the removal of ab; its shell is in s.shell (edge_shell).
 template <MetricSpace S, Precision P, class Criterion>
-FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const FlipOptions& o) {
+Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, VertexId b, FlipScratch& s,
+                                              const FlipOptions& o) {
   const Shell& shell = s.shell;
   const std::size_t n = shell.tets.size();
   const int ref = mesh.tet_ref(shell.tets[0]);
   for (TetId t : shell.tets)
-    if (mesh.tet_ref(t) != ref) return FlipResult::not_applicable;
+    if (mesh.tet_ref(t) != ref) return Refusal::not_applicable;
   SurfaceId surface = 0;
   const std::size_t ring_size = shell.closed ? n : n + 1;
   if (ring_size >= 4) {
     const double shortest = ring_size == 4 ? o.short_edge_ring4 : o.short_edge_ring5;
-    if (shortest > 0.0 && S::edge_length(mesh, a, b) < shortest) return FlipResult::not_applicable;
+    if (shortest > 0.0 && S::edge_length(mesh, a, b) < shortest) return Refusal::not_applicable;
   }
   if (shell.closed) {
-    if (n < 3 || static_cast<int>(n) > o.max_shell) return FlipResult::not_applicable;
+    if (n < 3 || static_cast<int>(n) > o.max_shell) return Refusal::not_applicable;
   } else {
-    if (n < 2 || static_cast<int>(n) + 1 > o.max_shell || mesh.is_ridge(a, b)) return FlipResult::not_applicable;
+    if (n < 2 || static_cast<int>(n) + 1 > o.max_shell || mesh.is_ridge(a, b)) return Refusal::not_applicable;
     // The two boundary faces through ab, on one surface.
     SurfaceId ids[2] = {0, 0};
     int k = 0;
@@ -205,7 +192,7 @@ FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const
         if (k < 2) ids[k] = mesh.surface_id(t, f);
         ++k;
       }
-    if (k != 2 || ids[0] != ids[1] || ids[0] <= 0) return FlipResult::not_applicable;
+    if (k != 2 || ids[0] != ids[1] || ids[0] <= 0) return Refusal::not_applicable;
     surface = ids[0];
   }
   const int sign = edge_ring(mesh, a, b, shell, s.ring);
@@ -283,33 +270,43 @@ FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const
       const NewTets& reference = found ? s.best : s.old_tets;
       if (!Criterion::template prefers<S, P>(mesh, view(reference), view(s.candidate))) continue;
     }
-    if (!keeps_shape<S, Criterion>(mesh, view(shell.tets), view(s.candidate), o)) continue;
+    if (!keeps_shape<S, Criterion>(mesh, view(shell.tets), view(s.candidate), o.min_quality)) continue;
     s.best = s.candidate;
     s.best_scores.clear();
     if (memo)
       for (std::size_t c = 0; c < s.candidate.size(); ++c) s.best_scores.push_back(s.memo_score[slot(c)]);
     found = true;
   }
-  if (!found) return FlipResult::rejected;
+  if (!found) return Refusal::rejected;
   if (!shell.closed) {
     // The new boundary edge must not exist already (it can only on a
     // surface folded by round-off, but then the flip would double a face).
     vertex_ball(mesh, s.ring.front(), s.ball);
     for (TetId t : s.ball)
-      if (local_index(mesh.tet(t), s.ring.back()) >= 0) return FlipResult::rejected;
+      if (local_index(mesh.tet(t), s.ring.back()) >= 0) return Refusal::rejected;
   }
-  if (!plan_cavity(mesh, view(shell.tets), view(s.best), s.plan, kNoId, kNoId, surface)) return FlipResult::rejected;
-  apply_cavity(mesh, view(shell.tets), view(s.best), s.plan, ref, s.created);
+  if (!plan_cavity(mesh, view(shell.tets), view(s.best), s.plan, kNoId, kNoId, surface)) return Refusal::rejected;
+  return EdgeRemovalPlan{a, b, ref};
+}
+
+template <class Criterion>
+void apply_edge_removal(Mesh& mesh, const EdgeRemovalPlan& plan, FlipScratch& s) {
+  apply_cavity(mesh, view(s.shell.tets), view(s.best), s.plan, plan.ref, s.created);
   cache_new_qualities<Criterion>(mesh, view(s.created), view(s.best_scores));
-  return FlipResult::applied;
 }
 
 // The 2-3 flip of the inner face `face` of tet t: the two tets sharing it
-// become three around the edge joining their apexes.
+// become three around the edge joining their apexes (s.candidate, with
+// their scores in s.best_scores and the cavity plan in s.plan).
+struct Flip23Plan {
+  TetId t = kNoId, other = kNoId;
+  int face = -1;
+};
+
 template <MetricSpace S, Precision P, class Criterion>
-FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptions& o = {}) {
+Decision<Flip23Plan> decide_flip23(const Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptions& o) {
   const FaceRef nb = mesh.neighbour(t, face);
-  if (!nb.valid() || mesh.tet_ref(nb.tet()) != mesh.tet_ref(t)) return FlipResult::not_applicable;
+  if (!nb.valid() || mesh.tet_ref(nb.tet()) != mesh.tet_ref(t)) return Refusal::not_applicable;
   const TetVertices tv = mesh.tet(t);
   const VertexId a = tv[face];
   const VertexId b = mesh.tet(nb.tet())[nb.face()];
@@ -321,26 +318,159 @@ FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptio
     const VertexId p = f[i], q = f[(i + 1) % 3];
     s.candidate.push_back({p, q, a, b});
   }
-  if (!all_positive<P>(mesh, view(s.candidate))) return FlipResult::rejected;
+  if (!all_positive<P>(mesh, view(s.candidate))) return Refusal::rejected;
   const std::array<TetId, 2> old{t, nb.tet()};
-  std::array<double, 3> scores{};
+  s.best_scores.clear();
   if constexpr (ScoredCriterion<Criterion>) {
     const double bar = Criterion::bar(min_score_of<Criterion, S>(mesh, old));
     for (std::size_t c = 0; c < 3; ++c) {
-      scores[c] = Criterion::template tet_score<S>(mesh, s.candidate[c]);
-      if (scores[c] <= bar) return FlipResult::rejected;
+      s.best_scores.push_back(Criterion::template tet_score<S>(mesh, s.candidate[c]));
+      if (s.best_scores.back() <= bar) return Refusal::rejected;
     }
   } else {
     s.old_tets.clear();
     s.old_tets.push_back(mesh.tet(t));
     s.old_tets.push_back(mesh.tet(nb.tet()));
-    if (!Criterion::template prefers<S, P>(mesh, view(s.old_tets), view(s.candidate))) return FlipResult::rejected;
-    if (!keeps_shape<S, Criterion>(mesh, old, view(s.candidate), o)) return FlipResult::rejected;
+    if (!Criterion::template prefers<S, P>(mesh, view(s.old_tets), view(s.candidate))) return Refusal::rejected;
   }
-  if (!plan_cavity(mesh, old, view(s.candidate), s.plan)) return FlipResult::rejected;
-  apply_cavity(mesh, old, view(s.candidate), s.plan, mesh.tet_ref(t), s.created);
-  cache_new_qualities<Criterion>(mesh, view(s.created), std::span<const double>(scores));
+  if (!keeps_shape<S, Criterion>(mesh, old, view(s.candidate), o.min_quality)) return Refusal::rejected;
+  if (!plan_cavity(mesh, old, view(s.candidate), s.plan)) return Refusal::rejected;
+  return Flip23Plan{t, nb.tet(), face};
+}
+
+template <class Criterion>
+void apply_flip23(Mesh& mesh, const Flip23Plan& plan, FlipScratch& s) {
+  const std::array<TetId, 2> old{plan.t, plan.other};
+  apply_cavity(mesh, old, view(s.candidate), s.plan, mesh.tet_ref(plan.t), s.created);
+  cache_new_qualities<Criterion>(mesh, view(s.created), view(s.best_scores));
+}
+
+inline void preview_tets(const Mesh& mesh, std::span<const TetVertices> tets, PlannedTets& out) {
+  out.clear();
+  for (const auto& t : tets) out.push_back({t, detail::tet_points(mesh, t)});
+}
+
+inline FlipResult flip_result(Refusal why) {
+  return why == Refusal::not_applicable ? FlipResult::not_applicable : FlipResult::rejected;
+}
+
+// Decide and, when it says yes, apply, on one edge (shell in s.shell, the
+// vertices held): the removal outside a pass.
+template <MetricSpace S, Precision P, class Criterion>
+FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const FlipOptions& o) {
+  const auto d = decide_edge_removal<S, P, Criterion>(mesh, a, b, s, o);
+  if (!d) return flip_result(d.why());
+  apply_edge_removal<Criterion>(mesh, d.plan(), s);
   return FlipResult::applied;
 }
+
+template <MetricSpace S, Precision P, class Criterion>
+FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptions& o = {}) {
+  const auto d = decide_flip23<S, P, Criterion>(mesh, t, face, s, o);
+  if (!d) return flip_result(d.why());
+  apply_flip23<Criterion>(mesh, d.plan(), s);
+  return FlipResult::applied;
+}
+
+// The edge removal as an operation: items are edges with a tet that held
+// them when the work list was made (the shell walk starts there when the
+// tet still holds the edge, else from a's ball).
+template <MetricSpace S, Precision P, class Criterion>
+struct EdgeRemoval {
+  using Item = EdgeSeed;
+  using Scratch = FlipScratch;
+  using Plan = EdgeRemovalPlan;
+  static constexpr std::string_view name = "edge-removal";
+  FlipOptions options;
+
+  // An edge removal of n tets makes 2n - 4, but few tries are applied
+  // (1-5%): room for a net 0.05 tets per item, more between rounds.
+  PassRoom room() const { return {.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 0.05}; }
+  Found seed(const Mesh&, const Item& e, Scratch&, VertexList& hold) const {
+    const auto [a, b] = edge_from_key(e.key);
+    hold.push_back(a);
+    hold.push_back(b);
+    return Found::cavity;
+  }
+  Found find(const Mesh& mesh, const Item& e, Scratch& s, VertexList& hold) const {
+    const auto [a, b] = edge_from_key(e.key);
+    // Holding a, a tet that shows a and b holds them for good (a writer
+    // would hold a), so its peeked vertices are its vertices.
+    const TetVertices held = mesh.peek_tet(e.tet);
+    if (local_index(held, a) >= 0 && local_index(held, b) >= 0) {
+      edge_shell_from(mesh, a, b, e.tet, s.shell);
+    } else {
+      vertex_ball(mesh, a, s.ball);
+      if (!edge_shell(mesh, a, b, s.ball, s.shell)) return Found::gone;
+    }
+    hold.push_back(a);
+    hold.push_back(b);
+    append_vertices(mesh, s.shell.tets, hold);
+    return Found::cavity;
+  }
+  Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {
+    const auto [a, b] = edge_from_key(e.key);
+    return decide_edge_removal<S, P, Criterion>(mesh, a, b, s, options);
+  }
+  void apply(Mesh& mesh, const Item&, const Plan& plan, Scratch& s) const {
+    apply_edge_removal<Criterion>(mesh, plan, s);
+  }
+  void preview(const Mesh& mesh, const Item&, const Plan&, const Scratch& s, PlannedTets& out) const {
+    preview_tets(mesh, view(s.best), out);
+  }
+};
+
+struct FaceFlipScratch : FlipScratch {
+  TetVertices seen{};  // the tet as the seed step read it
+};
+
+// The 2-3 flip as an operation: an item is a tet, whose faces are tried
+// in order (those whose tets are both at or above face_flip_below are
+// skipped) until one flips.
+template <MetricSpace S, Precision P, class Criterion>
+struct FaceFlip {
+  using Item = TetId;
+  using Scratch = FaceFlipScratch;
+  using Plan = Flip23Plan;
+  static constexpr std::string_view name = "flip23";
+  FlipOptions options;
+  double face_flip_below = 1.0;
+
+  PassRoom room() const { return {.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 0.05}; }
+  Found seed(const Mesh& mesh, TetId t, Scratch& s, VertexList& hold) const {
+    s.seen = mesh.peek_tet(t);
+    for (VertexId v : s.seen)
+      if (v == kNoId) return Found::gone;
+    hold.insert(hold.end(), s.seen.begin(), s.seen.end());
+    return Found::cavity;
+  }
+  Found find(const Mesh& mesh, TetId t, Scratch& s, VertexList& hold) const {
+    if (mesh.tet(t) != s.seen) return Found::gone;  // changed since the list was made
+    for (int f = 0; f < 4; ++f) {
+      const FaceRef nb = mesh.neighbour(t, f);
+      if (nb.valid()) hold.push_back(mesh.tet(nb.tet())[nb.face()]);
+    }
+    return Found::cavity;
+  }
+  Decision<Plan> decide(const Mesh& mesh, TetId t, Scratch& s) const {
+    const bool t_below = face_flip_below >= 1.0 || cached_mean_ratio<S>(mesh, t) < face_flip_below;
+    int tries = 0;
+    bool rejected = false;
+    for (int f = 0; f < 4; ++f) {
+      const FaceRef nb = mesh.neighbour(t, f);
+      if (!nb.valid()) continue;
+      if (!t_below && cached_mean_ratio<S>(mesh, nb.tet()) >= face_flip_below) continue;
+      ++tries;
+      const auto d = decide_flip23<S, P, Criterion>(mesh, t, f, s, options);
+      if (d) return {d.plan(), tries};
+      rejected = rejected || d.why() == Refusal::rejected;
+    }
+    return {rejected ? Refusal::rejected : Refusal::not_applicable, tries};
+  }
+  void apply(Mesh& mesh, TetId, const Plan& plan, Scratch& s) const { apply_flip23<Criterion>(mesh, plan, s); }
+  void preview(const Mesh& mesh, TetId, const Plan&, const Scratch& s, PlannedTets& out) const {
+    preview_tets(mesh, view(s.candidate), out);
+  }
+};
 
 }  // namespace metrica

@@ -7,7 +7,7 @@
 #pragma once
 
 #include <metrica/operators/flips.hpp>
-#include <metrica/operators/operator_stats.hpp>
+#include <metrica/operators/operation.hpp>
 #include <metrica/operators/work_list.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
@@ -42,65 +42,10 @@ template <MetricSpace S, Precision P, Concurrency C, class Criterion>
 OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
   Stopwatch clock;
   OperatorStats stats;
+  const EdgeRemoval<S, P, Criterion> removal{o.flips};
+  const FaceFlip<S, P, Criterion> face_flip{o.flips, o.face_flip_below};
   std::vector<TetId> seeds;
-  // Each edge with a tet that held it when the work list was made (the
-  // shell walk starts there when the tet still holds it, else from a's
-  // ball).
   MeshArray<EdgeSeed> edges;
-  struct Scratch {
-    FlipScratch s;
-    VertexList cavity;
-  };
-  std::vector<PerThread<Scratch>> threads(static_cast<std::size_t>(C::threads()));
-  auto remove = [&](const EdgeSeed& e, int thread, typename C::Locks& locks) {
-    auto& [x, st] = threads[static_cast<std::size_t>(thread)];
-    FlipScratch& s = x.s;
-    const auto [a, b] = edge_from_key(e.key);
-    if (!locks.acquire({a, b})) return Attempt::conflict;
-    if (!mesh.vertex_alive(a) || !mesh.vertex_alive(b)) return Attempt::done;
-    // Holding a, a tet that shows a and b holds them for good (a writer
-    // would hold a), so its peeked vertices are its vertices.
-    const TetVertices held = mesh.peek_tet(e.tet);
-    if (local_index(held, a) >= 0 && local_index(held, b) >= 0) {
-      edge_shell_from(mesh, a, b, e.tet, s.shell);
-    } else {
-      vertex_ball(mesh, a, s.ball);
-      if (!edge_shell(mesh, a, b, s.ball, s.shell)) return Attempt::done;  // gone since
-    }
-    x.cavity.clear();
-    x.cavity.push_back(a);
-    x.cavity.push_back(b);
-    append_vertices(mesh, s.shell.tets, x.cavity);
-    if (!locks.acquire(view(x.cavity))) return Attempt::conflict;
-    ++st.tried;
-    const FlipResult r = remove_edge<S, P, Criterion>(mesh, a, b, s, o.flips);
-    if (r == FlipResult::applied) ++st.applied;
-    else if (r == FlipResult::rejected) ++st.rejected;
-    return Attempt::done;
-  };
-  // 2-3 flips across the faces of a seed still there.
-  auto flip_faces = [&](TetId t, int thread, typename C::Locks& locks) {
-    auto& [x, st] = threads[static_cast<std::size_t>(thread)];
-    const TetVertices tv = mesh.peek_tet(t);
-    if (tv[0] == kNoId || tv[1] == kNoId || tv[2] == kNoId || tv[3] == kNoId) return Attempt::done;
-    if (!locks.acquire(std::span<const VertexId>(tv))) return Attempt::conflict;
-    if (mesh.tet(t) != tv) return Attempt::done;  // changed since the list was made
-    const bool t_below = o.face_flip_below >= 1.0 || cached_mean_ratio<S>(mesh, t) < o.face_flip_below;
-    for (int f = 0; f < 4; ++f) {
-      const FaceRef nb = mesh.neighbour(t, f);
-      if (!nb.valid()) continue;
-      if (!locks.acquire({mesh.tet(nb.tet())[nb.face()]})) return Attempt::conflict;
-      if (!t_below && cached_mean_ratio<S>(mesh, nb.tet()) >= o.face_flip_below) continue;
-      ++st.tried;
-      const FlipResult r = flip23<S, P, Criterion>(mesh, t, f, x.s, o.flips);
-      if (r == FlipResult::applied) {
-        ++st.applied;
-        break;  // t is gone
-      }
-      if (r == FlipResult::rejected) ++st.rejected;
-    }
-    return Attempt::done;
-  };
   Mesh::Epoch since = o.changed_since;
   for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
     const Mesh::Epoch sweep_epoch = mesh.next_epoch();
@@ -112,18 +57,11 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
     });
     // Each edge once per sweep, in vertex order (space order after compact).
     unique_edge_seeds<C>(std::span<const TetId>(seeds), [&](TetId t) -> const TetVertices& { return mesh.tet(t); },
-                      mesh.vertex_capacity(), edges);
+                         mesh.vertex_capacity(), edges);
     since = sweep_epoch;
     const std::size_t applied_before = stats.applied;
-    for (auto& t : threads) t.stats = {};
-    // An edge removal of n tets makes 2n - 4 (a 2-3 flip one more), but
-    // few tries are applied (1-5%): room for a net 0.05 tets per item, more
-    // between rounds when needed (1.0 per item held 400 MB of dead ids at
-    // 4.4M tets).
-    const PassRoom room{.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 0.05};
-    stats.add(C::for_each(mesh, std::span<const EdgeSeed>(edges), room, remove));
-    if (o.face_flips) stats.add(C::for_each(mesh, std::span<const TetId>(seeds), room, flip_faces));
-    add_thread_counts(stats, threads);
+    stats += run_pass<C>(mesh, removal, std::span<const EdgeSeed>(edges.data(), edges.size()));
+    if (o.face_flips) stats += run_pass<C>(mesh, face_flip, seeds);
     const std::size_t applied = stats.applied - applied_before;
     if (static_cast<double>(applied) <= o.min_change * static_cast<double>(mesh.num_tets())) break;
   }

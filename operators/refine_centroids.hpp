@@ -25,7 +25,7 @@
 #pragma once
 
 #include <metrica/operators/metric_source.hpp>
-#include <metrica/operators/operator_stats.hpp>
+#include <metrica/operators/operation.hpp>
 #include <metrica/operators/refine_edges.hpp>
 #include <metrica/operators/split_cell.hpp>
 #include <metrica/operators/split_edge.hpp>
@@ -142,64 +142,81 @@ std::vector<PointCandidate> centroid_candidates(const Mesh& mesh, const RefineOp
   return out;
 }
 
-template <MetricSpace S, Precision P, Concurrency C>
+struct CentroidScratch {
+  CellSplitScratch cell;
+  Shell shell;
+  TetVertices seen{};  // the candidate's tet as the seed step read it
+};
+
+struct CentroidPlan {
+  VertexMetric metric;
+};
+
+// The insertion of a candidate of the centroid rule, as an operation: its
+// tet must be as it was when the candidate was made (Mesh epochs).
+template <MetricSpace S, Precision P, class Criterion = ShapeOnly>
+struct CentroidInsertion {
+  using Item = PointCandidate;
+  using Scratch = CentroidScratch;
+  using Plan = CentroidPlan;
+  static constexpr std::string_view name = "centroid";
+  RefineOptions options;
+  Mesh::Epoch start = 0;  // when the candidates were made
+
+  PassRoom room() const { return {.vertices_per_item = 1.0, .tets_per_item = 4.0}; }
+  Found seed(const Mesh& mesh, const Item& c, Scratch& x, VertexList& hold) const {
+    x.seen = mesh.peek_tet(c.tet);
+    if (std::find(x.seen.begin(), x.seen.end(), kNoId) != x.seen.end()) return Found::deferred;
+    hold.insert(hold.end(), x.seen.begin(), x.seen.end());
+    return Found::cavity;
+  }
+  Found find(const Mesh& mesh, const Item& c, Scratch& x, VertexList& hold) const {
+    if (mesh.tet(c.tet) != x.seen || mesh.changed_since(c.tet, start)) return Found::deferred;
+    if (c.a != kNoId) {
+      edge_shell_from(mesh, c.a, c.b, c.tet, x.shell);
+      append_vertices(mesh, x.shell.tets, hold);
+    }
+    return Found::cavity;
+  }
+  Decision<Plan> decide(const Mesh& mesh, const Item& c, Scratch& x) const {
+    const TetVertices& v = x.seen;
+    if (c.a != kNoId) {
+      if (!split_is_valid<P>(mesh, x.shell, c.a, c.b, c.p)) return Refusal::rejected;
+      if (!split_accepted<S, Criterion>(mesh, x.shell, c.a, c.b, c.p, options.quality_floor)) return Refusal::rejected;
+      const std::array<VertexId, 2> ends{c.a, c.b};
+      const std::array<double, 2> w{1.0 - c.t, c.t};
+      return Plan{new_vertex_metric<S>(mesh, options.metric, ends, w, c.p)};
+    }
+    if (c.face >= 0 && (mesh.neighbour(c.tet, c.face).valid() || mesh.surface_id(c.tet, c.face) <= 0))
+      return Refusal::not_applicable;
+    if (!cell_split_is_valid<P>(mesh, c.tet, c.face, c.p)) return Refusal::rejected;
+    if (!cell_split_accepted<S, Criterion>(mesh, c.tet, c.face, c.p, options.quality_floor)) return Refusal::rejected;
+    std::array<VertexId, 4> ids{};
+    std::array<double, 4> w{};
+    std::size_t k = 0;
+    for (int i = 0; i < 4; ++i)
+      if (i != c.face) ids[k++] = v[i];
+    std::fill(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(k), 1.0 / static_cast<double>(k));
+    return Plan{new_vertex_metric<S>(mesh, options.metric, std::span<const VertexId>(ids.data(), k),
+                                     std::span<const double>(w.data(), k), c.p)};
+  }
+  void apply(Mesh& mesh, const Item& c, const Plan& plan, Scratch& x) const {
+    if (c.a != kNoId) split_edge(mesh, x.shell, c.a, c.b, c.p, plan.metric);
+    else split_cell(mesh, c.tet, c.face, c.p, plan.metric, x.cell);
+  }
+  void preview(const Mesh& mesh, const Item& c, const Plan&, const Scratch& x, PlannedTets& out) const {
+    if (c.a != kNoId) preview_split(mesh, x.shell, c.a, c.b, c.p, out);
+    else preview_cell_split(mesh, c.tet, c.face, c.p, out);
+  }
+};
+
+template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly>
 OperatorStats refine_centroids(Mesh& mesh, const RefineOptions& o = {}) {
   Stopwatch clock;
-  OperatorStats stats;
   std::vector<std::uint32_t> candidate_of_tet;
   const Mesh::Epoch start = mesh.next_epoch();
   const auto candidates = centroid_candidates<S>(mesh, o, candidate_of_tet);
-  struct Scratch {
-    CellSplitScratch cell;
-    Shell shell;
-    VertexList cavity;
-  };
-  std::vector<PerThread<Scratch>> threads(static_cast<std::size_t>(C::threads()));
-  auto work = [&](const PointCandidate& c, int thread, typename C::Locks& locks) {
-    auto& [x, st] = threads[static_cast<std::size_t>(thread)];
-    // Its tet must be as it was when the candidate was made.
-    const TetVertices v = mesh.peek_tet(c.tet);
-    if (std::find(v.begin(), v.end(), kNoId) != v.end()) {
-      ++st.deferred;
-      return Attempt::done;
-    }
-    if (!locks.acquire(std::span<const VertexId>(v))) return Attempt::conflict;
-    if (mesh.tet(c.tet) != v || mesh.changed_since(c.tet, start)) {
-      ++st.deferred;
-      return Attempt::done;
-    }
-    ++st.tried;
-    if (c.a != kNoId) {
-      edge_shell_from(mesh, c.a, c.b, c.tet, x.shell);
-      x.cavity.clear();
-      append_vertices(mesh, x.shell.tets, x.cavity);
-      if (!locks.acquire(view(x.cavity))) return Attempt::conflict;
-    }
-    VertexId n = kNoId;
-    if (c.a != kNoId) {
-      if (split_is_valid<P>(mesh, x.shell, c.a, c.b, c.p)) {
-        const std::array<VertexId, 2> ends{c.a, c.b};
-        const std::array<double, 2> w{1.0 - c.t, c.t};
-        n = split_edge(mesh, x.shell, c.a, c.b, c.p, new_vertex_metric<S>(mesh, o.metric, ends, w, c.p));
-      }
-    } else if (cell_split_is_valid<P>(mesh, c.tet, c.face, c.p)) {
-      std::array<VertexId, 4> ids{};
-      std::array<double, 4> w{};
-      std::size_t k = 0;
-      for (int i = 0; i < 4; ++i)
-        if (i != c.face) ids[k++] = v[i];
-      std::fill(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(k), 1.0 / static_cast<double>(k));
-      const VertexMetric m = new_vertex_metric<S>(mesh, o.metric, std::span<const VertexId>(ids.data(), k),
-                                                  std::span<const double>(w.data(), k), c.p);
-      n = split_cell(mesh, c.tet, c.face, c.p, m, x.cell);
-    }
-    if (n == kNoId) ++st.rejected;
-    else ++st.applied;
-    return Attempt::done;
-  };
-  stats.add(C::for_each(mesh, std::span<const PointCandidate>(candidates),
-                        PassRoom{.vertices_per_item = 1.0, .tets_per_item = 4.0}, work));
-  add_thread_counts(stats, threads);
+  OperatorStats stats = run_pass<C>(mesh, CentroidInsertion<S, P, Criterion>{o, start}, candidates);
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -8,7 +8,7 @@
 
 #include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/metric_source.hpp>
-#include <metrica/operators/operator_stats.hpp>
+#include <metrica/operators/operation.hpp>
 #include <metrica/operators/split_edge.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
@@ -20,8 +20,11 @@
 namespace metrica {
 
 struct RefineOptions {
-  double max_length = std::sqrt(2.0);
-  double min_new_distance = 1.0 / std::sqrt(2.0);
+  double max_length = kUnitBand.hi;
+  double min_new_distance = kUnitBand.lo;
+  // The shape floor of a split (0: none): no child below this mean ratio
+  // unless its parent was worse.
+  double quality_floor = 0.0;
   // When set, new vertices take this metric instead of an interpolated one.
   const MetricFunction* metric = nullptr;
   // Only edges with an end whose ball changed since this epoch are split
@@ -39,59 +42,77 @@ inline double metric_midpoint(double la, double lb) {
   return std::log(0.5 * (r + 1.0)) / std::log(r);
 }
 
-template <MetricSpace S, Precision P, Concurrency C>
-OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}) {
-  Stopwatch clock;
-  OperatorStats stats;
-  const auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first, o.changed_since);
+struct EdgeSplitPlan {
+  Point p;
+  VertexMetric metric;
+};
+
+struct EdgeSplitScratch {
+  TetList ball;
+  Shell shell;
+};
+
+// The split of a long edge at its metric midpoint, as an operation. Its
+// criterion (ShapeOnly: none) and shape floor (0: none) may refuse splits
+// that make poor tets.
+template <MetricSpace S, Precision P, class Criterion = ShapeOnly>
+struct EdgeSplit {
+  using Item = EdgeCandidate;
+  using Scratch = EdgeSplitScratch;
+  using Plan = EdgeSplitPlan;
+  static constexpr std::string_view name = "split";
+  RefineOptions options;
   // Vertices stamped with this epoch or later were created by this pass.
-  const Mesh::Epoch pass_epoch = mesh.next_epoch();
-  struct Scratch {
-    TetList ball;
-    Shell shell;
-    VertexList cavity;
-  };
-  std::vector<PerThread<Scratch>> threads(static_cast<std::size_t>(C::threads()));
-  auto work = [&](const EdgeCandidate& c, int thread, typename C::Locks& locks) {
-    auto& [x, st] = threads[static_cast<std::size_t>(thread)];
-    if (!locks.acquire({c.a, c.b})) return Attempt::conflict;
-    if (!mesh.vertex_alive(c.a) || !mesh.vertex_alive(c.b)) return Attempt::done;
+  Mesh::Epoch pass_epoch = 0;
+
+  // A split of a shell of n tets (5 on average) makes n new ones; the
+  // proximity filter defers about half of the candidates. More comes
+  // between rounds when needed.
+  PassRoom room() const { return {.vertices_per_item = 0.6, .tets_per_item = 3.5}; }
+  Found seed(const Mesh&, const Item& c, Scratch&, VertexList& hold) const {
+    hold.push_back(c.a);
+    hold.push_back(c.b);
+    return Found::cavity;
+  }
+  Found find(const Mesh& mesh, const Item& c, Scratch& x, VertexList& hold) const {
     vertex_ball(mesh, c.a, x.ball);
-    if (!edge_shell(mesh, c.a, c.b, x.ball, x.shell)) return Attempt::done;  // edge gone
-    x.cavity.clear();
-    append_vertices(mesh, x.shell.tets, x.cavity);
-    if (!locks.acquire(view(x.cavity))) return Attempt::conflict;
-    ++st.tried;
+    if (!edge_shell(mesh, c.a, c.b, x.ball, x.shell)) return Found::gone;
+    append_vertices(mesh, x.shell.tets, hold);
+    return Found::cavity;
+  }
+  Decision<Plan> decide(const Mesh& mesh, const Item& c, Scratch& x) const {
     const Eigen::Vector3d e = mesh.point(c.b) - mesh.point(c.a);
     const auto& ma = S::vertex_metric(mesh, c.a);
     const auto& mb = S::vertex_metric(mesh, c.b);
     const double t = metric_midpoint(std::sqrt(metric_norm2(ma, e)), std::sqrt(metric_norm2(mb, e)));
     const Point p = mesh.point(c.a) + t * e;
-    for (VertexId v : x.cavity) {
-      if (mesh.vertex_stamp(v) < pass_epoch) continue;
-      const auto& mv = S::vertex_metric(mesh, v);
-      if (std::sqrt(metric_norm2(mv, p - mesh.point(v))) < o.min_new_distance) {
-        ++st.deferred;  // too close to a point of this pass: next pass
-        return Attempt::done;
+    for (TetId u : x.shell.tets)
+      for (VertexId v : mesh.tet(u)) {
+        if (mesh.vertex_stamp(v) < pass_epoch) continue;
+        const auto& mv = S::vertex_metric(mesh, v);
+        if (std::sqrt(metric_norm2(mv, p - mesh.point(v))) < options.min_new_distance)
+          return Refusal::deferred;  // too close to a point of this pass: next pass
       }
-    }
-    if (!split_is_valid<P>(mesh, x.shell, c.a, c.b, p)) {
-      ++st.rejected;
-      return Attempt::done;
-    }
+    if (!split_is_valid<P>(mesh, x.shell, c.a, c.b, p)) return Refusal::rejected;
+    if (!split_accepted<S, Criterion>(mesh, x.shell, c.a, c.b, p, options.quality_floor)) return Refusal::rejected;
     const std::array<VertexId, 2> ends{c.a, c.b};
     const std::array<double, 2> w{1.0 - t, t};
-    const VertexMetric m = new_vertex_metric<S>(mesh, o.metric, ends, w, p);
-    split_edge(mesh, x.shell, c.a, c.b, p, m);
-    ++st.applied;
-    return Attempt::done;
-  };
-  // A split of a shell of n tets (5 on average) makes n new ones; the
-  // proximity filter defers about half of the candidates. More comes
-  // between rounds when needed.
-  stats.add(C::for_each(mesh, std::span<const EdgeCandidate>(todo),
-                        PassRoom{.vertices_per_item = 0.6, .tets_per_item = 3.5}, work));
-  add_thread_counts(stats, threads);
+    return Plan{p, new_vertex_metric<S>(mesh, options.metric, ends, w, p)};
+  }
+  void apply(Mesh& mesh, const Item& c, const Plan& plan, Scratch& x) const {
+    split_edge(mesh, x.shell, c.a, c.b, plan.p, plan.metric);
+  }
+  void preview(const Mesh& mesh, const Item& c, const Plan& plan, const Scratch& x, PlannedTets& out) const {
+    preview_split(mesh, x.shell, c.a, c.b, plan.p, out);
+  }
+};
+
+template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly>
+OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}) {
+  Stopwatch clock;
+  const auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first, o.changed_since);
+  const EdgeSplit<S, P, Criterion> split{o, mesh.next_epoch()};
+  OperatorStats stats = run_pass<C>(mesh, split, todo);
   stats.seconds = clock.seconds();
   return stats;
 }

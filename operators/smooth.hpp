@@ -17,7 +17,7 @@
 
 #include <metrica/operators/flips.hpp>
 #include <metrica/operators/metric_source.hpp>
-#include <metrica/operators/operator_stats.hpp>
+#include <metrica/operators/operation.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
@@ -34,6 +34,8 @@ struct SmoothOptions {
   double flat_tolerance = 1e-12;
   // When set, a moved vertex takes this metric at its new position.
   const MetricFunction* metric = nullptr;
+  // The shape floor of criteria other than MinQuality.
+  double min_quality = 1e-3;
   // Only vertices with a tet written since this epoch are tried (0: all):
   // smoothing v reads only v's ball, so an unchanged ball gives the same
   // refusal as last time. Valid only when `below` is no larger than in the
@@ -89,13 +91,20 @@ inline void find_smoothing_cavity(const Mesh& mesh, VertexId v, SmoothScratch& s
   vertex_neighbours(mesh, s.ball, v, s.neighbours);
 }
 
-// Smooths vertex v; s holds its cavity (find_smoothing_cavity), whose
-// vertices the caller has locked.
-template <MetricSpace S, Precision P>
-FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o) {
+struct SmoothPlan {
+  Point to;
+};
+
+// Decide where vertex v moves; s holds its cavity (find_smoothing_cavity),
+// whose vertices the caller holds. Under a criterion whose score is the
+// mean ratio cubed (MinQuality) a trial is scored from the ball terms;
+// under any other, from its scores at the trial position, with the shape
+// floor.
+template <MetricSpace S, Precision P, class Criterion = MinQuality>
+Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o) {
   const VertexClass cls = mesh.vertex_class(v);
-  if (cls == VertexClass::corner || mesh.is_required(v)) return FlipResult::not_applicable;
-  if (s.ball.empty()) return FlipResult::not_applicable;
+  if (cls == VertexClass::corner || mesh.is_required(v)) return Refusal::not_applicable;
+  if (s.ball.empty()) return Refusal::not_applicable;
   const Point x = mesh.point(v);
   s.trials.clear();
   s.metrics.clear();
@@ -146,7 +155,7 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
         const auto fv = face_vertices(tv, f);
         const Eigen::Vector3d n = face_normal(mesh, fv[0], fv[1], fv[2]);
         if (normal.squaredNorm() == 0.0) normal = n;
-        else if (normal_deviation(normal, n) > o.flat_tolerance) return FlipResult::not_applicable;
+        else if (normal_deviation(normal, n) > o.flat_tolerance) return Refusal::not_applicable;
         for (int k = 0; k < 3; ++k) {
           if (fv[k] == v) {
             const Point mid = 0.5 * (mesh.point(fv[(k + 1) % 3]) + mesh.point(fv[(k + 2) % 3]));
@@ -155,7 +164,7 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
         }
       }
     }
-    if (normal.squaredNorm() == 0.0) return FlipResult::not_applicable;
+    if (normal.squaredNorm() == 0.0) return Refusal::not_applicable;
     normal.normalize();
     const Point projected = optimal - (optimal - x).dot(normal) * normal;
     for (double w : {1.0, 0.5, 0.25}) s.trials.push_back(x + w * (projected - x));
@@ -167,25 +176,35 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
         if (k < 2) ends[k] = u;
         ++k;
       }
-    if (k != 2) return FlipResult::not_applicable;
+    if (k != 2) return Refusal::not_applicable;
     const Eigen::Vector3d d1 = mesh.point(ends[0]) - x, d2 = mesh.point(ends[1]) - x;
-    if (normal_deviation(d1, d2) > o.flat_tolerance) return FlipResult::not_applicable;
+    if (normal_deviation(d1, d2) > o.flat_tolerance) return Refusal::not_applicable;
     for (const auto& d : {d1, d2})
       for (double w : {0.5, 0.25, 0.1}) s.trials.push_back(x + w * d);
   }
-  // Evaluate: the smallest mean ratio of the ball at each trial position,
-  // and how many of v's edges leave [1/sqrt2, sqrt2] (a move for quality
-  // must not cost conformity: without this rule, smoothing every vertex
-  // for quality took 3 points of conformity on polar-1).
+  // Evaluate: the smallest score of the ball at each trial position, and
+  // how many of v's edges leave the unit band (a move for quality must not
+  // cost conformity: without this rule, smoothing every vertex for quality
+  // took 3 points of conformity on polar-1).
   const auto& mv = S::vertex_metric(mesh, v);
   auto out_of_range = [&](const Point& p) {
     int n = 0;
-    for (VertexId u : s.neighbours) {
-      const double l = ugawg_length(mesh.point(u) - p, mv, S::vertex_metric(mesh, u));
-      n += (l < 1.0 / std::sqrt(2.0) || l > std::sqrt(2.0));
-    }
+    for (VertexId u : s.neighbours)
+      n += !kUnitBand.contains(ugawg_length(mesh.point(u) - p, mv, S::vertex_metric(mesh, u)));
     return n;
   };
+  // The decision's orientation tests, with the Precision policy, for a
+  // trial about to be kept.
+  auto all_positive_at = [&](const Point& p) {
+    for (TetId t : s.ball) {
+      const auto& tv = mesh.tet(t);
+      TetPoints pts = detail::tet_points(mesh, tv);
+      pts[local_index(tv, v)] = p;
+      if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return false;
+    }
+    return true;
+  };
+  if constexpr (score_is_mean_ratio_cubed<Criterion>()) {
   // The cube of the mean ratio of ball tet i with v at p, from its terms.
   const std::size_t n = s.ball.size();
   auto quality3 = [&](std::size_t i, const Point& p) {
@@ -211,17 +230,6 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
     }
     return q3;
   };
-  // The decision's orientation tests, with the Precision policy, for a
-  // trial about to be kept.
-  auto all_positive_at = [&](const Point& p) {
-    for (TetId t : s.ball) {
-      const auto& tv = mesh.tet(t);
-      TetPoints pts = detail::tet_points(mesh, tv);
-      pts[local_index(tv, v)] = p;
-      if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return false;
-    }
-    return true;
-  };
   // The ball's quality now: the cache, or the terms (a cube root, no tet
   // metric; not stored, since a move, the usual outcome of smoothing
   // every vertex, makes them stale at once).
@@ -243,26 +251,115 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
       best = p;
     }
   }
-  if (!improves_min_quality(q_old, q_best)) return FlipResult::rejected;
-  mesh.point(v) = best;
+  if (!improves_min_quality(q_old, q_best)) return Refusal::rejected;
+  return SmoothPlan{best};
+  } else {
+    // Any other criterion: its smallest score over the ball at each trial,
+    // and the shape floor.
+    auto points_at = [&](TetId t, const Point& p) {
+      const auto& tv = mesh.tet(t);
+      TetPoints pts = detail::tet_points(mesh, tv);
+      pts[local_index(tv, v)] = p;
+      return pts;
+    };
+    double q_old = std::numeric_limits<double>::infinity();
+    for (TetId t : s.ball) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, t));
+    const ShapeFloor shape(o.min_quality);
+    auto score_at = [&](const Point& p) {
+      double q = std::numeric_limits<double>::infinity();
+      for (TetId t : s.ball) {
+        const TetPoints pts = points_at(t, p);
+        if (!shape.admits(S::mean_ratio(mesh, mesh.tet(t), pts), [&] { return q_old; }))
+          return -std::numeric_limits<double>::infinity();
+        q = std::min(q, Criterion::template tet_score_at<S>(mesh, mesh.tet(t), pts));
+      }
+      return q;
+    };
+    const double old_score = min_score_of<Criterion, S>(mesh, view(s.ball));
+    const int bad_old = out_of_range(x);
+    double best_score = old_score;
+    Point best = x;
+    bool moved = false;
+    for (std::size_t i = 0; i < s.trials.size(); ++i) {
+      if (i == secondary && moved) break;
+      const Point& p = s.trials[i];
+      const double score = score_at(p);
+      if (score > Criterion::bar(best_score) && out_of_range(p) <= bad_old && all_positive_at(p)) {
+        best_score = score;
+        best = p;
+        moved = true;
+      }
+    }
+    if (!moved) return Refusal::rejected;
+    return SmoothPlan{best};
+  }
+}
+
+// Apply: v moves to the plan's point (and takes the metric there when an
+// analytic metric is given).
+inline void apply_smoothing(Mesh& mesh, VertexId v, const SmoothPlan& plan, const SmoothScratch& s,
+                            const SmoothOptions& o) {
+  mesh.point(v) = plan.to;
   for (TetId t : s.ball) mesh.touch_tet(t);
   if (o.metric != nullptr && *o.metric) {
-    const Sym6 m = (*o.metric)(best);
+    const Sym6 m = (*o.metric)(plan.to);
     mesh.set_metric(v, m, spd_log(m));
   }
+}
+
+// Decide and apply on one vertex (its cavity in s, held).
+template <MetricSpace S, Precision P, class Criterion = MinQuality>
+FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o) {
+  const auto d = decide_smoothing<S, P, Criterion>(mesh, v, s, o);
+  if (!d) return flip_result(d.why());
+  apply_smoothing(mesh, v, d.plan(), s, o);
   return FlipResult::applied;
 }
 
+// Vertex smoothing as an operation.
+template <MetricSpace S, Precision P, class Criterion = MinQuality>
+struct Smoothing {
+  using Item = VertexId;
+  using Scratch = SmoothScratch;
+  using Plan = SmoothPlan;
+  static constexpr std::string_view name = "smooth";
+  SmoothOptions options;
+
+  PassRoom room() const { return {.max_vertices = 0, .max_tets = 0, .vertices_per_item = 0, .tets_per_item = 0}; }
+  Found seed(const Mesh&, VertexId v, Scratch&, VertexList& hold) const {
+    hold.push_back(v);
+    return Found::cavity;
+  }
+  Found find(const Mesh& mesh, VertexId v, Scratch& s, VertexList& hold) const {
+    find_smoothing_cavity(mesh, v, s);
+    hold.insert(hold.end(), s.neighbours.begin(), s.neighbours.end());
+    return Found::cavity;
+  }
+  Decision<Plan> decide(const Mesh& mesh, VertexId v, Scratch& s) const {
+    return decide_smoothing<S, P, Criterion>(mesh, v, s, options);
+  }
+  void apply(Mesh& mesh, VertexId v, const Plan& plan, Scratch& s) const { apply_smoothing(mesh, v, plan, s, options); }
+  void preview(const Mesh& mesh, VertexId v, const Plan& plan, const Scratch& s, PlannedTets& out) const {
+    out.clear();
+    for (TetId t : s.ball) {
+      const auto& tv = mesh.tet(t);
+      TetPoints pts = detail::tet_points(mesh, tv);
+      pts[local_index(tv, v)] = plan.to;
+      out.push_back({tv, pts});
+    }
+  }
+};
+
+
 // The smoothing pass over the vertices of tets below o.below.
-template <MetricSpace S, Precision P, Concurrency C>
+template <MetricSpace S, Precision P, Concurrency C, class Criterion = MinQuality>
 OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
   Stopwatch clock;
-  OperatorStats stats;
   const std::vector<std::uint8_t> changed = changed_vertices<C>(mesh, o.changed_since);
   // The vertices to try, marked by a sweep over the tets (relaxed byte
   // stores: two parts may mark one vertex), then listed from the marks
   // in id order: sorted and unique without a list of four ids per tet
-  // (16M ids, 64 MB, at 4.4M tets in the quality phase) or a serial sort.
+  // or a serial sort.
   std::vector<std::uint8_t> marked(mesh.vertex_capacity(), 0);
   const std::size_t nt = mesh.tet_capacity();
   const std::size_t parts = sweep_parts<C>(nt);
@@ -277,23 +374,7 @@ OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
       C::template collect<VertexId>(marked.size(), [&](std::size_t v, std::vector<VertexId>& part) {
         if (marked[v] != 0) part.push_back(static_cast<VertexId>(v));
       });
-  std::vector<PerThread<SmoothScratch>> threads(static_cast<std::size_t>(C::threads()));
-  auto work = [&](VertexId v, int thread, typename C::Locks& locks) {
-    auto& [s, st] = threads[static_cast<std::size_t>(thread)];
-    if (!locks.acquire({v})) return Attempt::conflict;
-    if (!mesh.vertex_alive(v)) return Attempt::done;
-    find_smoothing_cavity(mesh, v, s);
-    if (!locks.acquire(view(s.neighbours))) return Attempt::conflict;
-    ++st.tried;
-    const FlipResult r = smooth_vertex<S, P>(mesh, v, s, o);
-    if (r == FlipResult::applied) ++st.applied;
-    else if (r == FlipResult::rejected) ++st.rejected;
-    return Attempt::done;
-  };
-  stats.add(C::for_each(mesh, std::span<const VertexId>(todo), PassRoom{.max_vertices = 0, .max_tets = 0,
-                                                                         .vertices_per_item = 0, .tets_per_item = 0},
-                        work));
-  add_thread_counts(stats, threads);
+  OperatorStats stats = run_pass<C>(mesh, Smoothing<S, P, Criterion>{o}, todo);
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -11,8 +11,12 @@
 
 #include <metrica/metrics/space.hpp>
 #include <metrica/operators/cavity.hpp>
+#include <metrica/operators/criterion.hpp>
+#include <metrica/operators/operation.hpp>
 #include <metrica/operators/shell.hpp>
 #include <metrica/predicates/precision.hpp>
+
+#include <stdexcept>
 
 namespace metrica {
 
@@ -43,6 +47,38 @@ bool cell_split_is_valid(const Mesh& mesh, TetId t, int face, const Point& p) {
   return true;
 }
 
+// The children of t with the new vertex (kNoId) at p.
+inline void preview_cell_split(const Mesh& mesh, TetId t, int face, const Point& p, PlannedTets& out) {
+  out.clear();
+  const auto& v = mesh.tet(t);
+  for (int i = 0; i < 4; ++i) {
+    if (i == face) continue;
+    TetVertices c = v;
+    TetPoints x = detail::tet_points(mesh, v);
+    c[i] = kNoId;
+    x[i] = p;
+    out.push_back({c, x});
+  }
+}
+
+// Decide, criterion half: the children pass the shape floor (floor > 0)
+// and beat t under Criterion (unless it is indifferent), in t's metric.
+template <MetricSpace S, class Criterion>
+bool cell_split_accepted(const Mesh& mesh, TetId t, int face, const Point& p, double floor) {
+  if (floor <= 0.0 && kIndifferent<Criterion>) return true;
+  PlannedTets children;
+  preview_cell_split(mesh, t, face, p, children);
+  const ShapeFloor shape(floor);
+  const double worst = floor > 0.0 ? cached_mean_ratio<S>(mesh, t) : 0.0;
+  const double bar = kIndifferent<Criterion> ? 0.0 : Criterion::bar(Criterion::template tet_score_of<S>(mesh, t));
+  for (const PlannedTet& c : children) {
+    if (floor > 0.0 && !shape.admits(S::mean_ratio(mesh, mesh.tet(t), c.points), [&] { return worst; })) return false;
+    if (!kIndifferent<Criterion> && Criterion::template tet_score_at<S>(mesh, mesh.tet(t), c.points) <= bar)
+      return false;
+  }
+  return true;
+}
+
 struct CellSplitScratch {
   NewTets children;
   CavityPlan plan;
@@ -50,8 +86,8 @@ struct CellSplitScratch {
 };
 
 // Apply: inserts a vertex at p with metric m inside t (face < 0) or on
-// its boundary face `face`, and returns it (kNoId when the plan refuses,
-// nothing written then).
+// its boundary face `face` (checked by the caller: a boundary face with a
+// surface id), and returns it.
 inline VertexId split_cell(Mesh& mesh, TetId t, int face, const Point& p, const VertexMetric& m,
                            CellSplitScratch& s) {
   const SurfaceId surface = face >= 0 ? mesh.surface_id(t, face) : 0;
@@ -59,10 +95,8 @@ inline VertexId split_cell(Mesh& mesh, TetId t, int face, const Point& p, const 
   const VertexId v = mesh.add_vertex(p);
   cell_children(mesh.tet(t), v, face, s.children);
   const std::array<TetId, 1> old{t};
-  if (!plan_cavity(mesh, old, view(s.children), s.plan, kNoId, kNoId, surface)) {
-    mesh.remove_vertex(v);  // (a 1-4 or 1-3 split always plans; kept for safety)
-    return kNoId;
-  }
+  if (!plan_cavity(mesh, old, view(s.children), s.plan, kNoId, kNoId, surface))
+    throw std::logic_error("split_cell: a 1-4 or 1-3 split that does not plan");
   mesh.set_metric(v, m.m, m.log_m);
   apply_cavity(mesh, old, view(s.children), s.plan, mesh.tet_ref(t), s.created);
   mesh.set_vertex_class(v, face >= 0 ? VertexClass::surface : VertexClass::interior);

@@ -9,6 +9,8 @@
 #pragma once
 
 #include <metrica/metrics/space.hpp>
+#include <metrica/operators/criterion.hpp>
+#include <metrica/operators/operation.hpp>
 #include <metrica/operators/shell.hpp>
 #include <metrica/predicates/precision.hpp>
 
@@ -26,6 +28,56 @@ bool split_is_valid(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b
     x[ib] = p;
     y[ia] = p;
     if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0 || P::orient3d(y[0], y[1], y[2], y[3]) <= 0) return false;
+  }
+  return true;
+}
+
+// The children of the shell's tets with the new vertex at p (vertex id
+// kNoId): for each tet, the one with b replaced, then the one with a.
+template <class F>
+void for_each_split_child(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p, F&& f) {
+  for (TetId t : shell.tets) {
+    const auto& v = mesh.tet(t);
+    for (VertexId gone : {b, a}) {
+      TetVertices c = v;
+      TetPoints x = detail::tet_points(mesh, v);
+      const int i = local_index(v, gone);
+      c[i] = kNoId;
+      x[i] = p;
+      f(t, c, x);
+    }
+  }
+}
+
+inline void preview_split(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p,
+                          PlannedTets& out) {
+  out.clear();
+  for_each_split_child(mesh, shell, a, b, p,
+                       [&](TetId, const TetVertices& c, const TetPoints& x) { out.push_back({c, x}); });
+}
+
+// Decide, criterion half: the children pass the shape floor (floor > 0)
+// and beat the shell under Criterion (unless it is indifferent). The
+// children are measured in their parent's metric.
+template <MetricSpace S, class Criterion>
+bool split_accepted(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p, double floor) {
+  if (floor > 0.0) {
+    double worst = std::numeric_limits<double>::infinity();
+    for (TetId t : shell.tets) worst = std::min(worst, cached_mean_ratio<S>(mesh, t));
+    const ShapeFloor shape(floor);
+    bool ok = true;
+    for_each_split_child(mesh, shell, a, b, p, [&](TetId t, const TetVertices&, const TetPoints& x) {
+      ok = ok && shape.admits(S::mean_ratio(mesh, mesh.tet(t), x), [&] { return worst; });
+    });
+    if (!ok) return false;
+  }
+  if constexpr (!kIndifferent<Criterion>) {
+    const double bar = Criterion::bar(min_score_of<Criterion, S>(mesh, view(shell.tets)));
+    bool ok = true;
+    for_each_split_child(mesh, shell, a, b, p, [&](TetId t, const TetVertices&, const TetPoints& x) {
+      ok = ok && Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) > bar;
+    });
+    return ok;
   }
   return true;
 }

@@ -12,7 +12,7 @@
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/operators/metric_source.hpp>
-#include <metrica/operators/flip_criterion.hpp>
+#include <metrica/operators/criterion.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/predicates/precision.hpp>
 #include <metrica/validate.hpp>

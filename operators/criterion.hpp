@@ -1,0 +1,257 @@
+// Criteria: what makes one configuration of tets better than another
+// (seed, section 3.1). Every operation takes one as a template parameter.
+//
+// The scored protocol, which every operation understands: a criterion is
+// the smallest of a per-tet score, to maximise, and
+//
+//   static double tet_score<S>(mesh, tet vertices);              at the mesh's points
+//   static double tet_score_at<S>(mesh, tet vertices, points);   with moved points
+//   static double tet_score_of<S>(mesh, live tet id);            may be cached
+//   static double bar(double reference);   a candidate's smallest score must exceed it
+//   static constexpr bool measures_shape;  its score orders tets as the mean ratio does
+//
+// lets an operation score the old configuration once, reuse a tet's score
+// across candidates and stop scoring a candidate as soon as it cannot win.
+//
+//   MinQuality       the smallest mean ratio grows (by a relative margin;
+//                    scored as Q^3, which orders tets as Q does);
+//   MaxMinEdgeWeight the smallest Laplacian edge weight grows (Barth;
+//                    Marcum & Alauzet's inner-product form, edge_weight.hpp);
+//   ShapeOnly        no preference: only the shape floor decides (the
+//                    default of the length-driven operations: split,
+//                    centroid insertion, collapse).
+//
+// A flip may also take a configuration criterion that is no score,
+//
+//   template <MetricSpace S, Precision P>
+//   static bool prefers(const Mesh&, old tets, new tets);
+//
+//   MetricDelaunay   the old configuration violates the anisotropic
+//                    empty-sphere criterion of eqs. (3)-(4) across one of its
+//                    inner faces and the new one across none.
+//
+// The shape floor (ShapeFloor below) wraps every criterion that does not
+// measure shape: no new tet below a mean ratio floor, unless the old
+// configuration already had a worse one.
+#pragma once
+
+#include <metrica/metrics/space.hpp>
+#include <metrica/metrics/unit_band.hpp>
+#include <metrica/predicates/edge_weight.hpp>
+#include <metrica/predicates/metric_delaunay.hpp>
+#include <metrica/predicates/quality_criterion.hpp>
+
+#include <algorithm>
+#include <limits>
+#include <span>
+#include <string_view>
+#include <type_traits>
+
+namespace metrica {
+
+template <class C>
+concept ScoredCriterion = requires(const Mesh& mesh, const TetVertices& tet, const TetPoints& points, TetId id) {
+  { C::name } -> std::convertible_to<std::string_view>;
+  { C::template tet_score<Isotropic>(mesh, tet) } -> std::same_as<double>;
+  { C::template tet_score_at<Isotropic>(mesh, tet, points) } -> std::same_as<double>;
+  { C::template tet_score_of<Isotropic>(mesh, id) } -> std::same_as<double>;
+  { C::bar(0.0) } -> std::same_as<double>;
+  { C::measures_shape } -> std::convertible_to<bool>;
+};
+
+// A criterion that compares whole configurations (flips only).
+template <class C>
+concept ConfigurationCriterion = requires(const Mesh& mesh, std::span<const TetVertices> tets) {
+  { C::template prefers<Isotropic, Fast>(mesh, tets, tets) } -> std::same_as<bool>;
+};
+
+template <class C>
+concept Criterion = ScoredCriterion<C> || ConfigurationCriterion<C>;
+
+// True when the criterion never refuses (its scores need not be computed).
+template <class C>
+inline constexpr bool kIndifferent = false;
+
+// The smallest score of `ids` (live tets) and of `tets` (new ones); the
+// latter stops at the first tet at or below `floor`.
+template <class C, MetricSpace S>
+double min_score_of(const Mesh& mesh, std::span<const TetId> ids) {
+  double q = std::numeric_limits<double>::infinity();
+  for (TetId t : ids) q = std::min(q, C::template tet_score_of<S>(mesh, t));
+  return q;
+}
+template <class C, MetricSpace S>
+double min_score(const Mesh& mesh, std::span<const TetVertices> tets,
+                 double floor = -std::numeric_limits<double>::infinity()) {
+  double q = std::numeric_limits<double>::infinity();
+  for (const auto& t : tets) {
+    q = std::min(q, C::template tet_score<S>(mesh, t));
+    if (q <= floor) break;
+  }
+  return q;
+}
+
+struct MinQuality {
+  static constexpr std::string_view name = "quality";
+  static constexpr bool measures_shape = true;
+  // The score is Q^3: the same order and the same worst tet as Q, without
+  // a cube root per tet (cbrt was 2.4% of an adaptation, most of it on the
+  // candidate tets of edge removals). A relative margin m on Q is about 3m
+  // on Q^3.
+  template <MetricSpace S>
+  static double tet_score(const Mesh& mesh, const TetVertices& t) {
+    return S::mean_ratio_cubed(mesh, t);
+  }
+  template <MetricSpace S>
+  static double tet_score_at(const Mesh& mesh, const TetVertices& t, const TetPoints& p) {
+    return metrica::mean_ratio_cubed(p, S::tet_metric(mesh, t));
+  }
+  template <MetricSpace S>
+  static double tet_score_of(const Mesh& mesh, TetId t) {
+    const double q = cached_mean_ratio<S>(mesh, t);
+    return q * q * q;
+  }
+  static double bar(double reference) { return improvement_bar(reference, 3.0 * kQualityMargin); }
+  // The score of a new tet is its Q^3: the quality cache takes its cube root.
+  static constexpr bool score_is_mean_ratio_cubed = true;
+};
+
+struct MaxMinEdgeWeight {
+  static constexpr std::string_view name = "edge-weight";
+  static constexpr bool measures_shape = false;
+  template <MetricSpace S>
+  static double tet_score_at(const Mesh& mesh, const TetVertices& t, const TetPoints& p) {
+    return min_edge_weight(p, S::tet_metric(mesh, t));
+  }
+  template <MetricSpace S>
+  static double tet_score(const Mesh& mesh, const TetVertices& t) {
+    return tet_score_at<S>(mesh, t, detail::tet_points(mesh, t));
+  }
+  template <MetricSpace S>
+  static double tet_score_of(const Mesh& mesh, TetId t) {
+    return tet_score<S>(mesh, mesh.tet(t));
+  }
+  static double bar(double reference) { return reference + kQualityMargin * std::abs(reference); }
+};
+
+struct ShapeOnly {
+  static constexpr std::string_view name = "shape";
+  static constexpr bool measures_shape = false;
+  template <MetricSpace S>
+  static double tet_score(const Mesh&, const TetVertices&) {
+    return 0.0;
+  }
+  template <MetricSpace S>
+  static double tet_score_at(const Mesh&, const TetVertices&, const TetPoints&) {
+    return 0.0;
+  }
+  template <MetricSpace S>
+  static double tet_score_of(const Mesh&, TetId) {
+    return 0.0;
+  }
+  static double bar(double) { return -std::numeric_limits<double>::infinity(); }
+};
+template <>
+inline constexpr bool kIndifferent<ShapeOnly> = true;
+
+static_assert(ScoredCriterion<MinQuality> && ScoredCriterion<MaxMinEdgeWeight> && ScoredCriterion<ShapeOnly>);
+
+// Does the criterion's score say "mean ratio cubed" (so the quality cache
+// can take a new tet's score)?
+template <class C>
+constexpr bool score_is_mean_ratio_cubed() {
+  if constexpr (requires { C::score_is_mean_ratio_cubed; }) return C::score_is_mean_ratio_cubed;
+  else return false;
+}
+
+template <class C>
+constexpr bool criterion_measures_shape() {
+  if constexpr (requires { C::measures_shape; }) return C::measures_shape;
+  else return false;
+}
+
+// The shape floor every criterion gets: a new configuration may not have a
+// tet below min(floor, the worst old tet) in mean ratio. Without it, metric
+// Delaunay or edge-weight flips on a flat boundary made tets of Q ~ 1e-11
+// (positive for the exact predicate, a fold of the surface for the rest).
+// A criterion that measures shape (MinQuality) already implies it.
+class ShapeFloor {
+ public:
+  // `worst_old` is computed on first use.
+  explicit ShapeFloor(double floor) : floor_(floor) {}
+  template <class WorstOld>
+  bool admits(double q_new, WorstOld&& worst_old) const {
+    if (q_new >= floor_) return true;
+    return !(q_new < worst_old());
+  }
+  double floor() const { return floor_; }
+
+ private:
+  double floor_;
+};
+
+// The shape floor over the new tets of a replacement of live `old_tets`
+// (at the mesh's points), with `Criterion`: always true for a criterion
+// that measures shape.
+template <MetricSpace S, class Criterion>
+bool keeps_shape(const Mesh& mesh, std::span<const TetId> old_tets, std::span<const TetVertices> new_tets,
+                 double floor) {
+  if constexpr (criterion_measures_shape<Criterion>()) {
+    return true;
+  } else {
+    double worst_old = std::numeric_limits<double>::infinity();
+    for (TetId t : old_tets) worst_old = std::min(worst_old, cached_mean_ratio<S>(mesh, t));
+    const double bound = std::min(floor, worst_old);
+    for (const auto& t : new_tets)
+      if (S::mean_ratio(mesh, t) < bound) return false;
+    return true;
+  }
+}
+
+// After a change under Criterion is applied: when its scores are Q^3, the
+// quality cache gets the new tets' mean ratios (in the order `created`
+// lists them) for a cube root each instead of a fresh mean ratio later.
+// Without a score per new tet, or under other criteria: nothing.
+template <class Criterion>
+void cache_new_qualities(const Mesh& mesh, std::span<const TetId> created, std::span<const double> scores) {
+  if constexpr (score_is_mean_ratio_cubed<Criterion>()) {
+    if (scores.size() != created.size()) return;
+    for (std::size_t i = 0; i < created.size(); ++i) mesh.cache_quality(created[i], std::cbrt(scores[i]));
+  }
+}
+
+struct MetricDelaunay {
+  static constexpr std::string_view name = "delaunay";
+  // True when some pair of tets of `tets` sharing a face has the apex of
+  // one inside the other's circumsphere in the metric (eq. (4)).
+  template <MetricSpace S, Precision P>
+  static bool violated(const Mesh& mesh, std::span<const TetVertices> tets) {
+    for (std::size_t i = 0; i < tets.size(); ++i)
+      for (std::size_t j = 0; j < tets.size(); ++j) {
+        if (i == j) continue;
+        // The apex of j opposite a face shared with i.
+        int shared = 0;
+        VertexId apex = kNoId;
+        for (VertexId v : tets[j]) {
+          if (local_index(tets[i], v) >= 0) ++shared;
+          else apex = v;
+        }
+        if (shared != 3) continue;
+        const auto& k = tets[i];
+        const std::array<Sym6, 4> mk{S::vertex_metric(mesh, k[0]), S::vertex_metric(mesh, k[1]),
+                                     S::vertex_metric(mesh, k[2]), S::vertex_metric(mesh, k[3])};
+        if (metric_delaunay_violated<P>(detail::tet_points(mesh, k), mesh.point(apex), mk,
+                                        S::vertex_metric(mesh, apex)))
+          return true;
+      }
+    return false;
+  }
+  template <MetricSpace S, Precision P>
+  static bool prefers(const Mesh& mesh, std::span<const TetVertices> old_tets, std::span<const TetVertices> new_tets) {
+    return violated<S, P>(mesh, old_tets) && !violated<S, P>(mesh, new_tets);
+  }
+};
+
+static_assert(Criterion<MetricDelaunay> && Criterion<MinQuality>);
+
+}  // namespace metrica

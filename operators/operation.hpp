@@ -1,0 +1,162 @@
+// The operation protocol and the one pass runner.
+//
+// An operation (split, centroid insertion, collapse, each flip, the
+// smoothing move) is a class with an item type, a scratch type, a plan
+// type and four steps:
+//
+//   seed(mesh, item, scratch, out)    the vertices to hold before reading
+//                                     around the item (from the item, or
+//                                     peeked: Mesh::peek_tet);
+//   find(mesh, item, scratch, out)    with the seed held: is the item still
+//                                     there, and the rest of its cavity;
+//   decide(mesh, item, scratch)       pure: reads the cavity, writes
+//                                     nothing to the mesh (but its quality
+//                                     cache), returns a plan or a refusal;
+//   apply(mesh, item, plan, scratch)  writes the plan.
+//
+// preview(mesh, item, plan, scratch, out) lists the tets a plan would
+// make, at their final points, so a plan is checked (orientation, shape
+// floor) without applying it.
+//
+// run_pass<C>(mesh, op, items) is the pass skeleton, written once: the
+// per-thread scratch, seed -> hold -> liveness -> find -> hold the cavity
+// -> decide -> apply, the counters and the clock. The executor is the
+// Concurrency policy's for_each (replay, room, threads): Serial and
+// Speculative run the same operations, and so does any new executor.
+#pragma once
+
+#include <metrica/operators/operator_stats.hpp>
+#include <metrica/operators/shell.hpp>
+#include <metrica/policies/concurrency.hpp>
+#include <metrica/timer.hpp>
+
+#include <concepts>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace metrica {
+
+// What became of an item before its decision.
+enum class Found : std::uint8_t {
+  cavity,    // still there: lock what was listed, then decide
+  gone,      // changed so that it no longer exists (nothing to count)
+  deferred,  // still wanted, but not now (its region changed in this pass)
+};
+
+// Why decide gave no plan.
+enum class Refusal : std::uint8_t {
+  rejected,        // the geometry or the criterion says no
+  not_applicable,  // the topology or the vertex classes forbid it
+  deferred,        // wait for the next pass (e.g. too close to a new point)
+};
+
+// A plan, or the reason there is none; `tries` counts the candidates an
+// item weighed (a tet's four faces for the 2-3 flips).
+template <class Plan>
+class Decision {
+ public:
+  Decision(const Plan& plan, int tries = 1) : plan_(plan), tries_(tries), has_plan_(true) {}
+  Decision(Refusal why, int tries = 1) : tries_(tries), why_(why) {}
+  explicit operator bool() const { return has_plan_; }
+  const Plan& plan() const { return plan_; }
+  Refusal why() const { return why_; }
+  int tries() const { return tries_; }
+
+ private:
+  Plan plan_{};
+  int tries_ = 1;
+  Refusal why_ = Refusal::rejected;
+  bool has_plan_ = false;
+};
+
+// The tets a plan makes: vertices (kNoId for the vertex it creates) and
+// final points.
+struct PlannedTet {
+  TetVertices vertices;
+  TetPoints points;
+};
+using PlannedTets = std::vector<PlannedTet>;
+
+template <class Op>
+concept Operation = requires(const Op& op, const Mesh& cmesh, Mesh& mesh, const typename Op::Item& item,
+                             typename Op::Scratch& s, const typename Op::Plan& plan, VertexList& hold,
+                             PlannedTets& planned) {
+  { Op::name } -> std::convertible_to<std::string_view>;
+  { op.room() } -> std::same_as<PassRoom>;
+  { op.seed(cmesh, item, s, hold) } -> std::same_as<Found>;
+  { op.find(cmesh, item, s, hold) } -> std::same_as<Found>;
+  { op.decide(cmesh, item, s) } -> std::same_as<Decision<typename Op::Plan>>;
+  { op.apply(mesh, item, plan, s) } -> std::same_as<void>;
+  { op.preview(cmesh, item, plan, s, planned) } -> std::same_as<void>;
+};
+
+// One item through seed, find and decide on one thread, without locks
+// (tests, and a caller that ranks candidates before applying any).
+template <Operation Op>
+Decision<typename Op::Plan> decide_item(const Mesh& mesh, const Op& op, const typename Op::Item& item,
+                                        typename Op::Scratch& s) {
+  VertexList hold;
+  Found f = op.seed(mesh, item, s, hold);
+  for (VertexId v : hold)
+    if (f == Found::cavity && !mesh.vertex_alive(v)) f = Found::gone;
+  if (f == Found::cavity) f = op.find(mesh, item, s, hold);
+  if (f == Found::gone) return Refusal::not_applicable;
+  if (f == Found::deferred) return Refusal::deferred;
+  return op.decide(mesh, item, s);
+}
+
+// The pass: every item of `items` through the operation under C.
+template <Concurrency C, Operation Op>
+OperatorStats run_pass(Mesh& mesh, const Op& op, std::span<const typename Op::Item> items) {
+  Stopwatch clock;
+  OperatorStats stats;
+  struct Slot {
+    typename Op::Scratch scratch;
+    VertexList hold;
+  };
+  std::vector<PerThread<Slot>> threads(static_cast<std::size_t>(C::threads()));
+  const Mesh& view_only = mesh;
+  auto work = [&](const typename Op::Item& item, int thread, typename C::Locks& locks) {
+    auto& [x, st] = threads[static_cast<std::size_t>(thread)];
+    x.hold.clear();
+    Found f = op.seed(view_only, item, x.scratch, x.hold);
+    if (f == Found::cavity) {
+      if (!locks.acquire(view(x.hold))) return Attempt::conflict;
+      for (VertexId v : x.hold)
+        if (!mesh.vertex_alive(v)) return Attempt::done;
+      x.hold.clear();
+      f = op.find(view_only, item, x.scratch, x.hold);
+    }
+    if (f == Found::gone) return Attempt::done;
+    if (f == Found::deferred) {
+      ++st.deferred;
+      return Attempt::done;
+    }
+    if (!locks.acquire(view(x.hold))) return Attempt::conflict;
+    const Decision<typename Op::Plan> d = op.decide(view_only, item, x.scratch);
+    st.tried += static_cast<std::size_t>(d.tries());
+    if (d) {
+      op.apply(mesh, item, d.plan(), x.scratch);
+      ++st.applied;
+    } else if (d.why() == Refusal::rejected) {
+      ++st.rejected;
+    } else if (d.why() == Refusal::deferred) {
+      ++st.deferred;
+    }
+    return Attempt::done;
+  };
+  stats.add(C::for_each(mesh, items, op.room(), work));
+  add_thread_counts(stats, threads);
+  stats.seconds = clock.seconds();
+  return stats;
+}
+
+template <Concurrency C, Operation Op, class List>
+OperatorStats run_pass(Mesh& mesh, const Op& op, const List& items) {
+  return run_pass<C>(mesh, op, std::span<const typename Op::Item>(items.data(), items.size()));
+}
+
+}  // namespace metrica
