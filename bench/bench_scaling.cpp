@@ -127,9 +127,9 @@ int main(int argc, char** argv) {
   fmt::print("|---|---|---|---|---|---|---|---|---|\n");
   auto op_cells = [&](const Run& r) {
     const auto& x = r.report;
-    const double other = x.seconds - x.collapse.seconds - x.refine.seconds - x.reconnect.seconds - x.smooth.seconds;
-    const double base_other = base.report.seconds - base.report.collapse.seconds - base.report.refine.seconds -
-                              base.report.reconnect.seconds - base.report.smooth.seconds;
+    const double other = x.seconds - x.ops.get("collapse").seconds - x.ops.get("split").seconds - x.ops.get("flip").seconds - x.ops.get("smooth").seconds;
+    const double base_other = base.report.seconds - base.report.ops.get("collapse").seconds - base.report.ops.get("split").seconds -
+                              base.report.ops.get("flip").seconds - base.report.ops.get("smooth").seconds;
     auto cell = [&](const OperatorStats& s, const OperatorStats& b) {
       const double conflict_rate = s.tried + s.conflicts > 0 ? double(s.conflicts) / double(s.tried + s.conflicts) : 0.0;
       const std::string balance =
@@ -137,9 +137,9 @@ int main(int argc, char** argv) {
       return fmt::format("{:.2f} s ({:.2f} in loop{}), x{:.2f}, {:.1f}% confl.", s.seconds, s.loop_seconds, balance,
                          b.seconds / s.seconds, 100 * conflict_rate);
     };
-    return fmt::format("{} | {} | {} | {} | {:.2f} s, x{:.2f}", cell(x.collapse, base.report.collapse),
-                       cell(x.refine, base.report.refine), cell(x.reconnect, base.report.reconnect),
-                       cell(x.smooth, base.report.smooth), other, base_other / other);
+    return fmt::format("{} | {} | {} | {} | {:.2f} s, x{:.2f}", cell(x.ops.get("collapse"), base.report.ops.get("collapse")),
+                       cell(x.ops.get("split"), base.report.ops.get("split")), cell(x.ops.get("flip"), base.report.ops.get("flip")),
+                       cell(x.ops.get("smooth"), base.report.ops.get("smooth")), other, base_other / other);
   };
   for (const Run& r : results) {
     const double speedup = base.seconds / r.seconds;
@@ -156,8 +156,7 @@ int main(int argc, char** argv) {
   fmt::print("|---|---|---|---|---|---|---|---|---|\n");
   for (const Run& r : results) {
     const auto& x = r.report;
-    for (const auto& [name, s] : {std::pair<const char*, const OperatorStats&>{"collapse", x.collapse},
-                                  {"split", x.refine}, {"flips", x.reconnect}, {"smoothing", x.smooth}})
+    for (const auto& [name, s] : x.ops)
       fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {:.2f} |\n", r.label, name, s.tried, s.applied, s.rejected,
                  s.conflicts, s.replays, s.serial_tail, s.loop_seconds);
   }
@@ -167,8 +166,8 @@ int main(int argc, char** argv) {
     fmt::print("\n{}: cycle  vertices  collapsed  split  in range  min Q | s: collapse  split  flips  smooth\n", r.label);
     for (const auto& c : r.report.cycles)
       fmt::print("{:>4}{} {:>10} {:>9} {:>7} {:>8.2f}% {:>6.3f} | {:>11.2f} {:>6.2f} {:>6.2f} {:>7.2f}\n", c.cycle,
-                 c.quality_phase ? 'q' : ' ', c.vertices, c.collapse.applied, c.refine.applied, 100.0 * c.conformity,
-                 c.min_quality, c.collapse.seconds, c.refine.seconds, c.reconnect.seconds, c.smooth.seconds);
+                 c.quality_phase ? 'q' : ' ', c.vertices, c.ops.get("collapse").applied, c.ops.get("split").applied, 100.0 * c.conformity,
+                 c.min_quality, c.ops.get("collapse").seconds, c.ops.get("split").seconds, c.ops.get("flip").seconds, c.ops.get("smooth").seconds);
   }
   return 0;
 }

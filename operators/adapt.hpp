@@ -10,12 +10,8 @@
 // instantiate the combinations the CLI offers (adapt_dispatch.hpp).
 #pragma once
 
-#include <metrica/operators/collapse.hpp>
+#include <metrica/operators/adapter.hpp>
 #include <metrica/operators/edge_buckets.hpp>
-#include <metrica/operators/reconnect.hpp>
-#include <metrica/operators/refine_centroids.hpp>
-#include <metrica/operators/refine_edges.hpp>
-#include <metrica/operators/smooth.hpp>
 
 #include <algorithm>
 #include <functional>
@@ -24,17 +20,6 @@
 #include <vector>
 
 namespace metrica {
-
-struct CycleReport {
-  int cycle = 0;  // 0.. for adaptation cycles; quality passes follow
-  bool quality_phase = false;
-  bool repair = false;  // a repair round of the quality phase
-  std::size_t vertices = 0, tets = 0;
-  OperatorStats collapse, refine, reconnect, smooth;
-  double conformity = 0;  // share of edges with L in [1/sqrt 2, sqrt 2]
-  double min_quality = 0;
-  double seconds = 0;     // of this cycle
-};
 
 // How new points are made (seed, section 3.2): split the long edges at
 // their metric midpoints (Mmg, Omega_h, refine), or insert the centroids of
@@ -106,53 +91,6 @@ struct AdaptOptions {
   std::function<void(const CycleReport&)> on_cycle;
 };
 
-struct AdaptReport {
-  std::vector<CycleReport> cycles;
-  OperatorStats collapse, refine, reconnect, smooth;
-  double seconds = 0;
-};
-
-// The share of edges in [1/sqrt 2, sqrt 2] and, when asked, the smallest
-// mean ratio (through the quality cache when `cached`: only while the
-// cache is known to hold S's values, as inside adapt).
-template <MetricSpace S, class C = Serial>
-double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached = false) {
-  // Edges in range and in all, per part of the edge buckets; the minimum
-  // in blocks of 64 tets; on C's threads.
-  constexpr std::size_t kBlock = 64;
-  const std::size_t parts = sweep_parts<C>(mesh.tet_capacity());
-  struct alignas(64) Count {
-    std::size_t in = 0, all = 0;
-  };
-  std::vector<Count> counts(parts);
-  for_each_mesh_edge_bucket<C>(mesh, parts, [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
-    std::size_t in = 0;
-    for (VertexId b : kept) {
-      const double l = S::edge_length(mesh, a, b);
-      in += kUnitBand.contains(l);
-    }
-    counts[p].in += in;
-    counts[p].all += kept.size();
-  });
-  std::size_t in = 0, all = 0;
-  for (const Count& c : counts) {
-    in += c.in;
-    all += c.all;
-  }
-  if (min_quality != nullptr) {
-    const std::size_t nt = mesh.tet_capacity();
-    const auto mins = C::template collect<double>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<double>& part) {
-      double q = 1.0;
-      for (auto t = static_cast<TetId>(b * kBlock); t < std::min(nt, (b + 1) * kBlock); ++t)
-        if (mesh.tet_alive(t))
-          q = std::min(q, cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t)));
-      part.push_back(q);
-    });
-    *min_quality = mins.empty() ? 1.0 : *std::min_element(mins.begin(), mins.end());
-  }
-  return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
-}
-
 // The tets whose mean ratio (cached, as adapt keeps it) is below `below`.
 template <MetricSpace S, Concurrency C>
 std::vector<TetId> poor_tets(const Mesh& mesh, double below) {
@@ -187,124 +125,175 @@ void touch_around_poor_tets(Mesh& mesh, double below) {
   }
 }
 
-template <MetricSpace S, Precision P, Concurrency C>
-AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
+// A pipeline: the stages of one adaptation cycle, of one pass of the
+// quality phase and of one repair round, and when to stop.
+template <class A>
+struct Pipeline {
+  Stages<A> cycle;
+  // At the start of the quality phase (e.g. forget the epochs of passes
+  // whose thresholds grow), then its passes.
+  std::function<void(A&)> before_polish;
+  Stages<A> polish;
+  Stages<A> repair;
+  int max_cycles = 15;
+  // Stop cycling when a cycle's "collapse" and "split" stages change fewer
+  // than this share of the vertices, or, once the mesh is nearly a unit
+  // mesh (near_unit_conformity), when a cycle raises the share in the band
+  // by less than min_conformity_gain.
+  double min_change = 0.002;
+  double min_conformity_gain = 0.005;
+  double near_unit_conformity = 0.9;
+  int quality_passes = 4;
+  // Repair rounds while the worst tet is below repair_below, at most
+  // repair_rounds, none after two in a row that leave the worst tet.
+  double repair_below = 0.3;
+  int repair_rounds = 8;
+};
+
+// Runs a pipeline: cycles, the quality phase, repair rounds.
+template <class A>
+const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
   Stopwatch total;
-  AdaptReport report;
-  AdaptOptions o = options;
-  mesh.clear_quality_cache();  // the metric or the Space may have changed
-  o.refine.metric = o.metric;
-  o.smooth.metric = o.metric;
-  o.collapse.metric = o.metric;
-  auto finish = [&](CycleReport& c, const Stopwatch& clock) {
-    mesh.compact(part_runner<C>(mesh.tet_capacity()));
-    c.vertices = mesh.num_vertices();
-    c.tets = mesh.num_tets();
-    c.conformity = conformity<S, C>(mesh, &c.min_quality, true);
-    c.seconds = clock.seconds();
-    report.collapse += c.collapse;
-    report.refine += c.refine;
-    report.reconnect += c.reconnect;
-    report.smooth += c.smooth;
-    report.cycles.push_back(c);
-    if (o.on_cycle) o.on_cycle(c);
-  };
-  // Each pass tries only what changed since the same pass last ran
-  // (Mesh epochs; see ReconnectOptions::changed_since): later cycles cost
-  // what they change, not the size of the mesh.
-  auto run = [&mesh](auto& pass_options, auto&& pass) {
-    const Mesh::Epoch start = mesh.next_epoch();
-    OperatorStats stats = pass(pass_options);
-    pass_options.changed_since = start;
-    return stats;
-  };
-  CollapseOptions& collapse_o = o.collapse;
-  ReconnectOptions& flip_o = o.reconnect;
-  SmoothOptions& smooth_o = o.smooth;
-  ReconnectOptions delaunay_o = o.reconnect;
-  // The Delaunay criterion does not follow quality (the face and short-edge
-  // filters were measured under MinQuality).
-  delaunay_o.face_flip_below = 1.0;
-  delaunay_o.flips.short_edge_ring4 = delaunay_o.flips.short_edge_ring5 = 0.0;
   double previous_conformity = 0.0;
-  for (int cycle = 0; cycle < o.max_cycles; ++cycle) {
+  for (int cycle = 0; cycle < p.max_cycles; ++cycle) {
     Stopwatch clock;
     CycleReport c;
     c.cycle = cycle;
-    c.collapse = run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
-    c.refine = o.points == PointRule::edge ? refine_edges<S, P, C>(mesh, o.refine)
-                                           : refine_centroids<S, P, C>(mesh, o.refine);
-    if (o.points == PointRule::centroid) {
-      // A centroid leaves its tet's long edge in place; metric Delaunay
-      // flips remove it (the seed pairs the rule with them). Sweeping only
-      // around the new points was a third faster and lost 2.5 points of
-      // conformity (polar-1 87.5% -> 85.0%, linear 96.5% -> 94.9%).
-      c.reconnect = run(delaunay_o, [&](auto& x) { return reconnect<S, P, C, MetricDelaunay>(mesh, x); });
-    }
-    c.reconnect += run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
-    c.collapse += run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
-    c.smooth = run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
-    const std::size_t changed = c.collapse.applied + c.refine.applied;
-    finish(c, clock);
-    if (static_cast<double>(changed) < o.min_change * static_cast<double>(mesh.num_vertices())) break;
-    if (previous_conformity >= o.near_unit_conformity && c.conformity - previous_conformity < o.min_conformity_gain)
+    run_stages(a, p.cycle, c);
+    const std::size_t changed = c.ops.get("collapse").applied + c.ops.get("split").applied;
+    a.finish(c, clock);
+    if (static_cast<double>(changed) < p.min_change * static_cast<double>(a.mesh().num_vertices())) break;
+    if (previous_conformity >= p.near_unit_conformity && c.conformity - previous_conformity < p.min_conformity_gain)
       break;
     previous_conformity = c.conformity;
   }
-  // The quality phase: flips from the tets below polish_below, smoothing
-  // of every vertex. A pass whose threshold is larger than in the cycles
-  // tries everything once (tets the cycles skipped for their quality
-  // were never tried), then only what changed.
-  if (o.polish_below > flip_o.seed_below) flip_o.changed_since = 0;
-  flip_o.seed_below = o.polish_below;
-  flip_o.max_sweeps = 4;
-  if (o.quality_phase_smooth_below > smooth_o.below) smooth_o.changed_since = 0;
-  smooth_o.below = o.quality_phase_smooth_below;
-  for (int pass = 0; pass < o.quality_passes; ++pass) {
+  if (p.before_polish) p.before_polish(a);
+  for (int pass = 0; pass < p.quality_passes; ++pass) {
     Stopwatch clock;
     CycleReport c;
-    c.cycle = static_cast<int>(report.cycles.size());
+    c.cycle = static_cast<int>(a.report().cycles.size());
     c.quality_phase = true;
-    c.reconnect = run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
-    c.smooth = run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
-    finish(c, clock);
+    run_stages(a, p.polish, c);
+    a.finish(c, clock);
   }
   int idle_rounds = 0;  // in a row, without a gain in the worst tet
-  for (int round = 0; round < o.repair_rounds && idle_rounds < 2; ++round) {
-    if (report.cycles.empty()) break;
-    const double worst = report.cycles.back().min_quality;
-    if (worst >= o.repair_below) break;
+  for (int round = 0; round < p.repair_rounds && idle_rounds < 2 && !p.repair.empty(); ++round) {
+    if (a.report().cycles.empty()) break;
+    const double worst = a.report().cycles.back().min_quality;
+    if (worst >= p.repair_below) break;
     Stopwatch clock;
     CycleReport c;
-    c.cycle = static_cast<int>(report.cycles.size());
+    c.cycle = static_cast<int>(a.report().cycles.size());
     c.quality_phase = c.repair = true;
-    // First the edges at the poor tets' vertices, of any length, where a
-    // collapse lifts the worst tet of its ball (a surface vertex nearly on
-    // a ridge in the metric makes a flat tet of unit edges, which neither
-    // a short-edge collapse nor smoothing in its plane removed).
-    CollapseOptions lift_o = collapse_o;
-    lift_o.min_length = std::numeric_limits<double>::infinity();
-    lift_o.require_gain = true;
-    lift_o.changed_since = mesh.next_epoch();
-    touch_poor_tets<S, C>(mesh, o.repair_below);
-    c.collapse = collapse_edges<S, P, C>(mesh, lift_o);
-    const Mesh::Epoch start = mesh.next_epoch();
-    touch_around_poor_tets<S, C>(mesh, o.repair_below);
-    collapse_o.changed_since = flip_o.changed_since = smooth_o.changed_since = start;
-    RefineOptions refine_o = o.refine;
-    refine_o.changed_since = start;
-    c.collapse += run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
-    c.refine = refine_edges<S, P, C>(mesh, refine_o);
-    c.reconnect = run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
-    c.collapse += run(collapse_o, [&](auto& x) { return collapse_edges<S, P, C>(mesh, x); });
-    c.smooth = run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
-    c.reconnect += run(flip_o, [&](auto& x) { return reconnect<S, P, C, MinQuality>(mesh, x); });
-    c.smooth += run(smooth_o, [&](auto& x) { return smooth_vertices<S, P, C>(mesh, x); });
-    finish(c, clock);
+    run_stages(a, p.repair, c);
+    a.finish(c, clock);
     idle_rounds = c.min_quality > worst ? 0 : idle_rounds + 1;
   }
-  report.seconds = total.seconds();
-  return report;
+  a.report().seconds = total.seconds();
+  return a.report();
+}
+
+// The standard pipeline of AdaptOptions:
+//
+//   cycle     collapse, split (or centroids + metric Delaunay flips),
+//             quality flips, collapse, smoothing of the poor tets;
+//   polish    quality flips from the tets below polish_below, smoothing
+//             of every vertex;
+//   repair    collapses that lift the poor tets, then the cycle's
+//             operators on the balls of the poor tets' vertices, and one
+//             more flip and smoothing pass.
+template <class A>
+Pipeline<A> standard_pipeline(const AdaptOptions& o) {
+  using S = typename A::Space;
+  using C = typename A::Threads;
+  Pipeline<A> p;
+  p.max_cycles = o.max_cycles;
+  p.min_change = o.min_change;
+  p.min_conformity_gain = o.min_conformity_gain;
+  p.near_unit_conformity = o.near_unit_conformity;
+  p.quality_passes = o.quality_passes;
+  p.repair_below = o.repair_below;
+  p.repair_rounds = o.repair_rounds;
+  const CollapseOptions collapse = o.collapse;
+  const RefineOptions refine = o.refine;
+  const ReconnectOptions flips = o.reconnect;
+  // The Delaunay criterion does not follow quality (the face and short-edge
+  // filters were tuned under MinQuality).
+  ReconnectOptions delaunay = o.reconnect;
+  delaunay.face_flip_below = 1.0;
+  delaunay.flips.short_edge_ring4 = delaunay.flips.short_edge_ring5 = 0.0;
+  const SmoothOptions smooth = o.smooth;
+  ReconnectOptions polish_flips = o.reconnect;
+  polish_flips.seed_below = o.polish_below;
+  polish_flips.max_sweeps = 4;
+  SmoothOptions polish_smooth = o.smooth;
+  polish_smooth.below = o.quality_phase_smooth_below;
+
+  p.cycle.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
+  if (o.points == PointRule::edge) {
+    p.cycle.push_back({"split", [=](A& a) { return a.split(refine); }});
+  } else {
+    p.cycle.push_back({"split", [=](A& a) { return a.insert_centroids(refine); }});
+    // A centroid leaves its tet's long edge in place; metric Delaunay flips
+    // remove it (the seed pairs the rule with them).
+    p.cycle.push_back({"flip", [=](A& a) { return a.template flips<MetricDelaunay>(delaunay, "delaunay"); }});
+  }
+  p.cycle.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(flips, "flip"); }});
+  p.cycle.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
+  p.cycle.push_back({"smooth", [=](A& a) { return a.smooth(smooth); }});
+
+  // A quality pass whose threshold is larger than in the cycles tries
+  // everything once (tets the cycles skipped for their quality were never
+  // tried), then only what changed.
+  p.before_polish = [=](A& a) {
+    if (o.polish_below > flips.seed_below) a.forget("flip");
+    if (o.quality_phase_smooth_below > smooth.below) a.forget("smooth");
+  };
+  p.polish.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips, "flip"); }});
+  p.polish.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
+
+  // Repair: first the edges at the poor tets' vertices, of any length,
+  // where a collapse lifts the worst tet of its ball (a surface vertex
+  // nearly on a ridge in the metric makes a flat tet of unit edges, which
+  // neither a short-edge collapse nor smoothing in its plane removes);
+  // then every incremental pass restarts from the balls of the poor tets'
+  // vertices.
+  const double below = o.repair_below;
+  p.repair.push_back({"collapse", [=](A& a) {
+                        CollapseOptions lift = collapse;
+                        lift.min_length = std::numeric_limits<double>::infinity();
+                        lift.require_gain = true;
+                        lift.metric = a.metric();
+                        lift.changed_since = a.mesh().next_epoch();
+                        touch_poor_tets<S, C>(a.mesh(), below);
+                        const OperatorStats stats =
+                            collapse_edges<S, typename A::Exactness, C>(a.mesh(), lift);
+                        const Mesh::Epoch start = a.mesh().next_epoch();
+                        touch_around_poor_tets<S, C>(a.mesh(), below);
+                        a.restart_all(start);
+                        a.set_since("repair", start);
+                        return stats;
+                      }});
+  p.repair.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
+  p.repair.push_back({"split", [=](A& a) {
+                        RefineOptions r = refine;
+                        r.changed_since = a.since("repair");
+                        return a.split(r);
+                      }});
+  p.repair.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips, "flip"); }});
+  p.repair.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
+  p.repair.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
+  p.repair.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips, "flip"); }});
+  p.repair.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
+  return p;
+}
+
+// The standard adaptation under <S, P, C>.
+template <MetricSpace S, Precision P, Concurrency C>
+AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
+  Adapter<S, P, C> a(mesh, options.metric);
+  a.on_cycle = options.on_cycle;
+  return run_pipeline(a, standard_pipeline<Adapter<S, P, C>>(options));
 }
 
 }  // namespace metrica

@@ -13,6 +13,16 @@ namespace metrica {
 
 using MetricFunction = std::function<Sym6(const Point&)>;
 
+// `metric` evaluated at every vertex of the mesh.
+inline void assign_metric(Mesh& mesh, const MetricFunction& metric) {
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v)) {
+      const Sym6 m = metric(mesh.point(v));
+      mesh.set_metric(v, m, spd_log(m));
+    }
+  mesh.clear_quality_cache();  // every tet's quality changed
+}
+
 template <MetricSpace S>
 VertexMetric new_vertex_metric(const Mesh& mesh, const MetricFunction* exact, std::span<const VertexId> ids,
                                std::span<const double> w, const Point& p) {

@@ -65,7 +65,7 @@ Adapted adapt_linear_shared() {
 }
 
 std::size_t total_conflicts(const AdaptReport& r) {
-  return r.collapse.conflicts + r.refine.conflicts + r.reconnect.conflicts + r.smooth.conflicts;
+  return r.ops.total().conflicts;
 }
 
 // The three worst tets by their true (not cached) mean ratio, with their

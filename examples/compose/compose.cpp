@@ -1,71 +1,35 @@
-// A researcher's starting point: a pipeline composed by hand from the
-// operators, with the policies chosen at compile time.
-//
-// It adapts a box to the UGAWG polar-2 metric with the seed's reconnection
-// (metric Delaunay flips while refining, then max-min edge-weight flips,
-// then quality flips), and prints what each step did. Swap a policy (say
-// Isotropic for LogEuclidean, Exact for Filtered) or an operator and
-// compare.
+// A custom pipeline on Adapter (policies bound once): a box adapted to UGAWG
+// polar-2 with the seed's reconnection (metric Delaunay, then max-min
+// edge-weight flips each cycle; the standard quality phase), each pass
+// incremental under its key. Swap a policy, a criterion or a stage.
 //
 //   build/examples/compose/compose_pipeline [cycles]
 #include <metrica/box.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
-#include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/operators/adapt.hpp>
 #include <metrica/validate.hpp>
 
 #include <fmt/core.h>
-
 #include <cstdlib>
 
 using namespace metrica;
-
-using Space = LogEuclidean;
-using Exactness = Filtered;
-using Threads = Serial;
-
-namespace {
-void step(const char* what, const OperatorStats& s, const Mesh& mesh) {
-  double min_q = 0.0;
-  const double in_range = conformity<Space>(mesh, &min_q);
-  fmt::print("  {:<28} applied {:>7} of {:>8} ({:.2f} s) -> {:>7} tets, {:5.1f}% in range, min Q {:.3f}\n", what,
-             s.applied, s.tried, s.seconds, mesh.num_tets(), 100.0 * in_range, min_q);
-}
-}  // namespace
+using A = Adapter<LogEuclidean, Filtered, Serial>;
 
 int main(int argc, char** argv) {
-  const int cycles = argc > 1 ? std::atoi(argv[1]) : 8;
   Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
-  const MetricFunction metric = [](const Point& p) { return evaluate(AnalyticMetric::polar2, p); };
-  std::vector<Sym6> field(mesh.vertex_capacity());
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) field[v] = metric(mesh.point(v));
-  assign_metric(mesh, field);
-
-  RefineOptions refine;
-  refine.metric = &metric;  // new vertices take the exact metric
-  CollapseOptions collapse;
-  collapse.metric = &metric;
-  SmoothOptions smooth;
-  smooth.metric = &metric;
-  smooth.below = 0.3;
-  ReconnectOptions flips;
-
-  for (int c = 0; c < cycles; ++c) {
-    fmt::print("cycle {}\n", c);
-    step("collapse", collapse_edges<Space, Exactness, Threads>(mesh, collapse), mesh);
-    step("split", refine_edges<Space, Exactness, Threads>(mesh, refine), mesh);
-    step("flips (metric Delaunay)", reconnect<Space, Exactness, Threads, MetricDelaunay>(mesh, flips), mesh);
-    step("flips (max-min edge weight)", reconnect<Space, Exactness, Threads, MaxMinEdgeWeight>(mesh, flips), mesh);
-    step("smooth", smooth_vertices<Space, Exactness, Threads>(mesh, smooth), mesh);
-    mesh.compact();
-  }
-  fmt::print("quality phase\n");
-  smooth.below = 1.0;
-  for (int pass = 0; pass < 3; ++pass) {
-    step("flips (mean ratio)", reconnect<Space, Exactness, Threads, MinQuality>(mesh, flips), mesh);
-    step("smooth", smooth_vertices<Space, Exactness, Threads>(mesh, smooth), mesh);
-  }
+  const MetricFunction polar2 = [](const Point& p) { return evaluate(AnalyticMetric::polar2, p); };
+  assign_metric(mesh, polar2);
+  A adapter(mesh, &polar2);
+  adapter.on_cycle = [](const CycleReport& c) { fmt::print("{} tets, {:.1f}% in range, min Q {:.3f}\n", c.tets, 100 * c.conformity, c.min_quality); };
+  Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
+  p.max_cycles = argc > 1 ? std::atoi(argv[1]) : 8;
+  p.cycle = {{"collapse", [](A& a) { return a.collapse({}); }},
+             {"split", [](A& a) { return a.split({}); }},
+             {"flip", [](A& a) { return a.flips<MetricDelaunay>({}, "delaunay"); }},
+             {"flip", [](A& a) { return a.flips<MaxMinEdgeWeight>({}, "edge-weight"); }},
+             {"smooth", [](A& a) { return a.smooth({.below = 0.3}); }}};
+  run_pipeline(adapter, p);
   const auto check = mesh.validate();
   fmt::print("{}\n{}", check.ok() ? "valid" : check.to_string(), format_report(quality_report(mesh)));
   return check.ok() ? 0 : 1;

@@ -31,8 +31,7 @@ std::string stats_text(const char* name, const OperatorStats& s) {
 // Attempts, applied, conflicts (locks released, item replayed later),
 // replays and the items left to one thread, per operator.
 void print_parallel_stats(const AdaptReport& r) {
-  for (const auto& [name, s] : {std::pair{"collapse", r.collapse}, std::pair{"split", r.refine},
-                                std::pair{"flip", r.reconnect}, std::pair{"smooth", r.smooth}})
+  for (const auto& [name, s] : r.ops)
     fmt::print("  {:<8} tried {:>10} applied {:>10} conflicts {:>8} ({:.2f}%) replays {:>8} one-thread tail {:>6} | {:.2f} s\n",
                name, count_text(s.tried), count_text(s.applied), count_text(s.conflicts),
                s.tried > 0 ? 100.0 * double(s.conflicts) / double(s.tried + s.conflicts) : 0.0, count_text(s.replays),
@@ -40,10 +39,11 @@ void print_parallel_stats(const AdaptReport& r) {
 }
 
 void print_cycle(const CycleReport& c) {
-  fmt::print("  {} {:>2}: {:>9} vertices {:>10} tets | {} | {} | {} | {} | in range {:5.1f}% min Q {:.3f} | {:.2f} s\n",
+  std::string ops;
+  for (const auto& [name, s] : c.ops) ops += " | " + stats_text(name.c_str(), s);
+  fmt::print("  {} {:>2}: {:>9} vertices {:>10} tets{} | in range {:5.1f}% min Q {:.3f} | {:.2f} s\n",
              c.repair ? "repair" : c.quality_phase ? "polish" : "cycle ", c.cycle, count_text(c.vertices), count_text(c.tets),
-             stats_text("collapse", c.collapse), stats_text("split", c.refine), stats_text("flip", c.reconnect),
-             stats_text("smooth", c.smooth), 100.0 * c.conformity, c.min_quality, c.seconds);
+             ops, 100.0 * c.conformity, c.min_quality, c.seconds);
   std::fflush(stdout);
 }
 
@@ -173,8 +173,8 @@ int run_adapt(const std::vector<std::string>& args) {
     const auto report = adapt(mesh, ao, space, precision, concurrency);
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
-                 count_text(report.collapse.applied), count_text(report.refine.applied),
-                 count_text(report.reconnect.applied), count_text(report.smooth.applied));
+                 count_text(report.ops.get("collapse").applied), count_text(report.ops.get("split").applied),
+                 count_text(report.ops.get("flip").applied), count_text(report.ops.get("smooth").applied));
     if (talk && concurrency == ConcurrencyKind::speculative) print_parallel_stats(report);
   }
   // Flat boundaries keep the volume to round-off; on a curved discrete

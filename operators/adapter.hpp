@@ -1,0 +1,233 @@
+// The pipeline object: Adapter<Space, Precision, Concurrency> binds the
+// three policies once and owns what passes share: the mesh, the metric
+// source (an analytic metric, or interpolation), the epochs of the
+// incremental passes (each pass sees only what changed since it last ran),
+// the quality cache, and the reports, keyed by operator name.
+//
+// A pipeline is a list of stages (named functions of the adapter); a
+// researcher reorders, replaces or adds stages, or runs any operation over
+// a work list with run(). adapt.hpp builds the standard pipeline from it.
+#pragma once
+
+#include <metrica/operators/collapse.hpp>
+#include <metrica/operators/operation.hpp>
+#include <metrica/operators/reconnect.hpp>
+#include <metrica/operators/refine_centroids.hpp>
+#include <metrica/operators/refine_edges.hpp>
+#include <metrica/operators/smooth.hpp>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace metrica {
+
+// Operator statistics keyed by name, in the order the names first came.
+class OperatorReport {
+ public:
+  OperatorStats& operator[](std::string_view name) {
+    for (auto& [n, s] : entries_)
+      if (n == name) return s;
+    entries_.emplace_back(std::string(name), OperatorStats{});
+    return entries_.back().second;
+  }
+  // The stats of `name`, or zeros when no such operator ran.
+  OperatorStats get(std::string_view name) const {
+    for (const auto& [n, s] : entries_)
+      if (n == name) return s;
+    return {};
+  }
+  OperatorReport& operator+=(const OperatorReport& o) {
+    for (const auto& [n, s] : o.entries_) (*this)[n] += s;
+    return *this;
+  }
+  // Summed over every operator.
+  OperatorStats total() const {
+    OperatorStats t;
+    for (const auto& [n, s] : entries_) t += s;
+    return t;
+  }
+  auto begin() const { return entries_.begin(); }
+  auto end() const { return entries_.end(); }
+  bool empty() const { return entries_.empty(); }
+
+ private:
+  std::vector<std::pair<std::string, OperatorStats>> entries_;
+};
+
+struct CycleReport {
+  int cycle = 0;  // 0.. for adaptation cycles; quality passes follow
+  bool quality_phase = false;
+  bool repair = false;  // a repair round of the quality phase
+  std::size_t vertices = 0, tets = 0;
+  OperatorReport ops;     // by operator name ("collapse", "split", "flip", "smooth", ...)
+  double conformity = 0;  // share of edges in the unit band
+  double min_quality = 0;
+  double seconds = 0;     // of this cycle
+};
+
+struct AdaptReport {
+  std::vector<CycleReport> cycles;
+  OperatorReport ops;
+  double seconds = 0;
+};
+
+// The share of edges in the unit band and, when asked, the smallest mean
+// ratio (through the quality cache when `cached`: only while the cache is
+// known to hold S's values, as inside an Adapter).
+template <MetricSpace S, class C = Serial>
+double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached = false) {
+  // Edges in range and in all, per part of the edge buckets; the minimum
+  // in blocks of 64 tets; on C's threads.
+  constexpr std::size_t kBlock = 64;
+  const std::size_t parts = sweep_parts<C>(mesh.tet_capacity());
+  struct alignas(64) Count {
+    std::size_t in = 0, all = 0;
+  };
+  std::vector<Count> counts(parts);
+  for_each_mesh_edge_bucket<C>(mesh, parts, [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
+    std::size_t in = 0;
+    for (VertexId b : kept) in += kUnitBand.contains(S::edge_length(mesh, a, b));
+    counts[p].in += in;
+    counts[p].all += kept.size();
+  });
+  std::size_t in = 0, all = 0;
+  for (const Count& c : counts) {
+    in += c.in;
+    all += c.all;
+  }
+  if (min_quality != nullptr) {
+    const std::size_t nt = mesh.tet_capacity();
+    const auto mins = C::template collect<double>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<double>& part) {
+      double q = 1.0;
+      for (auto t = static_cast<TetId>(b * kBlock); t < std::min(nt, (b + 1) * kBlock); ++t)
+        if (mesh.tet_alive(t))
+          q = std::min(q, cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t)));
+      part.push_back(q);
+    });
+    *min_quality = mins.empty() ? 1.0 : *std::min_element(mins.begin(), mins.end());
+  }
+  return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
+}
+
+template <MetricSpace S, Precision P, Concurrency C>
+class Adapter {
+ public:
+  using Space = S;
+  using Exactness = P;
+  using Threads = C;
+
+  // `metric`: when set, new and moved vertices take it (else the Space
+  // interpolates). The quality cache is cleared: the metric or the Space
+  // may have changed since it was filled.
+  explicit Adapter(Mesh& mesh, const MetricFunction* metric = nullptr) : mesh_(mesh), metric_(metric) {
+    mesh_.clear_quality_cache();
+  }
+
+  Mesh& mesh() { return mesh_; }
+  const Mesh& mesh() const { return mesh_; }
+  const MetricFunction* metric() const { return metric_; }
+
+  // Epochs of the incremental passes, by key: the epoch at which the pass
+  // last started (0: never, so it sees everything).
+  Mesh::Epoch since(const std::string& key) const {
+    const auto it = epochs_.find(key);
+    return it == epochs_.end() ? 0 : it->second;
+  }
+  void forget(const std::string& key) { epochs_[key] = 0; }
+  void set_since(const std::string& key, Mesh::Epoch epoch) { epochs_[key] = epoch; }
+  // Every incremental pass sees only what changed since `epoch`.
+  void restart_all(Mesh::Epoch epoch) {
+    for (auto& [k, e] : epochs_) e = epoch;
+  }
+
+  // An incremental pass: `pass(mesh, options)` with options.changed_since
+  // set to when the pass under `key` last started, then recorded.
+  template <class Options, class Pass>
+  OperatorStats incremental(const std::string& key, Options options, Pass&& pass) {
+    options.changed_since = since(key);
+    const Mesh::Epoch start = mesh_.next_epoch();
+    OperatorStats stats = pass(mesh_, options);
+    epochs_[key] = start;
+    return stats;
+  }
+
+  // Any operation over a work list, on the adapter's executor.
+  template <Operation Op>
+  OperatorStats run(const Op& op, std::span<const typename Op::Item> items) {
+    return run_pass<C>(mesh_, op, items);
+  }
+
+  // The standard passes. Collapse, flips and smoothing are incremental
+  // under `key`; splits see the whole mesh unless o.changed_since says.
+  template <class Criterion = ShapeOnly>
+  OperatorStats collapse(CollapseOptions o, const std::string& key = "collapse") {
+    o.metric = metric_;
+    return incremental(key, o, [](Mesh& m, const CollapseOptions& x) { return collapse_edges<S, P, C, Criterion>(m, x); });
+  }
+  template <class Criterion = ShapeOnly>
+  OperatorStats split(RefineOptions o) {
+    o.metric = metric_;
+    return refine_edges<S, P, C, Criterion>(mesh_, o);
+  }
+  template <class Criterion = ShapeOnly>
+  OperatorStats insert_centroids(RefineOptions o) {
+    o.metric = metric_;
+    return refine_centroids<S, P, C, Criterion>(mesh_, o);
+  }
+  template <class Criterion = MinQuality>
+  OperatorStats flips(const ReconnectOptions& o, const std::string& key) {
+    return incremental(key, o, [](Mesh& m, const ReconnectOptions& x) { return reconnect<S, P, C, Criterion>(m, x); });
+  }
+  template <class Criterion = MinQuality>
+  OperatorStats smooth(SmoothOptions o, const std::string& key = "smooth") {
+    o.metric = metric_;
+    return incremental(key, o, [](Mesh& m, const SmoothOptions& x) { return smooth_vertices<S, P, C, Criterion>(m, x); });
+  }
+
+  // Closes a cycle: compaction, counts, conformity and worst tet, the
+  // report and the progress callback.
+  void finish(CycleReport& c, const Stopwatch& clock) {
+    mesh_.compact(part_runner<C>(mesh_.tet_capacity()));
+    c.vertices = mesh_.num_vertices();
+    c.tets = mesh_.num_tets();
+    c.conformity = conformity<S, C>(mesh_, &c.min_quality, true);
+    c.seconds = clock.seconds();
+    report_.ops += c.ops;
+    report_.cycles.push_back(c);
+    if (on_cycle) on_cycle(c);
+  }
+
+  AdaptReport& report() { return report_; }
+  const AdaptReport& report() const { return report_; }
+
+  // Called after every cycle (progress output).
+  std::function<void(const CycleReport&)> on_cycle;
+
+ private:
+  Mesh& mesh_;
+  const MetricFunction* metric_;
+  std::map<std::string, Mesh::Epoch, std::less<>> epochs_;
+  AdaptReport report_;
+};
+
+// A stage of a pipeline: a name (its key in the reports) and what it does.
+template <class A>
+struct Stage {
+  std::string name;
+  std::function<OperatorStats(A&)> run;
+};
+
+template <class A>
+using Stages = std::vector<Stage<A>>;
+
+// Runs the stages in order, each one's stats added to c.ops[stage name].
+template <class A>
+void run_stages(A& adapter, const Stages<A>& stages, CycleReport& c) {
+  for (const Stage<A>& s : stages) c.ops[s.name] += s.run(adapter);
+}
+
+}  // namespace metrica
