@@ -22,11 +22,11 @@ int main(int argc, char** argv) {
   metrica::keep_freed_memory();  // allocator.hpp: pages reused from pass to pass
   const double scale = argc > 1 ? std::stod(argv[1]) : 1.0;
   const int runs = argc > 2 ? std::stoi(argv[2]) : 3;
-  const SpaceKind space = space_from_name(argc > 3 ? argv[3] : "log-euclidean");
-  const PrecisionKind precision = precision_from_name(argc > 4 ? argv[4] : "filtered");
+  const PolicyChoice policies{argc > 3 ? argv[3] : "log-euclidean", argc > 4 ? argv[4] : "filtered", "serial"};
+  check_policy_choice(policies);
   const MetricFunction metric = bench::scaled_linear_metric(scale);
   fmt::print("adapt: linear x {} on {} core(s), {} space, {} predicates, serial, median of {}\n", scale,
-             std::thread::hardware_concurrency(), to_string(space), to_string(precision), runs);
+             std::thread::hardware_concurrency(), policies.space, policies.precision, runs);
   AdaptReport last;
   std::vector<CycleReport> cycles;  // of the last run
   std::size_t tets = 0;
@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     o.metric = &metric;
     cycles.clear();
     o.on_cycle = [&](const CycleReport& c) { cycles.push_back(c); };
-    last = adapt(mesh, o, space, precision);
+    last = adapt(mesh, o, policies);
     tets = mesh.num_tets();
   });
   const auto& c = last.cycles.back();

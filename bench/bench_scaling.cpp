@@ -56,13 +56,13 @@ int main(int argc, char** argv) {
   // one operator on 2 threads, once).
   struct Config {
     std::string label;
-    ConcurrencyKind kind;
+    std::string concurrency;
     int threads;
   };
   std::vector<Config> configs;
   const bool with_serial = !(argc > 4 && std::string(argv[4]) == "noserial");
-  if (with_serial) configs.push_back({"serial", ConcurrencyKind::serial, 1});
-  for (int n : thread_list) configs.push_back({fmt::format("speculative x{}", n), ConcurrencyKind::speculative, n});
+  if (with_serial) configs.push_back({"serial", "serial", 1});
+  for (int n : thread_list) configs.push_back({fmt::format("speculative x{}", n), "speculative", n});
   std::vector<std::vector<std::pair<double, AdaptReport>>> times(configs.size());
   std::vector<Run> results(configs.size());
   std::vector<std::vector<double>> run_seconds(configs.size());  // in run order
@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
       AdaptOptions o;
       o.metric = &metric;
       Stopwatch clock;
-      AdaptReport rep = adapt(mesh, o, SpaceKind::log_euclidean, PrecisionKind::filtered, c.kind);
+      AdaptReport rep = adapt(mesh, o, {.concurrency = c.concurrency});
       times[k].emplace_back(clock.seconds(), std::move(rep));
       run_seconds[k].push_back(times[k].back().first);
       Run& r = results[k];

@@ -13,21 +13,6 @@
 
 namespace metrica {
 
-SpaceKind space_from_name(std::string_view name) {
-  if (name == "isotropic") return SpaceKind::isotropic;
-  if (name == "anisotropic") return SpaceKind::anisotropic;
-  if (name == "log-euclidean") return SpaceKind::log_euclidean;
-  throw InputError(fmt::format("unknown metric space '{}' (known: isotropic, anisotropic, log-euclidean)", name));
-}
-
-const char* to_string(SpaceKind s) {
-  switch (s) {
-    case SpaceKind::isotropic: return "isotropic";
-    case SpaceKind::anisotropic: return "anisotropic";
-    case SpaceKind::log_euclidean: return "log-euclidean";
-  }
-  return "?";
-}
 
 namespace {
 
@@ -134,14 +119,9 @@ std::string histogram_text(const Histogram& h, const char* name, const char* for
 
 }  // namespace
 
-QualityReport quality_report(const Mesh& mesh, SpaceKind space) {
+QualityReport quality_report(const Mesh& mesh, std::string_view space) {
   if (!mesh.has_metric()) throw InputError("quality report: the mesh has no metric");
-  switch (space) {
-    case SpaceKind::isotropic: return report_in<Isotropic>(mesh);
-    case SpaceKind::anisotropic: return report_in<Anisotropic>(mesh);
-    case SpaceKind::log_euclidean: return report_in<LogEuclidean>(mesh);
-  }
-  return {};
+  return with_policy<Spaces>("metric space", space, [&]<class S>() { return report_in<S>(mesh); });
 }
 
 std::string format_report(const QualityReport& r) {

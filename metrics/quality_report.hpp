@@ -13,10 +13,6 @@
 
 namespace metrica {
 
-enum class SpaceKind { isotropic, anisotropic, log_euclidean };
-SpaceKind space_from_name(std::string_view name);  // InputError if unknown
-const char* to_string(SpaceKind s);
-
 struct Histogram {
   std::vector<double> edges;         // bin boundaries, size bins + 1
   std::vector<std::size_t> counts;   // per bin
@@ -41,8 +37,9 @@ struct QualityReport {
   Histogram quality_histogram;  // bins of 0.1 on [0, 1]
 };
 
-// The mesh must carry a metric (Mesh::has_metric).
-QualityReport quality_report(const Mesh& mesh, SpaceKind space = SpaceKind::log_euclidean);
+// The mesh must carry a metric (Mesh::has_metric); `space` is one of the
+// names of Spaces (InputError otherwise).
+QualityReport quality_report(const Mesh& mesh, std::string_view space = "log-euclidean");
 
 // For people: a summary and both histograms as text.
 std::string format_report(const QualityReport& r);

@@ -15,6 +15,7 @@
 
 #include <metrica/mesh.hpp>
 #include <metrica/metrics/measures.hpp>
+#include <metrica/policy_list.hpp>
 
 #include <concepts>
 #include <span>
@@ -151,5 +152,8 @@ double cached_mean_ratio(const Mesh& mesh, TetId t) {
 static_assert(MetricSpace<Isotropic>);
 static_assert(MetricSpace<Anisotropic>);
 static_assert(MetricSpace<LogEuclidean>);
+
+// The spaces offered by name (--space), the default first.
+using Spaces = PolicyList<LogEuclidean, Anisotropic, Isotropic>;
 
 }  // namespace metrica

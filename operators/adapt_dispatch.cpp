@@ -5,6 +5,9 @@
 
 namespace metrica {
 
+static_assert(Spaces::size * Concurrencies::size == METRICA_ADAPT_UNITS,
+              "one adapt unit per (space, concurrency) pair: update METRICA_ADAPT_UNITS in operators/CMakeLists.txt");
+
 PointRule point_rule_from_name(std::string_view name) {
   if (name == "edge") return PointRule::edge;
   if (name == "centroid") return PointRule::centroid;
@@ -13,45 +16,25 @@ PointRule point_rule_from_name(std::string_view name) {
 
 const char* to_string(PointRule r) { return r == PointRule::edge ? "edge" : "centroid"; }
 
-PrecisionKind precision_from_name(std::string_view name) {
-  if (name == "fast") return PrecisionKind::fast;
-  if (name == "filtered") return PrecisionKind::filtered;
-  if (name == "exact") return PrecisionKind::exact;
-  throw InputError(fmt::format("unknown precision '{}' (fast, filtered, exact)", name));
+namespace {
+template <class List>
+void check_name(std::string_view what, const std::string& name) {
+  if (!List::contains(name)) throw InputError(fmt::format("unknown {} '{}' ({})", what, name, List::names()));
+}
+}  // namespace
+
+void check_policy_choice(const PolicyChoice& c) {
+  check_name<Spaces>("space", c.space);
+  check_name<Precisions>("precision", c.precision);
+  check_name<Concurrencies>("concurrency", c.concurrency);
 }
 
-const char* to_string(PrecisionKind p) {
-  switch (p) {
-    case PrecisionKind::fast: return "fast";
-    case PrecisionKind::filtered: return "filtered";
-    case PrecisionKind::exact: return "exact";
-  }
-  return "?";
-}
-
-ConcurrencyKind concurrency_from_name(std::string_view name) {
-  if (name == "serial") return ConcurrencyKind::serial;
-  if (name == "speculative") return ConcurrencyKind::speculative;
-  throw InputError(fmt::format("unknown concurrency '{}' (serial, speculative)", name));
-}
-
-const char* to_string(ConcurrencyKind c) { return c == ConcurrencyKind::serial ? "serial" : "speculative"; }
-
-AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, SpaceKind space, PrecisionKind precision,
-                  ConcurrencyKind concurrency) {
-  const bool serial = concurrency == ConcurrencyKind::serial;
-  switch (space) {
-    case SpaceKind::isotropic:
-      return serial ? adapt_with<Isotropic, Serial>(mesh, options, precision)
-                    : adapt_with<Isotropic, Speculative>(mesh, options, precision);
-    case SpaceKind::anisotropic:
-      return serial ? adapt_with<Anisotropic, Serial>(mesh, options, precision)
-                    : adapt_with<Anisotropic, Speculative>(mesh, options, precision);
-    case SpaceKind::log_euclidean:
-      return serial ? adapt_with<LogEuclidean, Serial>(mesh, options, precision)
-                    : adapt_with<LogEuclidean, Speculative>(mesh, options, precision);
-  }
-  throw InputError("unknown space");
+AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& p) {
+  check_policy_choice(p);
+  return with_policy<Spaces>("space", p.space, [&]<class S>() {
+    return with_policy<Concurrencies>("concurrency", p.concurrency,
+                                      [&]<class C>() { return adapt_instance<S, C>(mesh, options, p.precision); });
+  });
 }
 
 }  // namespace metrica

@@ -30,7 +30,7 @@ struct LoopOptions {
   // the new mesh (point location and P1 interpolation, as a solver
   // restart) and the transfer's L2 error reported.
   bool interpolate = false;
-  ConcurrencyKind concurrency = ConcurrencyKind::speculative;
+  std::string concurrency{Concurrencies::at<0>::name};
   AdaptOptions adapt;  // thresholds, cycles (metric: none, interpolated)
   // Called after each iteration with its row and the adapted mesh.
   std::function<void(const struct LoopRow&, const Mesh&)> on_iteration;

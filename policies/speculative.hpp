@@ -20,6 +20,7 @@
 
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/policies/threads.hpp>
+#include <metrica/policy_list.hpp>
 
 #include <boost/container/small_vector.hpp>
 
@@ -322,5 +323,8 @@ struct SpeculativeThreads {
 using Speculative = SpeculativeThreads<0, 8192>;
 
 static_assert(Concurrency<Speculative>);
+
+// The concurrency policies offered by name (--concurrency), the default first.
+using Concurrencies = PolicyList<Speculative, Serial>;
 
 }  // namespace metrica

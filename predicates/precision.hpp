@@ -21,6 +21,7 @@
 #pragma once
 
 #include <metrica/geometry.hpp>
+#include <metrica/policy_list.hpp>
 
 #include <cmath>
 #include <concepts>
@@ -152,6 +153,9 @@ struct Exact {
 static_assert(Precision<Fast>);
 static_assert(Precision<Filtered>);
 static_assert(Precision<Exact>);
+
+// The precisions offered by name (--precision), the default first.
+using Precisions = PolicyList<Filtered, Exact, Fast>;
 
 // Whether interval arithmetic alone decides the sign (what the Filtered
 // policy's filters do before its exact stage); for measuring how often

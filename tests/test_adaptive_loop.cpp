@@ -107,7 +107,7 @@ TEST_SUITE("regression") {
     o.iterations = 6;
     o.double_every = 3;
     o.complexity = 1000;
-    o.concurrency = ConcurrencyKind::serial;
+    o.concurrency = "serial";
     o.interpolate = true;
     o.on_iteration = [](const LoopRow&, const Mesh& m) { require_valid(m, 1.0); };
     const auto rows = adaptive_loop(mesh, o);

@@ -270,7 +270,7 @@ TEST_SUITE("regression") {
       CHECK(has(r, "inverted"));
     }
     CHECK(metrica_cli("adapt " + (dir / "c.meshb") + " -o " + (dir / "a.meshb")).code == 2);  // no metric
-    CHECK(metrica_cli("adapt " + (dir / "c.meshb") + " --analytic linear --space curved -o " + (dir / "a.meshb")).code == 1);
+    CHECK(metrica_cli("adapt " + (dir / "c.meshb") + " --analytic linear --space curved -o " + (dir / "a.meshb")).code == 2);  // usage
     CHECK(metrica_cli("adapt " + (dir / "c.meshb") + " --analytic linear --points random -o " + (dir / "a.meshb")).code == 1);
     CHECK(metrica_cli("adapt " + (dir / "c.meshb") + " --analytic linear --repair-rounds -1 -o " + (dir / "a.meshb")).code == 2);
     CHECK(metrica_cli("adapt " + (dir / "c.meshb") + " --analytic linear --repair-below 1.5 -o " + (dir / "a.meshb")).code == 2);

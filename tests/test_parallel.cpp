@@ -49,9 +49,9 @@ Adapted adapt_linear_by(Run&& run) {
   return a;
 }
 
-Adapted adapt_linear(ConcurrencyKind c) {
+Adapted adapt_linear(const std::string& c) {
   return adapt_linear_by([c](Mesh& mesh, const AdaptOptions& o) {
-    return adapt(mesh, o, SpaceKind::log_euclidean, PrecisionKind::filtered, c);
+    return adapt(mesh, o, {.concurrency = c});
   });
 }
 
@@ -470,9 +470,9 @@ TEST_SUITE("parallel") {
 
   TEST_CASE("Speculative on 1 thread: no conflict, a valid mesh of the serial quality") {
     ThreadCountGuard guard;
-    const Adapted serial = adapt_linear(ConcurrencyKind::serial);
+    const Adapted serial = adapt_linear("serial");
     set_thread_count(1);
-    const Adapted one = adapt_linear(ConcurrencyKind::speculative);
+    const Adapted one = adapt_linear("speculative");
     require_valid(one.mesh, 1.0);
     CHECK(total_conflicts(one.report) == 0);
     const auto& s = serial.report.cycles.back();
@@ -485,7 +485,7 @@ TEST_SUITE("parallel") {
 
   TEST_CASE("Speculative on 2 and 8 threads: valid meshes of the serial quality") {
     ThreadCountGuard guard;
-    const Adapted serial = adapt_linear(ConcurrencyKind::serial);
+    const Adapted serial = adapt_linear("serial");
     for (int threads : {2, 8}) {
       CAPTURE(threads);
       set_thread_count(threads);
@@ -518,8 +518,8 @@ TEST_SUITE("parallel") {
   }
 
   TEST_CASE("Serial adaptation gives the same mesh to the bit on every run") {
-    const Adapted a = adapt_linear(ConcurrencyKind::serial);
-    const Adapted b = adapt_linear(ConcurrencyKind::serial);
+    const Adapted a = adapt_linear("serial");
+    const Adapted b = adapt_linear("serial");
     const auto da = extract_mesh_data(a.mesh), db = extract_mesh_data(b.mesh);
     REQUIRE(da.vertices.size() == db.vertices.size());
     REQUIRE(da.tets.size() == db.tets.size());

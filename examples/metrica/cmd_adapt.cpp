@@ -116,9 +116,14 @@ int run_adapt(const std::vector<std::string>& args) {
   if (iterations < 1) throw UsageError("adapt: --iterations must be at least 1");
   if (iterations > 1 && !o.has("analytic"))
     throw UsageError("adapt: --iterations needs --analytic (a metric file holds values at the input's vertices only)");
-  const auto space = space_from_name(o.get<std::string>("space"));
-  const auto precision = precision_from_name(o.get<std::string>("precision"));
-  const auto concurrency = concurrency_from_name(o.get<std::string>("concurrency"));
+  const PolicyChoice policies{o.get<std::string>("space"), o.get<std::string>("precision"),
+                              o.get<std::string>("concurrency")};
+  try {
+    check_policy_choice(policies);
+  } catch (const InputError& e) {
+    throw UsageError(fmt::format("adapt: {}", e.what()));
+  }
+  const bool serial = policies.concurrency == Serial::name;
 
   AdaptOptions ao;
   ao.max_cycles = o.get<int>("cycles");
@@ -167,15 +172,15 @@ int run_adapt(const std::vector<std::string>& args) {
     if (talk)
       fmt::print("{}adapting {} vertices, {} tets ({} space, {} predicates, {} points, {})\n",
                  iterations > 1 ? fmt::format("iteration {}: ", it + 1) : "", count_text(mesh.num_vertices()),
-                 count_text(mesh.num_tets()), to_string(space), to_string(precision), to_string(ao.points),
-                 concurrency == ConcurrencyKind::serial ? std::string("serial")
+                 count_text(mesh.num_tets()), policies.space, policies.precision, to_string(ao.points),
+                 serial ? std::string("serial")
                                                         : fmt::format("speculative, {} threads", thread_count()));
-    const auto report = adapt(mesh, ao, space, precision, concurrency);
+    const auto report = adapt(mesh, ao, policies);
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
                  count_text(report.ops.get("collapse").applied), count_text(report.ops.get("split").applied),
                  count_text(report.ops.get("flip").applied), count_text(report.ops.get("smooth").applied));
-    if (talk && concurrency == ConcurrencyKind::speculative) print_parallel_stats(report);
+    if (talk && !serial) print_parallel_stats(report);
   }
   // Flat boundaries keep the volume to round-off; on a curved discrete
   // boundary, collapses may flatten it within their normal-deviation bound
@@ -198,7 +203,7 @@ int run_adapt(const std::vector<std::string>& args) {
   if (o.has("vtu")) io::write_mesh_file(o.get<std::string>("vtu"), data);
   if (talk) {
     fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());
-    fmt::print("{}", format_report(quality_report(mesh, space)));
+    fmt::print("{}", format_report(quality_report(mesh, policies.space)));
   }
   return kOk;
 }

@@ -58,7 +58,9 @@ int run_loop(const std::vector<std::string>& args) {
   lo.norm = o.get<double>("norm");
   lo.gradation = o.get<double>("gradation");
   lo.interpolate = o.has("interpolate");
-  lo.concurrency = concurrency_from_name(o.get<std::string>("concurrency"));
+  lo.concurrency = o.get<std::string>("concurrency");
+  if (!Concurrencies::contains(lo.concurrency))
+    throw UsageError(fmt::format("loop: unknown concurrency '{}' ({})", lo.concurrency, Concurrencies::names()));
   if (o.has("quick")) {
     lo.iterations = 6;
     lo.double_every = 3;
@@ -81,7 +83,7 @@ int run_loop(const std::vector<std::string>& args) {
   if (talk)
     fmt::print("loop: {} from {} vertices, complexity {} doubling every {}, {} iterations, p = {}, gradation {} ({})\n",
                to_string(field), count_text(mesh.num_vertices()), lo.complexity, lo.double_every, lo.iterations, lo.norm,
-               lo.gradation, lo.concurrency == ConcurrencyKind::serial ? std::string("serial")
+               lo.gradation, lo.concurrency == Serial::name ? std::string("serial")
                                                                       : fmt::format("{} threads", thread_count()));
   Stopwatch clock;
   lo.on_iteration = [&](const LoopRow& r, const Mesh& m) {

@@ -6,6 +6,7 @@
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
+#include <metrica/metrics/space.hpp>
 
 #include <fmt/core.h>
 
@@ -29,7 +30,8 @@ int run_quality(const std::vector<std::string>& args) {
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   if (o.has("metric") == o.has("analytic")) throw UsageError("quality: give one of -m METRIC or --analytic NAME");
-  const auto space = space_from_name(o.get<std::string>("space"));
+  const auto space = o.get<std::string>("space");
+  if (!Spaces::contains(space)) throw UsageError(fmt::format("quality: unknown space '{}' ({})", space, Spaces::names()));
 
   auto loaded = load_mesh(input);
   const std::size_t n = loaded.data.vertices.size();

@@ -61,9 +61,9 @@ int main(int argc, char** argv) try {
     } else cases.push_back(a);
   }
   if (cases.empty()) cases = {"linear", "polar-1", "polar-2"};
-  const SpaceKind space = space_from_name(space_name);
+  const PolicyChoice policies{space_name, Precisions::at<0>::name.data(), concurrency};
+  check_policy_choice(policies);
   const PointRule rule = point_rule_from_name(points);
-  const ConcurrencyKind conc = concurrency_from_name(concurrency);
   std::string csv = "case,iteration,vertices,tets,seconds,conformity,min_q,mean_q,vertices_per_complexity,peak_mb\n";
   for (const auto& name : cases) {
     const AnalyticMetric kind = analytic_metric_from_name(name);
@@ -80,9 +80,9 @@ int main(int argc, char** argv) try {
       o.metric = &metric;
       o.points = rule;
       Stopwatch clock;
-      adapt(mesh, o, space, PrecisionKind::filtered, conc);
+      adapt(mesh, o, policies);
       const double seconds = clock.seconds();
-      const auto r = quality_report(mesh, space);
+      const auto r = quality_report(mesh, policies.space);
       fmt::print("  {:>4} {:>9} {:>10} {:>8.2f} {:>8.2f}% {:>7.3f} {:>7.3f} {:>8.3f} {:>8.1f}\n", it, r.vertices, r.tets,
                  seconds, 100.0 * r.unit_length_share, r.quality.min, r.quality.mean, r.vertices_per_complexity, peak_mb());
       std::fflush(stdout);

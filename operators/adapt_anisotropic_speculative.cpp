@@ -1,8 +1,0 @@
-// The Anisotropic x Speculative instantiations of the pipeline (adapt_dispatch.hpp).
-#include <metrica/operators/adapt_dispatch.hpp>
-
-namespace metrica {
-
-template AdaptReport adapt_with<Anisotropic, Speculative>(Mesh&, const AdaptOptions&, PrecisionKind);
-
-}  // namespace metrica

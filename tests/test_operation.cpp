@@ -1,0 +1,305 @@
+// The operation protocol, the pass runner and the pipeline object:
+//   - each operation's decide, property-tested without applying: a plan
+//     never inverts a tet and never drops below the shape floor; applied on
+//     a copy, it keeps the mesh valid, the boundary areas per surface id and
+//     the ridges;
+//   - the shape floor of 2-3 flips under every criterion;
+//   - a toy executor (items in reverse order) adapts a box with no
+//     operator edited;
+//   - custom pipelines (stages reordered, one replaced).
+#include "operator_test_support.hpp"
+
+#include <metrica/mesh_build.hpp>
+#include <metrica/operators/adapt.hpp>
+#include <metrica/operators/operation.hpp>
+
+#include <doctest/doctest.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+using namespace metrica;
+using namespace metrica::test;
+
+namespace {
+
+// Total length of the ridge edges (the box's twelve edges: 12).
+double ridge_length(const Mesh& mesh) {
+  double l = 0.0;
+  for (const auto& [a, b] : unique_edges(mesh))
+    if (mesh.is_ridge(a, b)) l += (mesh.point(b) - mesh.point(a)).norm();
+  return l;
+}
+
+template <class S>
+double worst(const Mesh& mesh) {
+  return worst_quality<S>(mesh);
+}
+
+// Every item of `items` through decide; each plan previewed (all tets
+// positive with exact predicates, none below min(floor, the mesh's worst
+// tet before)) and the first `applied_checks` plans applied on a copy
+// (valid, volume, areas per surface id, ridge length kept). Returns the
+// number of plans.
+template <class S, Operation Op>
+int check_plans(const Mesh& mesh, const Op& op, const std::vector<typename Op::Item>& items, double floor,
+                int applied_checks = 25) {
+  typename Op::Scratch s;
+  PlannedTets planned;
+  const double worst_before = worst<S>(mesh);
+  const auto areas = surface_areas(mesh);
+  const double ridges = ridge_length(mesh);
+  int plans = 0;
+  for (const auto& item : items) {
+    const auto d = decide_item(mesh, op, item, s);
+    if (!d) continue;
+    ++plans;
+    op.preview(mesh, item, d.plan(), s, planned);
+    REQUIRE(!planned.empty());
+    for (const PlannedTet& t : planned) {
+      const auto& x = t.points;
+      CHECK(Exact::orient3d(x[0], x[1], x[2], x[3]) > 0);
+    }
+    if (floor > 0.0) {
+      // The new tets' mean ratio, in the metric of the tets they come
+      // from: the preview's vertices (the new vertex's metric is not in
+      // the mesh yet, so its tets are skipped).
+      for (const PlannedTet& t : planned) {
+        if (std::find(t.vertices.begin(), t.vertices.end(), kNoId) != t.vertices.end()) continue;
+        CHECK(S::mean_ratio(mesh, t.vertices, t.points) >= std::min(floor, worst_before) * (1 - 1e-9));
+      }
+    }
+    if (plans <= applied_checks) {
+      Mesh copy = mesh;
+      typename Op::Scratch s2;
+      const auto d2 = decide_item(copy, op, item, s2);
+      REQUIRE(static_cast<bool>(d2));
+      op.apply(copy, item, d2.plan(), s2);
+      require_valid(copy, 1.0);
+      const auto after = surface_areas(copy);
+      REQUIRE(after.size() == areas.size());
+      for (const auto& [id, area] : areas) CHECK(after.at(id) == doctest::Approx(area).epsilon(1e-9));
+      CHECK(ridge_length(copy) == doctest::Approx(ridges).epsilon(1e-9));
+    }
+  }
+  return plans;
+}
+
+template <class S>
+std::vector<EdgeSeed> all_edge_seeds(const Mesh& mesh) {
+  std::vector<TetId> tets;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+    if (mesh.tet_alive(t)) tets.push_back(t);
+  MeshArray<EdgeSeed> seeds;
+  unique_edge_seeds(std::span<const TetId>(tets), [&](TetId t) -> const TetVertices& { return mesh.tet(t); },
+                    mesh.vertex_capacity(), seeds);
+  return {seeds.begin(), seeds.end()};
+}
+
+std::vector<TetId> all_tets(const Mesh& mesh) {
+  std::vector<TetId> out;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+    if (mesh.tet_alive(t)) out.push_back(t);
+  return out;
+}
+
+std::vector<VertexId> all_vertices(const Mesh& mesh) {
+  std::vector<VertexId> out;
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v)) out.push_back(v);
+  return out;
+}
+
+// A scored criterion that prefers any new configuration (old tets score 0,
+// new ones 1): only the shape floor can refuse under it.
+struct PreferNew {
+  static constexpr std::string_view name = "prefer-new";
+  static constexpr bool measures_shape = false;
+  template <MetricSpace S>
+  static double tet_score(const Mesh&, const TetVertices&) {
+    return 1.0;
+  }
+  template <MetricSpace S>
+  static double tet_score_at(const Mesh&, const TetVertices&, const TetPoints&) {
+    return 1.0;
+  }
+  template <MetricSpace S>
+  static double tet_score_of(const Mesh&, TetId) {
+    return 0.0;
+  }
+  static double bar(double reference) { return reference; }
+};
+
+// Two tets on face pqr whose apexes' segment crosses the face 1e-5 from
+// edge pq: the 2-3 flip's tet (p, q, a, b) is a sliver (Q ~ 5e-4), the
+// old tets are fair.
+Mesh sliver_pair() {
+  io::MeshData d;
+  d.vertices = {Point(0, 0, 0), Point(1, 0, 0), Point(0.5, 1, 0), Point(0.5, 1e-5, 1), Point(0.5, 1e-5, -1)};
+  d.tets = {TetVertices{0, 1, 2, 3}, TetVertices{1, 0, 2, 4}};
+  return build_mesh(d);
+}
+
+// Serial with the items of every work list run in reverse order: an
+// executor that is not one of the library's.
+struct ReverseSerial : Serial {
+  static constexpr std::string_view name = "reverse";
+  template <class Item, class Work>
+  static PassTally for_each(Mesh&, std::span<const Item> items, const PassRoom&, Work&& work) {
+    Locks locks;
+    PassTally tally;
+    tally.rounds = items.empty() ? 0 : 1;
+    for (std::size_t i = items.size(); i-- > 0;) work(items[i], 0, locks);
+    return tally;
+  }
+};
+static_assert(Concurrency<ReverseSerial>);
+
+template <class S, class P>
+struct SpacePrecision {
+  using Space = S;
+  using Precision = P;
+};
+
+}  // namespace
+
+#define METRICA_SPACE_PRECISION                                                                           \
+  SpacePrecision<LogEuclidean, Filtered>, SpacePrecision<Anisotropic, Exact>, SpacePrecision<Isotropic, Fast>
+
+TEST_SUITE("property") {
+  TEST_CASE_TEMPLATE("a decided split or centroid insertion never inverts - applied it keeps areas and ridges", T,
+                     METRICA_SPACE_PRECISION) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    Mesh mesh = jittered_box(3, 0.3, 11);
+    require_valid(mesh, 1.0);
+    set_uniform_metric(mesh, 0.12);
+    const auto long_edges = edges_beyond<S>(mesh, kUnitBand.hi, EdgeOrder::longest_first);
+    CHECK(check_plans<S>(mesh, EdgeSplit<S, P>{{}, mesh.next_epoch()}, long_edges, 0.0) > 0);
+    // With a shape floor (children measured in their parent's metric).
+    CHECK(check_plans<S>(mesh, EdgeSplit<S, P>{{.quality_floor = 0.2}, mesh.next_epoch()}, long_edges, 0.0) > 0);
+    std::vector<std::uint32_t> of_tet;
+    const auto candidates = centroid_candidates<S>(mesh, {}, of_tet);
+    CHECK(check_plans<S>(mesh, CentroidInsertion<S, P>{{}, mesh.next_epoch()}, candidates, 0.0) > 0);
+  }
+
+  TEST_CASE_TEMPLATE("a decided collapse never inverts nor drops below its floor - applied it keeps areas and ridges", T,
+                     METRICA_SPACE_PRECISION) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    Mesh mesh = jittered_box(4, 0.3, 12);
+    require_valid(mesh, 1.0);
+    set_uniform_metric(mesh, 0.5);
+    const auto short_edges = edges_beyond<S>(mesh, kUnitBand.lo, EdgeOrder::shortest_first);
+    const CollapseOptions o;
+    CHECK(check_plans<S>(mesh, Collapse<S, P>{o}, short_edges, o.quality_floor) > 0);
+    CHECK(check_plans<S>(mesh, Collapse<S, P, MinQuality>{o}, short_edges, o.quality_floor) >= 0);
+  }
+
+  TEST_CASE_TEMPLATE("decided flips and smoothing moves never invert nor drop below the floor under every criterion", T,
+                     METRICA_SPACE_PRECISION) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    Mesh mesh = jittered_box(3, 0.35, 3);
+    require_valid(mesh, 1.0);
+    set_uniform_metric(mesh, 0.3);
+    const FlipOptions fo;
+    const auto edges = all_edge_seeds<S>(mesh);
+    const auto tets = all_tets(mesh);
+    CHECK(check_plans<S>(mesh, EdgeRemoval<S, P, MinQuality>{fo}, edges, fo.min_quality) > 0);
+    CHECK(check_plans<S>(mesh, EdgeRemoval<S, P, MaxMinEdgeWeight>{fo}, edges, fo.min_quality) > 0);
+    check_plans<S>(mesh, EdgeRemoval<S, P, MetricDelaunay>{fo}, edges, fo.min_quality);
+    check_plans<S>(mesh, EdgeRemoval<S, P, PreferNew>{fo}, edges, fo.min_quality);
+    CHECK(check_plans<S>(mesh, FaceFlip<S, P, MinQuality>{fo}, tets, fo.min_quality) > 0);
+    check_plans<S>(mesh, FaceFlip<S, P, MaxMinEdgeWeight>{fo}, tets, fo.min_quality);
+    check_plans<S>(mesh, FaceFlip<S, P, MetricDelaunay>{fo}, tets, fo.min_quality);
+    CHECK(check_plans<S>(mesh, FaceFlip<S, P, PreferNew>{fo}, tets, fo.min_quality) > 0);
+    const auto vertices = all_vertices(mesh);
+    const SmoothOptions so{.below = 1.0};
+    CHECK(check_plans<S>(mesh, Smoothing<S, P>{so}, vertices, 0.0) > 0);
+    CHECK(check_plans<S>(mesh, Smoothing<S, P, MaxMinEdgeWeight>{so}, vertices, so.min_quality) > 0);
+  }
+
+  TEST_CASE_TEMPLATE("the 2-3 flip keeps the shape floor under every criterion", T, METRICA_SPACE_PRECISION) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    Mesh mesh = sliver_pair();
+    set_uniform_metric(mesh, 1.0);
+    REQUIRE(mesh.num_tets() == 2);
+    const TetId t = local_index(mesh.tet(0), 3) >= 0 ? 0 : 1;
+    const int face = local_index(mesh.tet(t), 3);
+    FlipScratch s;
+    const FlipOptions fo;
+    // Without the floor, PreferNew takes the flip: the candidate holds the sliver.
+    const double old_worst = worst<S>(mesh);
+    CHECK(old_worst > 0.3);
+    auto check_floor = [&](const auto& d) {
+      if (!d) return;
+      for (const auto& c : s.candidate) CHECK(S::mean_ratio(mesh, c) >= std::min(fo.min_quality, old_worst));
+    };
+    const auto prefer_new = decide_flip23<S, P, PreferNew>(mesh, t, face, s, fo);
+    double sliver = 1.0;
+    for (const auto& c : s.candidate) sliver = std::min(sliver, S::mean_ratio(mesh, c));
+    CHECK(sliver < fo.min_quality);  // the configuration holds the case
+    CHECK_FALSE(prefer_new);
+    check_floor(decide_flip23<S, P, MinQuality>(mesh, t, face, s, fo));
+    check_floor(decide_flip23<S, P, MaxMinEdgeWeight>(mesh, t, face, s, fo));
+    check_floor(decide_flip23<S, P, MetricDelaunay>(mesh, t, face, s, fo));
+    check_floor(decide_flip23<S, P, AlwaysFlip>(mesh, t, face, s, fo));
+    // With the floor at 0 the flip is taken (the floor is what refused it).
+    FlipOptions no_floor = fo;
+    no_floor.min_quality = 0.0;
+    CHECK(static_cast<bool>(decide_flip23<S, P, PreferNew>(mesh, t, face, s, no_floor)));
+  }
+}
+
+TEST_SUITE("invariant") {
+  TEST_CASE("a toy executor (items in reverse order) adapts a box validly with no operator edited") {
+    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+    const MetricFunction metric = small_linear;
+    set_metric_function(mesh, metric);
+    AdaptOptions o;
+    o.metric = &metric;
+    const AdaptReport r = adapt<LogEuclidean, Filtered, ReverseSerial>(mesh, o);
+    require_valid(mesh, 1.0);
+    const CycleReport& last = r.cycles.back();
+    INFO("in range " << last.conformity << ", min Q " << last.min_quality);
+    CHECK(r.ops.get("split").applied > 0);
+    CHECK(r.ops.get("collapse").applied > 0);
+    CHECK(last.conformity > 0.85);
+    CHECK(last.min_quality > 0.2);
+  }
+
+  TEST_CASE_TEMPLATE("a custom pipeline (stages reordered and one replaced) reports by stage name", T,
+                     METRICA_POLICY_COMBINATIONS) {
+    using A = Adapter<typename T::Space, typename T::Precision, typename T::Concurrency>;
+    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+    const MetricFunction metric = small_linear;
+    set_metric_function(mesh, metric);
+    A adapter(mesh, &metric);
+    Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
+    p.max_cycles = 6;
+    // Split before collapse, edge-weight flips, and smoothing replaced by a
+    // stage of our own that runs the smoothing operation over every vertex.
+    int custom_runs = 0;
+    p.cycle = {{"split", [](A& a) { return a.split({}); }},
+               {"collapse", [](A& a) { return a.collapse({}); }},
+               {"flip", [](A& a) { return a.template flips<MaxMinEdgeWeight>({}, "edge-weight"); }},
+               {"my-smooth", [&custom_runs](A& a) {
+                  ++custom_runs;
+                  const std::vector<VertexId> vertices = all_vertices(a.mesh());
+                  return a.run(Smoothing<typename A::Space, typename A::Exactness>{{.below = 1.0, .metric = a.metric()}},
+                               std::span<const VertexId>(vertices));
+                }}};
+    const AdaptReport& r = run_pipeline(adapter, p);
+    require_valid(mesh, 1.0);
+    CHECK(custom_runs > 0);
+    CHECK(r.ops.get("my-smooth").applied > 0);
+    CHECK(r.ops.get("split").applied > 0);
+    CHECK(r.ops.get("smooth").tried > 0);  // the standard quality phase
+    CHECK(r.cycles.front().ops.begin()->first == "split");
+    CHECK(r.cycles.back().min_quality > 0.1);
+    CHECK(adapter.since("edge-weight") > 0);
+  }
+}
