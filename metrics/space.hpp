@@ -32,6 +32,9 @@ template <class S>
 concept MetricSpace = requires(const Mesh& mesh, VertexId a, const TetVertices& t, const TetPoints& p,
                                std::span<const VertexId> ids, std::span<const double> w, const Sym6& m) {
   { S::name } -> std::convertible_to<std::string_view>;
+  // The tensor the space sees at a vertex (Isotropic: the isotropic
+  // metric of the same volume).
+  { S::vertex_metric(mesh, a) } -> std::convertible_to<Sym6>;
   // The metric at the barycentric point sum w_i x_{ids_i} (sum w_i = 1),
   // alone, and with its logarithm (to store at a new vertex).
   { S::metric_at(mesh, ids, w) } -> std::same_as<Sym6>;

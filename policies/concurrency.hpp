@@ -65,10 +65,17 @@ struct PassTally {
   double busy_seconds = 0.0, thread_seconds = 0.0;
 };
 
+// A Concurrency policy is an executor: for_each runs a work list (the
+// pass runner's work function per item, replaying conflicts, keeping room
+// for what items create); the rest serves the sweeps that build lists.
 template <class C>
-concept Concurrency = requires(typename C::Locks& locks, std::span<const VertexId> vertices) {
+concept Concurrency = requires(typename C::Locks& locks, std::span<const VertexId> vertices, Mesh& mesh,
+                               std::span<const int> items) {
   { C::name } -> std::convertible_to<std::string_view>;
   { C::threads() } -> std::same_as<int>;
+  { C::for_each(mesh, items, PassRoom{}, [](const int&, int, typename C::Locks&) { return Attempt::done; }) }
+      -> std::same_as<PassTally>;
+  { locks.acquire({VertexId{0}}) } -> std::same_as<bool>;
   { C::template collect<int>(std::size_t{0}, [](std::size_t, std::vector<int>&) {}) } -> std::same_as<std::vector<int>>;
   { C::sort(std::declval<int*>(), std::declval<int*>(), std::less<int>{}) } -> std::same_as<void>;
   { C::parallel_for(std::size_t{0}, [](std::size_t) {}) } -> std::same_as<void>;
