@@ -8,7 +8,7 @@
 #include "bench_common.hpp"
 
 #include <metrica/allocator.hpp>
-#include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
 
 #include <fmt/core.h>
 

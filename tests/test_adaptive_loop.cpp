@@ -9,7 +9,7 @@
 #include <metrica/metrics/analytic_field.hpp>
 #include <metrica/metrics/interpolation_error.hpp>
 #include <metrica/metrics/quadrature.hpp>
-#include <metrica/operators/adaptive_loop.hpp>
+#include <metrica/pipeline/adaptive_loop.hpp>
 #include <metrica/point_location.hpp>
 
 #include <cmath>

@@ -6,7 +6,7 @@
 // operator.
 #include "operator_test_support.hpp"
 
-#include <metrica/operators/adapt.hpp>
+#include <metrica/pipeline/adapt.hpp>
 
 using namespace metrica;
 using namespace metrica::test;

@@ -10,7 +10,7 @@
 #include "operator_test_support.hpp"
 
 #include <metrica/mesh_build.hpp>
-#include <metrica/operators/adapt.hpp>
+#include <metrica/pipeline/adapt.hpp>
 #include <metrica/operators/operation.hpp>
 
 #include <doctest/doctest.h>

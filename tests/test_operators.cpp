@@ -8,7 +8,7 @@
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_edges.hpp>
 #include <metrica/metrics/metric_field.hpp>
-#include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/reconnect.hpp>
 #include <metrica/operators/refine_edges.hpp>

@@ -10,8 +10,8 @@
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_edges.hpp>
 #include <metrica/part_runner.hpp>
-#include <metrica/operators/adapt.hpp>
-#include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapt.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/edge_buckets.hpp>
 #include <metrica/operators/edge_queue.hpp>

@@ -7,7 +7,7 @@
 
 #include <metrica/io/meshb.hpp>
 #include <metrica/mesh_build.hpp>
-#include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/operators/reconnect.hpp>
 #include <metrica/operators/refine_centroids.hpp>
 

@@ -7,7 +7,7 @@
 #include <metrica/box.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/quality_report.hpp>
-#include <metrica/operators/adapt.hpp>
+#include <metrica/pipeline/adapt.hpp>
 #include <metrica/validate.hpp>
 
 #include <fmt/core.h>

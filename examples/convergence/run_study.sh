@@ -14,7 +14,7 @@ if ! python3 -c "import matplotlib" 2>/dev/null && [ "$(id -u)" -eq 0 ]; then
 fi
 mkdir -p "$out"
 for field in sinfun3 tanh3 sinatan3; do
-  "$root/build/examples/metrica/metrica" loop --field "$field" --complexity 1000 --double-every 10 \
+  "$root/build/cli/metrica" loop --field "$field" --complexity 1000 --double-every 10 \
     --iterations 80 --csv "$out/$field.csv" "$@"
 done
 python3 "$root/examples/convergence/plot_convergence.py" "$out"/sinfun3.csv "$out"/tanh3.csv "$out"/sinatan3.csv \

@@ -16,7 +16,7 @@ shift || true
 fields=("$@")
 [ ${#fields[@]} -gt 0 ] || fields=(sinfun3 sinatan3)
 "$root/scripts/build"
-metrica="$root/build/examples/metrica/metrica"
+metrica="$root/build/cli/metrica"
 mkdir -p "$out"
 error_of() { "$metrica" error "$@" | grep -o -E 'L2 error [0-9.e+-]+' | awk '{print $3}'; }
 echo "| field | complexity | vertices | error vs exact | error vs the 32k mesh | ratio |"

@@ -12,7 +12,7 @@
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
-#include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/policies/threads.hpp>
 #include <metrica/timer.hpp>
 

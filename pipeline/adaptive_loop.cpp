@@ -1,7 +1,7 @@
 #include <metrica/error.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/multiscale.hpp>
-#include <metrica/operators/adaptive_loop.hpp>
+#include <metrica/pipeline/adaptive_loop.hpp>
 #include <metrica/point_location.hpp>
 #include <metrica/timer.hpp>
 

@@ -9,7 +9,7 @@
 #include <metrica/mesh_build.hpp>
 #include <metrica/metrics/analytic_field.hpp>
 #include <metrica/metrics/metric_field.hpp>
-#include <metrica/operators/adaptive_loop.hpp>
+#include <metrica/pipeline/adaptive_loop.hpp>
 #include <metrica/policies/threads.hpp>
 #include <metrica/timer.hpp>
 

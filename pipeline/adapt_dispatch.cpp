@@ -1,5 +1,5 @@
 #include <metrica/error.hpp>
-#include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
 
 #include <fmt/core.h>
 

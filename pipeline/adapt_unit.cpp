@@ -1,7 +1,7 @@
 // One (space, concurrency) pair of the policy lists, compiled with
 // METRICA_ADAPT_UNIT = its index (space-major): the pipeline under every
 // precision for that pair.
-#include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
 
 namespace metrica {
 

@@ -11,7 +11,7 @@
 
 #include <metrica/metrics/analytic_field.hpp>
 #include <metrica/metrics/interpolation_error.hpp>
-#include <metrica/operators/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
 
 #include <functional>
 #include <string>

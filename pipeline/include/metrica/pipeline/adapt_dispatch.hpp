@@ -6,7 +6,7 @@
 #pragma once
 
 #include <metrica/metrics/quality_report.hpp>
-#include <metrica/operators/adapt.hpp>
+#include <metrica/pipeline/adapt.hpp>
 #include <metrica/policies/speculative.hpp>
 
 #include <string>

@@ -10,7 +10,7 @@
 // instantiate the combinations the CLI offers (adapt_dispatch.hpp).
 #pragma once
 
-#include <metrica/operators/adapter.hpp>
+#include <metrica/pipeline/adapter.hpp>
 #include <metrica/operators/edge_buckets.hpp>
 
 #include <algorithm>
