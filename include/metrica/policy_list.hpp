@@ -39,7 +39,7 @@ template <class... T, class F>
 auto with_policy_in(PolicyList<T...>, std::string_view what, std::string_view name, F&& f) {
   using First = std::tuple_element_t<0, std::tuple<T...>>;
   std::optional<decltype(f.template operator()<First>())> result;
-  ((T::name == name && (result.emplace(f.template operator()<T>()), true)) || ...);
+  static_cast<void>(((T::name == name && (result.emplace(f.template operator()<T>()), true)) || ...));
   if (!result)
     throw InputError("unknown " + std::string(what) + " '" + std::string(name) + "' (" + PolicyList<T...>::names() +
                      ")");

@@ -1,4 +1,4 @@
-// Analytic metric fields of the UGAWG benchmarks (shared/data/ugawg/README):
+// Analytic metric fields of the UGAWG benchmarks (UGAWG adapt-benchmarks; tests/data/ugawg/README.md):
 // M = R diag(h1^-2, h2^-2, h3^-2) R^T with sizes that vary in space.
 //
 //   linear   h_x = h_y = 0.1, h_z = h0 + 2 (0.1 - h0) |z - 0.5|

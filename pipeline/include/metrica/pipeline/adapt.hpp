@@ -1,4 +1,4 @@
-// The adaptation pipeline of DESIGN.md ("What one adaptation does"):
+// The standard adaptation, as a pipeline of stages on an Adapter:
 //
 //   cycle, until little changes or max_cycles:
 //     collapse short edges -> refine long edges -> reconnect (flips)
@@ -6,8 +6,8 @@
 //   quality phase: reconnect + smooth, quality_passes times; then, while a
 //   tet is below repair_below, a repair round around the poor tets
 //
-// A template over <Space, Precision, Concurrency>; adapt_<space>.cpp
-// instantiate the combinations the CLI offers (adapt_dispatch.hpp).
+// AdaptOptions holds the standard pipeline's settings; Pipeline is any
+// list of stages with its stopping rules, run by run_pipeline.
 #pragma once
 
 #include <metrica/pipeline/adapter.hpp>
