@@ -4,7 +4,7 @@
 //
 //   build/bench/bench_io [hexes-per-direction=55] [runs=5] [folder=/tmp]
 //
-// 55^3 hexes x 6 = 998,250 tets (the "1M-tet cube").
+// 55^3 hexes x 6 = 998,250 tets (the 1M-tet cube).
 #include "bench_common.hpp"
 
 #include <metrica/box.hpp>

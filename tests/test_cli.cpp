@@ -6,8 +6,10 @@
 
 #include <doctest/doctest.h>
 
+#include <cctype>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <sys/wait.h>
 
 using namespace metrica;
@@ -336,6 +338,29 @@ TEST_SUITE("regression") {
       const auto r = metrica_cli(std::string(c) + " --help");
       CHECK(r.code == 0);
       CHECK(has(r, "Example"));
+    }
+  }
+
+  TEST_CASE("docs/cli.md lists every command and every option of the help (scripts/cli-docs writes it)") {
+    std::ifstream in(std::string(METRICA_DOCS_DIR) + "/cli.md");
+    REQUIRE(in.good());
+    const std::string docs((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const char* cmd : {"cube", "info", "check", "convert", "metric", "adapt", "loop", "interpolate", "error",
+                            "quality"}) {
+      CAPTURE(cmd);
+      CHECK(docs.find(std::string("## metrica ") + cmd + "\n") != std::string::npos);
+      const auto help = metrica_cli(std::string(cmd) + " --help");
+      REQUIRE(help.code == 0);
+      // Every "--option" the help names.
+      for (std::size_t at = help.output.find("--"); at != std::string::npos; at = help.output.find("--", at + 2)) {
+        std::size_t end = at + 2;
+        while (end < help.output.size() && (std::isalnum(static_cast<unsigned char>(help.output[end])) || help.output[end] == '-'))
+          ++end;
+        if (end == at + 2) continue;
+        const std::string option = help.output.substr(at, end - at);
+        CAPTURE(option);
+        CHECK(docs.find(option) != std::string::npos);
+      }
     }
   }
 }

@@ -9,6 +9,8 @@
 //   - custom pipelines (stages reordered, one replaced).
 #include "operator_test_support.hpp"
 
+#include "laplacian_move.hpp"  // examples/operation: the tutorial's operation
+
 #include <metrica/mesh_build.hpp>
 #include <metrica/pipeline/adapt.hpp>
 #include <metrica/operators/operation.hpp>
@@ -303,3 +305,23 @@ TEST_SUITE("invariant") {
     CHECK(adapter.since("edge-weight") > 0);
   }
 }
+
+TEST_SUITE("invariant") {
+  TEST_CASE_TEMPLATE("the tutorial's operation (examples/operation) keeps the mesh valid and never lowers the worst tet", T,
+                     METRICA_POLICY_COMBINATIONS) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    using C = typename T::Concurrency;
+    Mesh mesh = jittered_box(4, 0.3, 21);
+    set_uniform_metric(mesh, 0.3);
+    const example::LaplacianMove<S, P> op;
+    // Its plans, property-tested without applying them.
+    CHECK(check_plans<S>(mesh, op, all_vertices(mesh), 0.0) > 0);
+    const double before = worst<S>(mesh);
+    const OperatorStats stats = run_pass<C>(mesh, op, all_vertices(mesh));
+    CHECK(stats.applied > 0);
+    require_valid(mesh, 1.0);
+    CHECK(worst<S>(mesh) >= before);
+  }
+}
+

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Convergence report of `metrica loop` runs (issue 6, seed section 5.2).
+"""Convergence report of `metrica loop` runs (seed section 5.2).
 
 Reads one CSV per field (the `metrica loop --csv` table), takes the last
 `--last` iterations at each target complexity, averages their vertex

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The full verification study (issue 6): the adaptive loop on sinfun3,
+# The full verification study: the adaptive loop on sinfun3,
 # tanh3 and sinatan3 from complexity 1000, doubling every 10 iterations up
 # to 128000 (80 iterations), then the convergence table and plot.
 # Usage: examples/convergence/run_study.sh [OUTPUT_DIR=study] [extra metrica loop options]

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# How the error measure bends a convergence slope (issue 6). refine's
+# How the error measure bends a convergence slope. refine's
 # published errors (UGAWG error-est-results) are measured against the
 # loop's last mesh (the "truth", complexity 512k) instead of the exact
 # field, which lowers the error the closer a mesh is to the truth. This

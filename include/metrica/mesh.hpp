@@ -7,7 +7,7 @@
 // surface id of each face (0 for an interior face) and a domain reference.
 // Deleted entities are recycled through free lists; compact() renumbers.
 //
-// The invariants of DESIGN.md are checked by validate() (validate.hpp).
+// The invariants of docs/architecture.md are checked by validate() (validate.hpp).
 // Operators change the mesh through the small set of primitives below;
 // none of them allocates per call once capacity is reserved.
 #pragma once
@@ -225,7 +225,7 @@ class Mesh {
   void compact();
   void compact(const PartRunner& run);
 
-  // Checks every invariant of DESIGN.md (validate.cpp).
+  // Checks every invariant of docs/architecture.md (validate.cpp).
   ValidationReport validate(const ValidateOptions& options) const;
   ValidationReport validate() const;
 

@@ -1,4 +1,4 @@
-// Mesh::validate(): every invariant of DESIGN.md, reported precisely.
+// Mesh::validate(): every invariant of docs/architecture.md, reported precisely.
 #pragma once
 
 #include <metrica/mesh.hpp>

@@ -1,4 +1,4 @@
-// The UGAWG quality report of a mesh in its metric (DESIGN.md, "Quality
+// The UGAWG quality report of a mesh in its metric (docs/architecture.md, "Quality
 // measures"; seed appendix A): edge lengths (UGAWG formula) and mean
 // ratios (metric at the centroid), their extremes, means and histograms,
 // the share of edges in [1/sqrt 2, sqrt 2] (conformity), the share of tets

@@ -1,4 +1,4 @@
-// The Space policy: how geometry is measured (DESIGN.md, "The three
+// The Space policy: how geometry is measured (docs/architecture.md, "The three
 // policies"). A Space is a stateless class whose static functions read the
 // points and per-vertex metrics of a Mesh; operators are templates over it.
 //

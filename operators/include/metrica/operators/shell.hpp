@@ -1,4 +1,4 @@
-// Cavities read from connectivity only (the "find" step of DESIGN.md):
+// Cavities read from connectivity only (the "find" step of docs/architecture.md):
 // the ball of a vertex (its incident tets) and the shell of an edge (the
 // tets around it, in rotation order). No allocation: small vectors sized
 // for the usual cases spill to the heap only for unusual valences.

@@ -26,63 +26,47 @@ namespace metrica {
 // the tets with a long edge with the encroachment rules (the seed's).
 enum class PointRule { edge, centroid };
 
+// The settings of the standard pipeline. The figures behind each default
+// are in docs/benchmarks.md ("Why the defaults").
 struct AdaptOptions {
   int max_cycles = 15;
   PointRule points = PointRule::edge;
   // Stop cycling when a cycle splits and collapses fewer than this share
-  // of the vertices.
+  // of the vertices ...
   double min_change = 0.002;
-  // ... or, once the mesh is nearly a unit mesh (at least
-  // near_unit_conformity of its edges in range), when a cycle raises that
-  // share by less than min_conformity_gain: the last cycles trade splits
-  // for collapses and gain little, the quality phase's smoothing gains more
-  // per second (0.6M tets of linear: 13.9 s -> 12.9 s, 98.48% -> 98.33%
-  // in range, min Q 0.39 -> 0.54). Far from a unit mesh the share can stall or
-  // fall while the operators work, so the rule waits.
+  // ... or, once at least near_unit_conformity of the edges are in the
+  // unit band, when a cycle raises that share by less than
+  // min_conformity_gain: the last cycles trade splits for collapses, and
+  // the quality phase gains more per second. Far from a unit mesh the
+  // share can stall while the operators work, so the rule waits.
   double min_conformity_gain = 0.005;
   double near_unit_conformity = 0.9;
   int quality_passes = 4;
   RefineOptions refine;
   CollapseOptions collapse;
-  // Flips: one sweep per cycle over the edges and faces of the changed
-  // tets below Q 0.7 (measured on linear / polar-1: all tets 4.46 s /
-  // 9.61 s, 98.20% / 91.96% in range; below 0.7 3.80 s / 8.83 s, 98.27% /
-  // 92.03%; below 0.5 3.65 s / 8.35 s, 97.66% / 91.52%); the quality
-  // phase sweeps from the tets below polish_below until little changes.
-  //
-  // Edge removals skip short edges with large rings (FlipOptions): on a
-  // 943k-tet linear adaptation 37.0 s against 38.0 s, 98.51% / 98.47% in
-  // range; 28k tets, 7.45 G against 8.42 G instructions.
-  // 2-3 flips only across faces with a tet below 0.3: on a 224k-tet run,
-  // the faces whose worse tet was in [0.3, 0.6) took 1.12M tries for 3.9k
-  // flips; 28k tets 7.27 G against 7.45 G instructions, the UGAWG cases'
-  // 5th iterations within 0.2% in range and min Q (0.6: linear / polar-1
-  // / polar-2 99.61% / 94.43% / 99.30%, min Q 0.58 / 0.34 / 0.63; 0.3:
-  // 99.62% / 94.61% / 99.33%, 0.61 / 0.40 / 0.62).
+  // Flips: one sweep per cycle from the changed tets below Q 0.7 (all tets
+  // cost 15% more time for no gain in range); edge removals skip short
+  // edges with large rings and 2-3 flips need a tet below 0.3 across the
+  // face (both rarely flip). The quality phase sweeps from the tets below
+  // polish_below until little changes.
   ReconnectOptions reconnect{.flips = {.short_edge_ring4 = 0.8, .short_edge_ring5 = 1.0},
                              .seed_below = 0.7,
                              .max_sweeps = 1,
                              .face_flip_below = 0.3};
   double polish_below = 0.8;
   SmoothOptions smooth{.below = 0.3};
-  // Smoothing threshold during the quality phase: every vertex (measured:
-  // min Q 0.40 -> 0.64 on the UGAWG linear case against 0.4).
+  // Smoothing in the quality phase: every vertex (UGAWG linear: min Q 0.64
+  // against 0.40 with 0.4).
   double quality_phase_smooth_below = 1.0;
-  // Repair: tets still below repair_below after the quality passes (0.3,
-  // the "poor" of the flips and the cycles' smoothing) are held by what
-  // flips and smoothing cannot change: a short edge whose collapse was
-  // refused when the cycles last tried it, a long ridge edge a split
-  // skipped, a surface vertex nearly on a ridge in the metric. A round
-  // first collapses edges of any length at the poor tets' vertices where
-  // that lifts the worst tet of the ball, then runs the cycle's operators
-  // (edge splits whatever the point rule) on the balls of the poor tets'
-  // vertices and what those operators change, then one quality pass; at
-  // most repair_rounds rounds, and none after two in a
-  // row that left the worst tet where it was. One such round can prepare
-  // the next (the repair test's fixture on one Speculative thread: 0.255,
-  // 0.255, then 0.61), and slow climbs need many (a two-thread run: 0.075,
-  // 0.092, 0.181, 0.197 in four). Measured on two-thread adaptations of
-  // the parallel tests' case (about 3,200 tets): README, session 15.
+  // Repair: tets still below repair_below after the quality passes are
+  // held by what flips and smoothing cannot change (a short edge whose
+  // collapse was refused, a long ridge edge a split skipped, a surface
+  // vertex nearly on a ridge in the metric). A round first collapses edges
+  // of any length at the poor tets' vertices where that lifts the worst
+  // tet of the ball, then runs the cycle's operators around the poor tets,
+  // then one quality pass; at most repair_rounds rounds, none after two in
+  // a row that left the worst tet where it was (one round can prepare the
+  // next, and slow climbs need several).
   double repair_below = 0.3;
   int repair_rounds = 8;
   // When set, new and moved vertices take this metric (analytic cases).

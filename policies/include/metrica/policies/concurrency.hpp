@@ -1,4 +1,4 @@
-// The Concurrency policy: how work is found and protected (DESIGN.md).
+// The Concurrency policy: how work is found and protected (docs/architecture.md).
 //
 // A pass hands its work list to C::for_each with a work function
 //

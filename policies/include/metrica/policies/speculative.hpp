@@ -307,19 +307,12 @@ struct SpeculativeThreads {
   }
 };
 
-// The policy of the pipeline. Lists under 8192 items run on one thread:
-// those are the first cycles' (a few thousand vertices, the structured
-// start mesh), where a tenth of the items conflicted and their replays
-// reordered the work; the runs that started that way never recovered
-// (min Q 0.015 against 0.059 after cycle 1, then 20-45% more splits and
-// collapses than on one thread). With 8192: as much work as one thread,
-// and 1.75x on two threads at 0.94M tets (was 1.50-1.61x; 256 before).
-// On a large mesh a short list is spread thin and rarely conflicts:
-// lists of 512-8191 items on meshes of 131k tets and more (late cycles,
-// the quality phase's flips) run on both threads since session 13; at
-// 0.94M tets the two-thread run went from 17.6 to 16.4 s (medians of 8
-// interleaved runs), 1.70x -> 1.83x, the same quality, and work within 1%
-// of one thread's (tries per operator).
+// The policy of the pipeline. Lists under 8192 items run on one thread
+// while the mesh is small: in the first cycles a tenth of the items
+// conflicted and their replays reordered the work, and such runs never
+// recovered the quality of one thread's. On a large mesh a short list is
+// spread thin and rarely conflicts, so it runs on every thread (figures:
+// docs/benchmarks.md).
 using Speculative = SpeculativeThreads<0, 8192>;
 
 static_assert(Concurrency<Speculative>);

@@ -1,5 +1,5 @@
 // The number of threads parallel policies use. Kept behind a function so
-// that <omp.h> stays inside policies/ (DESIGN.md).
+// that <omp.h> stays inside policies/ (docs/architecture.md).
 #pragma once
 
 namespace metrica {

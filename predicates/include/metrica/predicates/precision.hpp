@@ -1,4 +1,4 @@
-// The Precision policy: how sign decisions are taken (DESIGN.md).
+// The Precision policy: how sign decisions are taken (docs/architecture.md).
 //
 //   Fast      plain double evaluation; fastest, and wrong near degeneracy;
 //   Filtered  CGAL's Exact_predicates_inexact_constructions_kernel: a
