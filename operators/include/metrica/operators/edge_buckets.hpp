@@ -2,8 +2,7 @@
 // the Concurrency policy's threads: what every edge pass starts from (the
 // split and collapse work lists, the flips' edge seeds, the conformity of
 // a cycle). Built on one thread they were the larger part of what a
-// 2-thread adaptation did outside the operators' parallel loops; on both,
-// that time fell from 4.7 s to 3.3 s of a 0.94M-tet run (1.69x -> 1.75x).
+// 2-thread adaptation did outside the operators' parallel loops.
 //
 // The items are cut into `parts` contiguous slices, one per thread:
 //   1. each part counts its edges per lower vertex (its own counters);

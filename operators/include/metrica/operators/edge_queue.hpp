@@ -8,15 +8,9 @@
 // the items follow the vertex ids, which compaction lays along a Morton
 // curve, so consecutive items are near in space and in memory. With 8
 // classes per doubling (lengths within a factor 2^(1/8) = 1.09 count as
-// equal) the order stays longest / shortest first to that factor. At
-// 942k tets on one thread (three interleaved runs each way) the collapse
-// loop fell from 7.0-7.9 s to 5.9-6.2 s, the split loop from 1.95-2.01 s
-// to 1.64-1.70 s, the whole run from 32.6 to 29.4 s (median), with the
-// same share of edges in range. Coarser classes for the splits (2 or 4
-// per doubling) made the run slower, 36-41 s against 28-29 s, at a
-// slightly lower share in range (not looked into further: longest first
-// matters for splits). For the collapses 2, 4 and 8 were within 1%; 16
-// was no faster than 8.
+// equal) the order stays longest / shortest first to that factor, and a
+// 942k-tet run took 29.4 s against 32.6 s with the same share of edges in
+// range (coarser classes: docs/benchmarks.md).
 #pragma once
 
 #include <metrica/operators/edge_buckets.hpp>
