@@ -93,7 +93,7 @@ def main():
             ratio = f"{e / at:.2f}" if at else "-"
             print(f"| {name} | {c:.0f} | {v:.0f} | {e:.3e} | {ref_text} | {same_c} | {at_text} | {ratio} |")
     # Three fits, beside refine's published points fitted the same way.
-    # Against vertices over every complexity (the measure), against
+    # Against vertices over every complexity (the study's target measure), against
     # vertices from 8k on (where the boundary's share of the vertices has
     # settled: 54% of them at 1k, 25% at 32k on sinfun3), and against the
     # target complexity (which the boundary share does not bend).
