@@ -7,13 +7,12 @@
 //   - a toy executor (items in reverse order) adapts a box with no
 //     operator edited;
 //   - custom pipelines (stages reordered, one replaced).
+#include "laplacian_move.hpp"  // examples/operation: the tutorial's operation
 #include "operator_test_support.hpp"
 
-#include "laplacian_move.hpp"  // examples/operation: the tutorial's operation
-
 #include <metrica/mesh_build.hpp>
-#include <metrica/pipeline/adapt.hpp>
 #include <metrica/operators/operation.hpp>
+#include <metrica/pipeline/adapt.hpp>
 
 #include <doctest/doctest.h>
 
@@ -94,8 +93,9 @@ std::vector<EdgeSeed> all_edge_seeds(const Mesh& mesh) {
   for (TetId t = 0; t < mesh.tet_capacity(); ++t)
     if (mesh.tet_alive(t)) tets.push_back(t);
   MeshArray<EdgeSeed> seeds;
-  unique_edge_seeds(std::span<const TetId>(tets), [&](TetId t) -> const TetVertices& { return mesh.tet(t); },
-                    mesh.vertex_capacity(), seeds);
+  unique_edge_seeds(
+      std::span<const TetId>(tets), [&](TetId t) -> const TetVertices& { return mesh.tet(t); }, mesh.vertex_capacity(),
+      seeds);
   return {seeds.begin(), seeds.end()};
 }
 
@@ -166,7 +166,7 @@ struct SpacePrecision {
 
 }  // namespace
 
-#define METRICA_SPACE_PRECISION                                                                           \
+#define METRICA_SPACE_PRECISION \
   SpacePrecision<LogEuclidean, Filtered>, SpacePrecision<Anisotropic, Exact>, SpacePrecision<Isotropic, Fast>
 
 TEST_SUITE("property") {
@@ -186,8 +186,8 @@ TEST_SUITE("property") {
     CHECK(check_plans<S>(mesh, CentroidInsertion<S, P>{{}, mesh.next_epoch()}, candidates, 0.0) > 0);
   }
 
-  TEST_CASE_TEMPLATE("a decided collapse never inverts nor drops below its floor - applied it keeps areas and ridges", T,
-                     METRICA_SPACE_PRECISION) {
+  TEST_CASE_TEMPLATE("a decided collapse never inverts nor drops below its floor - applied it keeps areas and ridges",
+                     T, METRICA_SPACE_PRECISION) {
     using S = typename T::Space;
     using P = typename T::Precision;
     Mesh mesh = jittered_box(4, 0.3, 12);
@@ -291,8 +291,9 @@ TEST_SUITE("invariant") {
                {"my-smooth", [&custom_runs](A& a) {
                   ++custom_runs;
                   const std::vector<VertexId> vertices = all_vertices(a.mesh());
-                  return a.run(Smoothing<typename A::Space, typename A::Exactness>{{.below = 1.0, .metric = a.metric()}},
-                               std::span<const VertexId>(vertices));
+                  return a.run(
+                      Smoothing<typename A::Space, typename A::Exactness>{{.below = 1.0, .metric = a.metric()}},
+                      std::span<const VertexId>(vertices));
                 }}};
     const AdaptReport& r = run_pipeline(adapter, p);
     require_valid(mesh, 1.0);
@@ -307,8 +308,9 @@ TEST_SUITE("invariant") {
 }
 
 TEST_SUITE("invariant") {
-  TEST_CASE_TEMPLATE("the tutorial's operation (examples/operation) keeps the mesh valid and never lowers the worst tet", T,
-                     METRICA_POLICY_COMBINATIONS) {
+  TEST_CASE_TEMPLATE(
+      "the tutorial's operation (examples/operation) keeps the mesh valid and never lowers the worst tet", T,
+      METRICA_POLICY_COMBINATIONS) {
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;
@@ -324,4 +326,3 @@ TEST_SUITE("invariant") {
     CHECK(worst<S>(mesh) >= before);
   }
 }
-

@@ -1,8 +1,6 @@
-// A custom pipeline on Adapter (policies bound once): a box adapted to UGAWG
-// polar-2 with the seed's reconnection (metric Delaunay, then max-min
-// edge-weight flips each cycle; the standard quality phase), each pass
-// incremental under its key. Swap a policy, a criterion or a stage.
-//
+// A custom pipeline on Adapter (policies bound once): a box adapted to UGAWG polar-2 with the seed's
+// reconnection (metric Delaunay, then max-min edge-weight flips each cycle; the standard quality
+// phase), each pass incremental under its key. Swap a policy, a criterion or a stage and compare.
 //   build/examples/compose/compose_pipeline [cycles]
 #include <metrica/box.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
@@ -11,6 +9,7 @@
 #include <metrica/validate.hpp>
 
 #include <fmt/core.h>
+
 #include <cstdlib>
 
 using namespace metrica;
@@ -21,7 +20,7 @@ int main(int argc, char** argv) {
   const MetricFunction polar2 = [](const Point& p) { return evaluate(AnalyticMetric::polar2, p); };
   assign_metric(mesh, polar2);
   A adapter(mesh, &polar2);
-  adapter.on_cycle = [](const CycleReport& c) { fmt::print("{} tets, {:.1f}% in range, min Q {:.3f}\n", c.tets, 100 * c.conformity, c.min_quality); };
+  adapter.on_cycle = [](const CycleReport& c) { fmt::print("{} tets, min Q {:.3f}\n", c.tets, c.min_quality); };
   Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
   p.max_cycles = argc > 1 ? std::atoi(argv[1]) : 8;
   p.cycle = {{"collapse", [](A& a) { return a.collapse({}); }},

@@ -67,10 +67,14 @@ struct CollapseScratch {
 inline bool collapse_allowed(const Mesh& mesh, VertexId a, VertexId b, bool boundary_edge) {
   if (mesh.is_required(a)) return false;
   switch (mesh.vertex_class(a)) {
-    case VertexClass::corner: return false;
-    case VertexClass::ridge: return mesh.is_ridge(a, b);
-    case VertexClass::surface: return boundary_edge;
-    case VertexClass::interior: return true;
+    case VertexClass::corner:
+      return false;
+    case VertexClass::ridge:
+      return mesh.is_ridge(a, b);
+    case VertexClass::surface:
+      return boundary_edge;
+    case VertexClass::interior:
+      return true;
   }
   return false;
 }

@@ -160,14 +160,18 @@ static_assert(ScoredCriterion<MinQuality> && ScoredCriterion<MaxMinEdgeWeight> &
 // can take a new tet's score)?
 template <class C>
 constexpr bool score_is_mean_ratio_cubed() {
-  if constexpr (requires { C::score_is_mean_ratio_cubed; }) return C::score_is_mean_ratio_cubed;
-  else return false;
+  if constexpr (requires { C::score_is_mean_ratio_cubed; })
+    return C::score_is_mean_ratio_cubed;
+  else
+    return false;
 }
 
 template <class C>
 constexpr bool criterion_measures_shape() {
-  if constexpr (requires { C::measures_shape; }) return C::measures_shape;
-  else return false;
+  if constexpr (requires { C::measures_shape; })
+    return C::measures_shape;
+  else
+    return false;
 }
 
 // The shape floor every criterion gets: a new configuration may not have a
@@ -233,8 +237,10 @@ struct MetricDelaunay {
         int shared = 0;
         VertexId apex = kNoId;
         for (VertexId v : tets[j]) {
-          if (local_index(tets[i], v) >= 0) ++shared;
-          else apex = v;
+          if (local_index(tets[i], v) >= 0)
+            ++shared;
+          else
+            apex = v;
         }
         if (shared != 3) continue;
         const auto& k = tets[i];

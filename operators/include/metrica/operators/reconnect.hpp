@@ -56,8 +56,9 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
         part.push_back(t);
     });
     // Each edge once per sweep, in vertex order (space order after compact).
-    unique_edge_seeds<C>(std::span<const TetId>(seeds), [&](TetId t) -> const TetVertices& { return mesh.tet(t); },
-                         mesh.vertex_capacity(), edges);
+    unique_edge_seeds<C>(
+        std::span<const TetId>(seeds), [&](TetId t) -> const TetVertices& { return mesh.tet(t); },
+        mesh.vertex_capacity(), edges);
     since = sweep_epoch;
     const std::size_t applied_before = stats.applied;
     stats += run_pass<C>(mesh, removal, std::span<const EdgeSeed>(edges.data(), edges.size()));

@@ -43,9 +43,9 @@ namespace metrica {
 struct PointCandidate {
   Point p;
   TetId tet = kNoId;
-  int face = -1;                 // >= 0: on this boundary face of tet
-  VertexId a = kNoId, b = kNoId; // != kNoId: on ridge edge ab (of tet)
-  double t = 0.5;                // position on ab (a + t (b - a))
+  int face = -1;                  // >= 0: on this boundary face of tet
+  VertexId a = kNoId, b = kNoId;  // != kNoId: on ridge edge ab (of tet)
+  double t = 0.5;                 // position on ab (a + t (b - a))
 };
 
 namespace detail {
@@ -201,12 +201,16 @@ struct CentroidInsertion {
                                      std::span<const double>(w.data(), k), c.p)};
   }
   void apply(Mesh& mesh, const Item& c, const Plan& plan, Scratch& x) const {
-    if (c.a != kNoId) split_edge(mesh, x.shell, c.a, c.b, c.p, plan.metric);
-    else split_cell(mesh, c.tet, c.face, c.p, plan.metric, x.cell);
+    if (c.a != kNoId)
+      split_edge(mesh, x.shell, c.a, c.b, c.p, plan.metric);
+    else
+      split_cell(mesh, c.tet, c.face, c.p, plan.metric, x.cell);
   }
   void preview(const Mesh& mesh, const Item& c, const Plan&, const Scratch& x, PlannedTets& out) const {
-    if (c.a != kNoId) preview_split(mesh, x.shell, c.a, c.b, c.p, out);
-    else preview_cell_split(mesh, c.tet, c.face, c.p, out);
+    if (c.a != kNoId)
+      preview_split(mesh, x.shell, c.a, c.b, c.p, out);
+    else
+      preview_cell_split(mesh, c.tet, c.face, c.p, out);
   }
 };
 

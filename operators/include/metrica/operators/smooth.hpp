@@ -154,8 +154,10 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
         if (tv[f] == v || mesh.neighbour(t, f).valid()) continue;
         const auto fv = face_vertices(tv, f);
         const Eigen::Vector3d n = face_normal(mesh, fv[0], fv[1], fv[2]);
-        if (normal.squaredNorm() == 0.0) normal = n;
-        else if (normal_deviation(normal, n) > o.flat_tolerance) return Refusal::not_applicable;
+        if (normal.squaredNorm() == 0.0)
+          normal = n;
+        else if (normal_deviation(normal, n) > o.flat_tolerance)
+          return Refusal::not_applicable;
         for (int k = 0; k < 3; ++k) {
           if (fv[k] == v) {
             const Point mid = 0.5 * (mesh.point(fv[(k + 1) % 3]) + mesh.point(fv[(k + 2) % 3]));
@@ -205,54 +207,55 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     return true;
   };
   if constexpr (score_is_mean_ratio_cubed<Criterion>()) {
-  // The cube of the mean ratio of ball tet i with v at p, from its terms.
-  const std::size_t n = s.ball.size();
-  auto quality3 = [&](std::size_t i, const Point& p) {
-    const BallTerm& b = s.terms[i];
-    const Sym6& m = s.metrics[i];
-    const double sum = b.face_edges + metric_norm2(m, p - b.f0) + metric_norm2(m, p - b.f1) + metric_norm2(m, p - b.f2);
-    return mean_ratio_cubed(b.normal.dot(p - b.f0), b.det, sum);
-  };
-  // The smallest mean ratio (cubed) of the ball with v at p; stops at the
-  // first tet at or below floor3 (that trial cannot win). It starts from
-  // the tet that stopped the last trial: the ball's bottleneck stops most
-  // failing trials at once.
-  std::size_t first = 0;
-  auto min_quality3_at = [&](const Point& p, double floor3) {
-    double q3 = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t i = first + k < n ? first + k : first + k - n;
-      q3 = std::min(q3, quality3(i, p));
-      if (q3 <= floor3) {
-        first = i;
-        break;
+    // The cube of the mean ratio of ball tet i with v at p, from its terms.
+    const std::size_t n = s.ball.size();
+    auto quality3 = [&](std::size_t i, const Point& p) {
+      const BallTerm& b = s.terms[i];
+      const Sym6& m = s.metrics[i];
+      const double sum =
+          b.face_edges + metric_norm2(m, p - b.f0) + metric_norm2(m, p - b.f1) + metric_norm2(m, p - b.f2);
+      return mean_ratio_cubed(b.normal.dot(p - b.f0), b.det, sum);
+    };
+    // The smallest mean ratio (cubed) of the ball with v at p; stops at the
+    // first tet at or below floor3 (that trial cannot win). It starts from
+    // the tet that stopped the last trial: the ball's bottleneck stops most
+    // failing trials at once.
+    std::size_t first = 0;
+    auto min_quality3_at = [&](const Point& p, double floor3) {
+      double q3 = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = first + k < n ? first + k : first + k - n;
+        q3 = std::min(q3, quality3(i, p));
+        if (q3 <= floor3) {
+          first = i;
+          break;
+        }
+      }
+      return q3;
+    };
+    // The ball's quality now: the cache, or the terms (a cube root, no tet
+    // metric; not stored, since a move, the usual outcome of smoothing
+    // every vertex, makes them stale at once).
+    double q_old = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double q = mesh.cached_quality(s.ball[i]);
+      q_old = std::min(q_old, q != Mesh::kUnknownQuality ? q : std::cbrt(quality3(i, x)));
+    }
+    const int bad_old = out_of_range(x);
+    double q_best = q_old, q3_best = q_old * q_old * q_old;
+    Point best = x;
+    for (std::size_t i = 0; i < s.trials.size(); ++i) {
+      if (i == secondary && improves_min_quality(q_old, q_best)) break;
+      const Point& p = s.trials[i];
+      const double q3 = min_quality3_at(p, q3_best);
+      if (q3 > q3_best && out_of_range(p) <= bad_old && all_positive_at(p)) {
+        q3_best = q3;
+        q_best = std::cbrt(q3);
+        best = p;
       }
     }
-    return q3;
-  };
-  // The ball's quality now: the cache, or the terms (a cube root, no tet
-  // metric; not stored, since a move, the usual outcome of smoothing
-  // every vertex, makes them stale at once).
-  double q_old = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double q = mesh.cached_quality(s.ball[i]);
-    q_old = std::min(q_old, q != Mesh::kUnknownQuality ? q : std::cbrt(quality3(i, x)));
-  }
-  const int bad_old = out_of_range(x);
-  double q_best = q_old, q3_best = q_old * q_old * q_old;
-  Point best = x;
-  for (std::size_t i = 0; i < s.trials.size(); ++i) {
-    if (i == secondary && improves_min_quality(q_old, q_best)) break;
-    const Point& p = s.trials[i];
-    const double q3 = min_quality3_at(p, q3_best);
-    if (q3 > q3_best && out_of_range(p) <= bad_old && all_positive_at(p)) {
-      q3_best = q3;
-      q_best = std::cbrt(q3);
-      best = p;
-    }
-  }
-  if (!improves_min_quality(q_old, q_best)) return Refusal::rejected;
-  return SmoothPlan{best};
+    if (!improves_min_quality(q_old, q_best)) return Refusal::rejected;
+    return SmoothPlan{best};
   } else {
     // Any other criterion: its smallest score over the ball at each trial,
     // and the shape floor.
@@ -349,7 +352,6 @@ struct Smoothing {
     }
   }
 };
-
 
 // The smoothing pass over the vertices of tets below o.below.
 template <MetricSpace S, Precision P, Concurrency C, class Criterion = MinQuality>

@@ -88,8 +88,7 @@ struct CellSplitScratch {
 // Apply: inserts a vertex at p with metric m inside t (face < 0) or on
 // its boundary face `face` (checked by the caller: a boundary face with a
 // surface id), and returns it.
-inline VertexId split_cell(Mesh& mesh, TetId t, int face, const Point& p, const VertexMetric& m,
-                           CellSplitScratch& s) {
+inline VertexId split_cell(Mesh& mesh, TetId t, int face, const Point& p, const VertexMetric& m, CellSplitScratch& s) {
   const SurfaceId surface = face >= 0 ? mesh.surface_id(t, face) : 0;
   if (face >= 0 && (mesh.neighbour(t, face).valid() || surface <= 0)) return kNoId;
   const VertexId v = mesh.add_vertex(p);

@@ -52,8 +52,9 @@ void for_each_split_child(const Mesh& mesh, const Shell& shell, VertexId a, Vert
 inline void preview_split(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p,
                           PlannedTets& out) {
   out.clear();
-  for_each_split_child(mesh, shell, a, b, p,
-                       [&](TetId, const TetVertices& c, const TetPoints& x) { out.push_back({c, x}); });
+  for_each_split_child(mesh, shell, a, b, p, [&](TetId, const TetVertices& c, const TetPoints& x) {
+    out.push_back({c, x});
+  });
 }
 
 // Decide, criterion half: the children pass the shape floor (floor > 0)
@@ -109,8 +110,10 @@ inline VertexId split_edge(Mesh& mesh, const Shell& shell, VertexId a, VertexId 
     // Outer faces: opposite b for t1 (it holds a), opposite a for t2.
     const FaceRef out_a = mesh.neighbour(t1, ia);
     const SurfaceId sid_a = mesh.surface_id(t1, ia);
-    if (out_a.valid()) mesh.link(FaceRef(t2, ia), out_a);
-    else mesh.set_surface_id(t2, ia, sid_a);
+    if (out_a.valid())
+      mesh.link(FaceRef(t2, ia), out_a);
+    else
+      mesh.set_surface_id(t2, ia, sid_a);
     mesh.set_neighbour(t1, ia, FaceRef(t2, ib));
     mesh.set_neighbour(t2, ib, FaceRef(t1, ia));
     mesh.set_surface_id(t1, ia, 0);  // t1 keeps its face opposite b as it was
@@ -132,8 +135,10 @@ inline VertexId split_edge(Mesh& mesh, const Shell& shell, VertexId a, VertexId 
   }
   mesh.set_vert2tet(n, shell.tets.front());
   mesh.set_vert2tet(b, twin.front());  // the other shell vertices are in both children
-  if (mesh.is_ridge(a, b)) mesh.set_vertex_class(n, VertexClass::ridge);
-  else if (!shell.closed) mesh.set_vertex_class(n, VertexClass::surface);
+  if (mesh.is_ridge(a, b))
+    mesh.set_vertex_class(n, VertexClass::ridge);
+  else if (!shell.closed)
+    mesh.set_vertex_class(n, VertexClass::surface);
   mesh.split_ridge(a, b, n);
   return n;
 }

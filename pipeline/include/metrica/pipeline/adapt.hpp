@@ -10,8 +10,8 @@
 // list of stages with its stopping rules, run by run_pipeline.
 #pragma once
 
-#include <metrica/pipeline/adapter.hpp>
 #include <metrica/operators/edge_buckets.hpp>
+#include <metrica/pipeline/adapter.hpp>
 
 #include <algorithm>
 #include <functional>
@@ -250,8 +250,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
                         lift.metric = a.metric();
                         lift.changed_since = a.mesh().next_epoch();
                         touch_poor_tets<S, C>(a.mesh(), below);
-                        const OperatorStats stats =
-                            collapse_edges<S, typename A::Exactness, C>(a.mesh(), lift);
+                        const OperatorStats stats = collapse_edges<S, typename A::Exactness, C>(a.mesh(), lift);
                         const Mesh::Epoch start = a.mesh().next_epoch();
                         touch_around_poor_tets<S, C>(a.mesh(), below);
                         a.restart_all(start);

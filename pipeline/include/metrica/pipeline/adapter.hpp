@@ -66,7 +66,7 @@ struct CycleReport {
   OperatorReport ops;     // by operator name ("collapse", "split", "flip", "smooth", ...)
   double conformity = 0;  // share of edges in the unit band
   double min_quality = 0;
-  double seconds = 0;     // of this cycle
+  double seconds = 0;  // of this cycle
 };
 
 struct AdaptReport {
@@ -101,13 +101,14 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
   }
   if (min_quality != nullptr) {
     const std::size_t nt = mesh.tet_capacity();
-    const auto mins = C::template collect<double>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<double>& part) {
-      double q = 1.0;
-      for (auto t = static_cast<TetId>(b * kBlock); t < std::min(nt, (b + 1) * kBlock); ++t)
-        if (mesh.tet_alive(t))
-          q = std::min(q, cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t)));
-      part.push_back(q);
-    });
+    const auto mins =
+        C::template collect<double>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<double>& part) {
+          double q = 1.0;
+          for (auto t = static_cast<TetId>(b * kBlock); t < std::min(nt, (b + 1) * kBlock); ++t)
+            if (mesh.tet_alive(t))
+              q = std::min(q, cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t)));
+          part.push_back(q);
+        });
     *min_quality = mins.empty() ? 1.0 : *std::min_element(mins.begin(), mins.end());
   }
   return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
@@ -166,7 +167,8 @@ class Adapter {
   template <class Criterion = ShapeOnly>
   OperatorStats collapse(CollapseOptions o, const std::string& key = "collapse") {
     o.metric = metric_;
-    return incremental(key, o, [](Mesh& m, const CollapseOptions& x) { return collapse_edges<S, P, C, Criterion>(m, x); });
+    return incremental(key, o,
+                       [](Mesh& m, const CollapseOptions& x) { return collapse_edges<S, P, C, Criterion>(m, x); });
   }
   template <class Criterion = ShapeOnly>
   OperatorStats split(RefineOptions o) {
@@ -185,7 +187,8 @@ class Adapter {
   template <class Criterion = MinQuality>
   OperatorStats smooth(SmoothOptions o, const std::string& key = "smooth") {
     o.metric = metric_;
-    return incremental(key, o, [](Mesh& m, const SmoothOptions& x) { return smooth_vertices<S, P, C, Criterion>(m, x); });
+    return incremental(key, o,
+                       [](Mesh& m, const SmoothOptions& x) { return smooth_vertices<S, P, C, Criterion>(m, x); });
   }
 
   // Closes a cycle: compaction, counts, conformity and worst tet, the
