@@ -23,7 +23,9 @@ Histogram make_histogram(std::vector<double> edges) {
   return h;
 }
 
+// NaN belongs to no bin (the caller refuses the report).
 void add(Histogram& h, double x) {
+  if (std::isnan(x)) return;
   if (x < h.edges.front()) {
     ++h.below;
     return;
@@ -87,6 +89,13 @@ QualityReport report_in(const Mesh& mesh) {
     below01 += q < 0.1;
     below03 += q < 0.3;
   }
+  // A NaN or infinite measure says the metric (or a coordinate) is
+  // degenerate: no report rather than one that reads "nan".
+  if (!std::isfinite(len.sum) || !std::isfinite(qual.sum))
+    throw InputError(fmt::format("quality report: {} is not finite on some {} (a metric with non-finite, huge or "
+                                 "vanishing entries, or non-finite coordinates)",
+                                 !std::isfinite(len.sum) ? "the metric length" : "the mean ratio",
+                                 !std::isfinite(len.sum) ? "edge" : "tet"));
   r.length = len.done();
   r.quality = qual.done();
   if (r.edges) r.unit_length_share = static_cast<double>(unit) / static_cast<double>(r.edges);

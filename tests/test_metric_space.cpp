@@ -20,6 +20,7 @@
 #include <doctest/doctest.h>
 
 #include <iomanip>
+#include <limits>
 
 #include <Eigen/LU>
 
@@ -303,5 +304,17 @@ TEST_SUITE("unit") {
     CHECK_THROWS_AS(quality_report(mesh, "riemann"), InputError);
     Mesh bare = make_box({.nx = 1, .ny = 1, .nz = 1});
     CHECK_THROWS_AS(quality_report(bare), InputError);
+  }
+
+  TEST_CASE("quality report: a non-finite measure is an error - never a histogram bin out of range") {
+    for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+      CAPTURE(bad);
+      Mesh mesh = make_box({.nx = 2, .ny = 2, .nz = 2});
+      std::vector<Sym6> field(mesh.vertex_capacity(), isotropic_metric(1.0));
+      field[0] = {bad, 0, 1, 0, 0, 1};
+      assign_metric(mesh, field);
+      for (std::string_view s : {"isotropic", "anisotropic", "log-euclidean"})
+        CHECK_THROWS_AS(quality_report(mesh, s), InputError);
+    }
   }
 }
