@@ -8,9 +8,14 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <iostream>
 
 namespace metrica::cli {
+
+namespace {
+constexpr int kThreadsPerCore = 8;
+}  // namespace
 
 Options::Options(std::string command, std::string usage, std::string description)
     : command_(std::move(command)), usage_(std::move(usage)), description_(std::move(description)),
@@ -20,7 +25,7 @@ bool Options::parse(const std::vector<std::string>& args) {
   po::options_description common("Common options");
   common.add_options()("help,h", "print this help and exit")("verbose,v", "print more detail (timings, warnings)")(
       "quiet,q", "print only errors")("threads", po::value<int>()->value_name("N"),
-                                      "threads for parallel work (default: all cores)");
+                                      "threads for parallel work (default: all cores; at most 8 per core)");
   po::options_description all;
   all.add(own_).add(common);
   try {
@@ -37,8 +42,15 @@ bool Options::parse(const std::vector<std::string>& args) {
   if (vm_.count("quiet")) log::set_level(log::Level::quiet);
   if (vm_.count("verbose")) log::set_level(log::Level::verbose);
   if (vm_.count("threads")) {
-    const int n = vm_["threads"].as<int>();
+    int n = vm_["threads"].as<int>();
     if (n < 1) throw UsageError(fmt::format("{}: --threads must be at least 1, got {}", command_, n));
+    // More than a few threads per core only adds contention (and tens of
+    // thousands exhaust the process's stacks).
+    const int cap = kThreadsPerCore * std::max(1, core_count());
+    if (n > cap) {
+      log::warn("{}: --threads {} is more than {} per core; using {}", command_, n, kThreadsPerCore, cap);
+      n = cap;
+    }
     set_thread_count(n);
   }
   return true;

@@ -363,4 +363,13 @@ TEST_SUITE("regression") {
       }
     }
   }
+
+  TEST_CASE("an absurd --threads is capped at 8 per core with a warning - the run succeeds") {
+    test::TempDir dir;
+    REQUIRE(metrica_cli("cube --n 2 -o " + (dir / "c.meshb")).code == 0);
+    const auto r = metrica_cli("adapt " + (dir / "c.meshb") +
+                               " --analytic linear --cycles 2 --quality-passes 1 --threads 100000 -o " + (dir / "a.meshb"));
+    CHECK(r.code == 0);
+    CHECK(has(r, "more than 8 per core"));
+  }
 }
