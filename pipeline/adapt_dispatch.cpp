@@ -30,7 +30,6 @@ void check_policy_choice(const PolicyChoice& c) {
 }
 
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& p) {
-  check_policy_choice(p);
   return with_policy<Spaces>("space", p.space, [&]<class S>() {
     return with_policy<Concurrencies>("concurrency", p.concurrency,
                                       [&]<class C>() { return adapt_instance<S, C>(mesh, options, p.precision); });

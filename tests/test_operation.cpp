@@ -33,11 +33,6 @@ double ridge_length(const Mesh& mesh) {
   return l;
 }
 
-template <class S>
-double worst(const Mesh& mesh) {
-  return worst_quality<S>(mesh);
-}
-
 // Every item of `items` through decide; each plan previewed (all tets
 // positive with exact predicates, none below min(floor, the mesh's worst
 // tet before)) and the first `applied_checks` plans applied on a copy
@@ -48,7 +43,7 @@ int check_plans(const Mesh& mesh, const Op& op, const std::vector<typename Op::I
                 int applied_checks = 25) {
   typename Op::Scratch s;
   PlannedTets planned;
-  const double worst_before = worst<S>(mesh);
+  const double worst_before = worst_quality<S>(mesh);
   const auto areas = surface_areas(mesh);
   const double ridges = ridge_length(mesh);
   int plans = 0;
@@ -234,7 +229,7 @@ TEST_SUITE("property") {
     FlipScratch s;
     const FlipOptions fo;
     // Without the floor, PreferNew takes the flip: the candidate holds the sliver.
-    const double old_worst = worst<S>(mesh);
+    const double old_worst = worst_quality<S>(mesh);
     CHECK(old_worst > 0.3);
     auto check_floor = [&](const auto& d) {
       if (!d) return;
@@ -319,10 +314,10 @@ TEST_SUITE("invariant") {
     const example::LaplacianMove<S, P> op;
     // Its plans, property-tested without applying them.
     CHECK(check_plans<S>(mesh, op, all_vertices(mesh), 0.0) > 0);
-    const double before = worst<S>(mesh);
+    const double before = worst_quality<S>(mesh);
     const OperatorStats stats = run_pass<C>(mesh, op, all_vertices(mesh));
     CHECK(stats.applied > 0);
     require_valid(mesh, 1.0);
-    CHECK(worst<S>(mesh) >= before);
+    CHECK(worst_quality<S>(mesh) >= before);
   }
 }

@@ -30,11 +30,6 @@ struct PolicyList {
   static bool contains(std::string_view name) { return ((T::name == name) || ...); }
 };
 
-// f.template operator()<T>() for the policy T of `List` called `name`;
-// InputError naming the choices when there is none.
-template <class List, class F>
-auto with_policy(std::string_view what, std::string_view name, F&& f);
-
 template <class... T, class F>
 auto with_policy_in(PolicyList<T...>, std::string_view what, std::string_view name, F&& f) {
   using First = std::tuple_element_t<0, std::tuple<T...>>;
@@ -46,6 +41,8 @@ auto with_policy_in(PolicyList<T...>, std::string_view what, std::string_view na
   return std::move(*result);
 }
 
+// f.template operator()<T>() for the policy T of `List` called `name`;
+// InputError naming the choices when there is none.
 template <class List, class F>
 auto with_policy(std::string_view what, std::string_view name, F&& f) {
   return with_policy_in(List{}, what, name, std::forward<F>(f));

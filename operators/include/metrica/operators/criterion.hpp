@@ -183,15 +183,35 @@ class ShapeFloor {
  public:
   // `worst_old` is computed on first use.
   explicit ShapeFloor(double floor) : floor_(floor) {}
-  template <class WorstOld>
-  bool admits(double q_new, WorstOld&& worst_old) const {
+  template <class Worst>
+  bool admits(double q_new, Worst&& worst_old) const {
     if (q_new >= floor_) return true;
     return !(q_new < worst_old());
   }
-  double floor() const { return floor_; }
 
  private:
   double floor_;
+};
+
+// The worst (cached) mean ratio of live tets, measured on first use: the
+// shape floor needs it only when a new tet is below the floor.
+template <MetricSpace S>
+class WorstOld {
+ public:
+  WorstOld(const Mesh& mesh, std::span<const TetId> tets) : mesh_(mesh), tets_(tets) {}
+  double operator()() {
+    if (!known_) {
+      for (TetId t : tets_) worst_ = std::min(worst_, cached_mean_ratio<S>(mesh_, t));
+      known_ = true;
+    }
+    return worst_;
+  }
+
+ private:
+  const Mesh& mesh_;
+  std::span<const TetId> tets_;
+  double worst_ = std::numeric_limits<double>::infinity();
+  bool known_ = false;
 };
 
 // The shape floor over the new tets of a replacement of live `old_tets`
@@ -203,11 +223,10 @@ bool keeps_shape(const Mesh& mesh, std::span<const TetId> old_tets, std::span<co
   if constexpr (criterion_measures_shape<Criterion>()) {
     return true;
   } else {
-    double worst_old = std::numeric_limits<double>::infinity();
-    for (TetId t : old_tets) worst_old = std::min(worst_old, cached_mean_ratio<S>(mesh, t));
-    const double bound = std::min(floor, worst_old);
+    const ShapeFloor shape(floor);
+    WorstOld<S> worst_old(mesh, old_tets);
     for (const auto& t : new_tets)
-      if (S::mean_ratio(mesh, t) < bound) return false;
+      if (!shape.admits(S::mean_ratio(mesh, t), worst_old)) return false;
     return true;
   }
 }

@@ -93,19 +93,43 @@ concept Operation = requires(const Op& op, const Mesh& cmesh, Mesh& mesh, const 
   { op.preview(cmesh, item, plan, s, planned) } -> std::same_as<void>;
 };
 
+enum class Prepared : std::uint8_t { ready, gone, deferred, conflict };
+
+// An item up to its decision: seed, hold the seed, check it is alive,
+// find, hold the cavity. `hold(vertices)` takes the locks (false: another
+// thread holds one, nothing read yet that counts). `list` is scratch for
+// the vertices to hold.
+template <Operation Op, class Hold>
+Prepared prepare_item(const Mesh& mesh, const Op& op, const typename Op::Item& item, typename Op::Scratch& s,
+                      VertexList& list, Hold&& hold) {
+  list.clear();
+  Found f = op.seed(mesh, item, s, list);
+  if (f == Found::cavity) {
+    if (!hold(view(list))) return Prepared::conflict;
+    for (VertexId v : list)
+      if (!mesh.vertex_alive(v)) return Prepared::gone;
+    list.clear();
+    f = op.find(mesh, item, s, list);
+  }
+  if (f == Found::gone) return Prepared::gone;
+  if (f == Found::deferred) return Prepared::deferred;
+  return hold(view(list)) ? Prepared::ready : Prepared::conflict;
+}
+
 // One item through seed, find and decide on one thread, without locks
 // (tests, and a caller that ranks candidates before applying any).
 template <Operation Op>
 Decision<typename Op::Plan> decide_item(const Mesh& mesh, const Op& op, const typename Op::Item& item,
                                         typename Op::Scratch& s) {
-  VertexList hold;
-  Found f = op.seed(mesh, item, s, hold);
-  for (VertexId v : hold)
-    if (f == Found::cavity && !mesh.vertex_alive(v)) f = Found::gone;
-  if (f == Found::cavity) f = op.find(mesh, item, s, hold);
-  if (f == Found::gone) return Refusal::not_applicable;
-  if (f == Found::deferred) return Refusal::deferred;
-  return op.decide(mesh, item, s);
+  VertexList list;
+  switch (prepare_item(mesh, op, item, s, list, [](std::span<const VertexId>) { return true; })) {
+    case Prepared::ready:
+      return op.decide(mesh, item, s);
+    case Prepared::deferred:
+      return Refusal::deferred;
+    default:
+      return Refusal::not_applicable;
+  }
 }
 
 // The pass: every item of `items` through the operation under C.
@@ -121,21 +145,18 @@ OperatorStats run_pass(Mesh& mesh, const Op& op, std::span<const typename Op::It
   const Mesh& view_only = mesh;
   auto work = [&](const typename Op::Item& item, int thread, typename C::Locks& locks) {
     auto& [x, st] = threads[static_cast<std::size_t>(thread)];
-    x.hold.clear();
-    Found f = op.seed(view_only, item, x.scratch, x.hold);
-    if (f == Found::cavity) {
-      if (!locks.acquire(view(x.hold))) return Attempt::conflict;
-      for (VertexId v : x.hold)
-        if (!mesh.vertex_alive(v)) return Attempt::done;
-      x.hold.clear();
-      f = op.find(view_only, item, x.scratch, x.hold);
+    switch (prepare_item(view_only, op, item, x.scratch, x.hold,
+                         [&locks](std::span<const VertexId> v) { return locks.acquire(v); })) {
+      case Prepared::conflict:
+        return Attempt::conflict;
+      case Prepared::gone:
+        return Attempt::done;
+      case Prepared::deferred:
+        ++st.deferred;
+        return Attempt::done;
+      case Prepared::ready:
+        break;
     }
-    if (f == Found::gone) return Attempt::done;
-    if (f == Found::deferred) {
-      ++st.deferred;
-      return Attempt::done;
-    }
-    if (!locks.acquire(view(x.hold))) return Attempt::conflict;
     const Decision<typename Op::Plan> d = op.decide(view_only, item, x.scratch);
     st.tried += static_cast<std::size_t>(d.tries());
     if (d) {

@@ -50,6 +50,7 @@ struct EdgeSplitPlan {
 struct EdgeSplitScratch {
   TetList ball;
   Shell shell;
+  VertexList cavity;  // the shell's vertices, each once
 };
 
 // The split of a long edge at its metric midpoint, as an operation. Its
@@ -77,7 +78,9 @@ struct EdgeSplit {
   Found find(const Mesh& mesh, const Item& c, Scratch& x, VertexList& hold) const {
     vertex_ball(mesh, c.a, x.ball);
     if (!edge_shell(mesh, c.a, c.b, x.ball, x.shell)) return Found::gone;
-    append_vertices(mesh, x.shell.tets, hold);
+    x.cavity.clear();
+    append_vertices(mesh, x.shell.tets, x.cavity);
+    hold.insert(hold.end(), x.cavity.begin(), x.cavity.end());
     return Found::cavity;
   }
   Decision<Plan> decide(const Mesh& mesh, const Item& c, Scratch& x) const {
@@ -86,13 +89,12 @@ struct EdgeSplit {
     const auto& mb = S::vertex_metric(mesh, c.b);
     const double t = metric_midpoint(std::sqrt(metric_norm2(ma, e)), std::sqrt(metric_norm2(mb, e)));
     const Point p = mesh.point(c.a) + t * e;
-    for (TetId u : x.shell.tets)
-      for (VertexId v : mesh.tet(u)) {
-        if (mesh.vertex_stamp(v) < pass_epoch) continue;
-        const auto& mv = S::vertex_metric(mesh, v);
-        if (std::sqrt(metric_norm2(mv, p - mesh.point(v))) < options.min_new_distance)
-          return Refusal::deferred;  // too close to a point of this pass: next pass
-      }
+    for (VertexId v : x.cavity) {
+      if (mesh.vertex_stamp(v) < pass_epoch) continue;
+      const auto& mv = S::vertex_metric(mesh, v);
+      if (std::sqrt(metric_norm2(mv, p - mesh.point(v))) < options.min_new_distance)
+        return Refusal::deferred;  // too close to a point of this pass: next pass
+    }
     if (!split_is_valid<P>(mesh, x.shell, c.a, c.b, p)) return Refusal::rejected;
     if (!split_accepted<S, Criterion>(mesh, x.shell, c.a, c.b, p, options.quality_floor)) return Refusal::rejected;
     const std::array<VertexId, 2> ends{c.a, c.b};

@@ -197,11 +197,16 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   };
   // The decision's orientation tests, with the Precision policy, for a
   // trial about to be kept.
+  // The points of ball tet t with v at p.
+  auto points_at = [&](TetId t, const Point& p) {
+    const auto& tv = mesh.tet(t);
+    TetPoints pts = detail::tet_points(mesh, tv);
+    pts[local_index(tv, v)] = p;
+    return pts;
+  };
   auto all_positive_at = [&](const Point& p) {
     for (TetId t : s.ball) {
-      const auto& tv = mesh.tet(t);
-      TetPoints pts = detail::tet_points(mesh, tv);
-      pts[local_index(tv, v)] = p;
+      const TetPoints pts = points_at(t, p);
       if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return false;
     }
     return true;
@@ -259,20 +264,13 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   } else {
     // Any other criterion: its smallest score over the ball at each trial,
     // and the shape floor.
-    auto points_at = [&](TetId t, const Point& p) {
-      const auto& tv = mesh.tet(t);
-      TetPoints pts = detail::tet_points(mesh, tv);
-      pts[local_index(tv, v)] = p;
-      return pts;
-    };
-    double q_old = std::numeric_limits<double>::infinity();
-    for (TetId t : s.ball) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, t));
+    WorstOld<S> q_old(mesh, view(s.ball));
     const ShapeFloor shape(o.min_quality);
     auto score_at = [&](const Point& p) {
       double q = std::numeric_limits<double>::infinity();
       for (TetId t : s.ball) {
         const TetPoints pts = points_at(t, p);
-        if (!shape.admits(S::mean_ratio(mesh, mesh.tet(t), pts), [&] { return q_old; }))
+        if (!shape.admits(S::mean_ratio(mesh, mesh.tet(t), pts), q_old))
           return -std::numeric_limits<double>::infinity();
         q = std::min(q, Criterion::template tet_score_at<S>(mesh, mesh.tet(t), pts));
       }

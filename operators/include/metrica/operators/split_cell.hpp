@@ -33,23 +33,11 @@ inline void cell_children(const TetVertices& t, VertexId n, int kept_vertex, New
   }
 }
 
-// Decide: the children of t with p inside (face < 0) or on boundary face
-// `face` are all positively oriented.
-template <Precision P>
-bool cell_split_is_valid(const Mesh& mesh, TetId t, int face, const Point& p) {
-  const auto& v = mesh.tet(t);
-  for (int i = 0; i < 4; ++i) {
-    if (i == face) continue;
-    std::array<Point, 4> x{mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3])};
-    x[i] = p;
-    if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0) return false;
-  }
-  return true;
-}
-
-// The children of t with the new vertex (kNoId) at p.
-inline void preview_cell_split(const Mesh& mesh, TetId t, int face, const Point& p, PlannedTets& out) {
-  out.clear();
+// The children of t with the new vertex (kNoId) at p inside (face < 0)
+// or on boundary face `face` (whose opposite vertex is kept). f(child
+// vertices, child points) returns false to stop; then so does this.
+template <class F>
+bool all_cell_children(const Mesh& mesh, TetId t, int face, const Point& p, F&& f) {
   const auto& v = mesh.tet(t);
   for (int i = 0; i < 4; ++i) {
     if (i == face) continue;
@@ -57,8 +45,25 @@ inline void preview_cell_split(const Mesh& mesh, TetId t, int face, const Point&
     TetPoints x = detail::tet_points(mesh, v);
     c[i] = kNoId;
     x[i] = p;
-    out.push_back({c, x});
+    if (!f(c, x)) return false;
   }
+  return true;
+}
+
+// Decide: the children of t with p inside (face < 0) or on boundary face
+// `face` are all positively oriented.
+template <Precision P>
+bool cell_split_is_valid(const Mesh& mesh, TetId t, int face, const Point& p) {
+  return all_cell_children(
+      mesh, t, face, p, [](const TetVertices&, const TetPoints& x) { return P::orient3d(x[0], x[1], x[2], x[3]) > 0; });
+}
+
+inline void preview_cell_split(const Mesh& mesh, TetId t, int face, const Point& p, PlannedTets& out) {
+  out.clear();
+  all_cell_children(mesh, t, face, p, [&](const TetVertices& c, const TetPoints& x) {
+    out.push_back({c, x});
+    return true;
+  });
 }
 
 // Decide, criterion half: the children pass the shape floor (floor > 0)
@@ -66,17 +71,14 @@ inline void preview_cell_split(const Mesh& mesh, TetId t, int face, const Point&
 template <MetricSpace S, class Criterion>
 bool cell_split_accepted(const Mesh& mesh, TetId t, int face, const Point& p, double floor) {
   if (floor <= 0.0 && kIndifferent<Criterion>) return true;
-  PlannedTets children;
-  preview_cell_split(mesh, t, face, p, children);
   const ShapeFloor shape(floor);
-  const double worst = floor > 0.0 ? cached_mean_ratio<S>(mesh, t) : 0.0;
+  const std::array<TetId, 1> parent{t};
+  WorstOld<S> worst_old(mesh, parent);
   const double bar = kIndifferent<Criterion> ? 0.0 : Criterion::bar(Criterion::template tet_score_of<S>(mesh, t));
-  for (const PlannedTet& c : children) {
-    if (floor > 0.0 && !shape.admits(S::mean_ratio(mesh, mesh.tet(t), c.points), [&] { return worst; })) return false;
-    if (!kIndifferent<Criterion> && Criterion::template tet_score_at<S>(mesh, mesh.tet(t), c.points) <= bar)
-      return false;
-  }
-  return true;
+  return all_cell_children(mesh, t, face, p, [&](const TetVertices&, const TetPoints& x) {
+    if (floor > 0.0 && !shape.admits(S::mean_ratio(mesh, mesh.tet(t), x), worst_old)) return false;
+    return kIndifferent<Criterion> || Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) > bar;
+  });
 }
 
 struct CellSplitScratch {

@@ -16,26 +16,12 @@
 
 namespace metrica {
 
-// Decide: both children of every shell tet are positively oriented with m
-// at p. Pure: reads the mesh, writes nothing.
-template <Precision P>
-bool split_is_valid(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p) {
-  for (TetId t : shell.tets) {
-    const auto& v = mesh.tet(t);
-    std::array<Point, 4> x{mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3])};
-    const int ia = local_index(v, a), ib = local_index(v, b);
-    std::array<Point, 4> y = x;
-    x[ib] = p;
-    y[ia] = p;
-    if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0 || P::orient3d(y[0], y[1], y[2], y[3]) <= 0) return false;
-  }
-  return true;
-}
-
 // The children of the shell's tets with the new vertex at p (vertex id
 // kNoId): for each tet, the one with b replaced, then the one with a.
+// f(parent, child vertices, child points) returns false to stop; then so
+// does this.
 template <class F>
-void for_each_split_child(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p, F&& f) {
+bool all_split_children(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p, F&& f) {
   for (TetId t : shell.tets) {
     const auto& v = mesh.tet(t);
     for (VertexId gone : {b, a}) {
@@ -44,16 +30,27 @@ void for_each_split_child(const Mesh& mesh, const Shell& shell, VertexId a, Vert
       const int i = local_index(v, gone);
       c[i] = kNoId;
       x[i] = p;
-      f(t, c, x);
+      if (!f(t, c, x)) return false;
     }
   }
+  return true;
+}
+
+// Decide: both children of every shell tet are positively oriented with m
+// at p. Pure: reads the mesh, writes nothing.
+template <Precision P>
+bool split_is_valid(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p) {
+  return all_split_children(mesh, shell, a, b, p, [](TetId, const TetVertices&, const TetPoints& x) {
+    return P::orient3d(x[0], x[1], x[2], x[3]) > 0;
+  });
 }
 
 inline void preview_split(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p,
                           PlannedTets& out) {
   out.clear();
-  for_each_split_child(mesh, shell, a, b, p, [&](TetId, const TetVertices& c, const TetPoints& x) {
+  all_split_children(mesh, shell, a, b, p, [&](TetId, const TetVertices& c, const TetPoints& x) {
     out.push_back({c, x});
+    return true;
   });
 }
 
@@ -63,22 +60,18 @@ inline void preview_split(const Mesh& mesh, const Shell& shell, VertexId a, Vert
 template <MetricSpace S, class Criterion>
 bool split_accepted(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p, double floor) {
   if (floor > 0.0) {
-    double worst = std::numeric_limits<double>::infinity();
-    for (TetId t : shell.tets) worst = std::min(worst, cached_mean_ratio<S>(mesh, t));
     const ShapeFloor shape(floor);
-    bool ok = true;
-    for_each_split_child(mesh, shell, a, b, p, [&](TetId t, const TetVertices&, const TetPoints& x) {
-      ok = ok && shape.admits(S::mean_ratio(mesh, mesh.tet(t), x), [&] { return worst; });
-    });
-    if (!ok) return false;
+    WorstOld<S> worst_old(mesh, view(shell.tets));
+    if (!all_split_children(mesh, shell, a, b, p, [&](TetId t, const TetVertices&, const TetPoints& x) {
+          return shape.admits(S::mean_ratio(mesh, mesh.tet(t), x), worst_old);
+        }))
+      return false;
   }
   if constexpr (!kIndifferent<Criterion>) {
     const double bar = Criterion::bar(min_score_of<Criterion, S>(mesh, view(shell.tets)));
-    bool ok = true;
-    for_each_split_child(mesh, shell, a, b, p, [&](TetId t, const TetVertices&, const TetPoints& x) {
-      ok = ok && Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) > bar;
+    return all_split_children(mesh, shell, a, b, p, [&](TetId t, const TetVertices&, const TetPoints& x) {
+      return Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) > bar;
     });
-    return ok;
   }
   return true;
 }
