@@ -2,11 +2,13 @@
 // options, exit codes, and aligned output for people.
 #pragma once
 
+#include <metrica/geometry/cad_model.hpp>
 #include <metrica/io/mesh_data.hpp>
 #include <metrica/mesh.hpp>
 
 #include <boost/program_options.hpp>
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -72,6 +74,12 @@ struct LoadedMesh {
   double read_seconds = 0, build_seconds = 0;
 };
 LoadedMesh load_mesh(const std::string& path);
+
+// --geometry FILE: opens the CAD model and associates the mesh's boundary
+// vertices with it (InputError when they do not match).
+std::unique_ptr<CadModel> open_geometry(const std::string& path, Mesh& mesh, const io::MeshData* input);
+// One line: how far the boundary vertices are from their entities.
+std::string model_distance_text(const Mesh& mesh, const CadModel& model);
 
 // Human-readable sizes and numbers.
 std::string bytes_text(double bytes);

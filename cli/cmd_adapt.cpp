@@ -1,6 +1,7 @@
 #include "cli.hpp"
 
 #include <metrica/error.hpp>
+#include <metrica/geometry/association.hpp>
 #include <metrica/io/atomic_file.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
@@ -68,12 +69,18 @@ int run_adapt(const std::vector<std::string>& args) {
             "--iterations N repeats the adaptation N times, re-evaluating the metric on the new mesh each\n"
             "time (the UGAWG loop). The output is checked with validate() before it is written.\n"
             "By default every operator runs on all cores (--threads N to choose, --concurrency serial\n"
-            "for one thread and an output that is the same to the bit on every run).\n\n"
+            "for one thread and an output that is the same to the bit on every run).\n"
+            "With --geometry MODEL (.step, .iges, .brep, .geo: any file gmsh opens) new boundary vertices\n"
+            "are placed on the CAD model, not on the input's facets: the mesh's surface ids must be the\n"
+            "model's surface tags, and each boundary vertex is associated with its model vertex, curve\n"
+            "or surface (from the input's VerticesOnGeometric* records when present, else by\n"
+            "projection); the output .meshb carries the association for the next run.\n\n"
             "Examples:\n"
             "  metrica adapt cube-linear-00.meshb -m cube-linear-00.solb -o adapted.meshb\n"
             "  metrica adapt cube.meshb --analytic polar-1 --iterations 5 -o polar1.meshb --vtu polar1.vtu\n"
             "  metrica adapt cube.meshb --analytic polar-2 --points centroid -o polar2.meshb\n"
-            "  metrica adapt cube.meshb --analytic linear --threads 2 -o linear.meshb");
+            "  metrica adapt cube.meshb --analytic linear --threads 2 -o linear.meshb\n"
+            "  metrica adapt cube-cylinder.meshb --geometry cube-cylinder.step --analytic polar-2 -o cc.meshb");
   o.input("mesh (.mesh, .meshb)");
   o.output("adapted mesh (.mesh, .meshb, .vtu, .su2)");
   o.add()("metric,m", po::value<std::string>()->value_name("FILE"), "metric at the input's vertices (.sol, .solb)")(
@@ -106,7 +113,9 @@ int run_adapt(const std::vector<std::string>& args) {
       "smooth-below", po::value<double>()->default_value(0.3, "0.3")->value_name("Q"),
       "smooth the vertices of tets with mean ratio below Q during the cycles")(
       "metric-out", po::value<std::string>()->value_name("FILE"), "also write the metric at the output's vertices")(
-      "vtu", po::value<std::string>()->value_name("FILE"), "also write the adapted mesh for ParaView");
+      "vtu", po::value<std::string>()->value_name("FILE"), "also write the adapted mesh for ParaView")(
+      "geometry", po::value<std::string>()->value_name("MODEL"),
+      "CAD model the boundary lies on (.step .stp .iges .igs .brep .geo): new boundary vertices go on it");
   o.format_version("libMeshb version to write (default: the input's)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
@@ -148,6 +157,11 @@ int run_adapt(const std::vector<std::string>& args) {
   auto loaded = load_mesh(input);
   Mesh& mesh = loaded.mesh;
   const double volume = mesh.volume();
+  std::unique_ptr<CadModel> model;
+  if (o.has("geometry")) {
+    model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data);
+    ao.geometry = model.get();
+  }
   std::optional<AnalyticMetric> analytic;
   MetricFunction exact;
   if (o.has("analytic")) {
@@ -185,15 +199,20 @@ int run_adapt(const std::vector<std::string>& args) {
   // Flat boundaries keep the volume to round-off; on a curved discrete
   // boundary, collapses may flatten it within their normal-deviation bound
   // (2 degrees), which changes the volume by a few 1e-6 (cube-cylinder).
+  // On a model the volume moves from the input's facets to the model's.
   ValidateOptions vo;
-  vo.expected_volume = volume;
-  vo.volume_tolerance = 1e-4;
+  if (!model) {
+    vo.expected_volume = volume;
+    vo.volume_tolerance = 1e-4;
+  }
   const auto check = mesh.validate(vo);
   if (!check.ok())
     throw InputError(fmt::format("adapt: the adapted mesh is invalid; nothing written\n{}", check.to_string()));
   log::info("volume {:.17g}, relative change {:.3g}", mesh.volume(), std::abs(mesh.volume() - volume) / volume);
+  if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
   auto data = extract_mesh_data(mesh);
   data.version = loaded.data.version;
+  if (model) complete_geometry_records(data, *model);
   io::write_mesh_file(output, data, o.format_version());
   if (o.has("metric-out")) {
     auto sol = metric_field_to_sol(live_metrics(mesh));

@@ -2,6 +2,7 @@
 
 #include <metrica/box.hpp>
 #include <metrica/error.hpp>
+#include <metrica/geometry/association.hpp>
 #include <metrica/io/atomic_file.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
@@ -46,7 +47,9 @@ int run_loop(const std::vector<std::string>& args) {
       "speculative (--threads threads) or serial")(
       "csv", po::value<std::string>()->value_name("FILE"), "write one row per iteration")(
       "output-dir", po::value<std::string>()->value_name("DIR"),
-      "write each iteration's mesh and metric (loop-NN.meshb, loop-NN.solb)");
+      "write each iteration's mesh and metric (loop-NN.meshb, loop-NN.solb)")(
+      "geometry", po::value<std::string>()->value_name("MODEL"),
+      "CAD model the start mesh's boundary lies on: new boundary vertices go on it (needs -i)");
   if (!o.parse(args)) return kOk;
   if (!o.has("field")) throw UsageError("loop: give --field NAME (sinfun3, tanh3, sinatan3)");
   const AnalyticField field = analytic_field_from_name(o.get<std::string>("field"));
@@ -72,8 +75,18 @@ int run_loop(const std::vector<std::string>& args) {
   if (lo.gradation != 0 && !(lo.gradation >= 1)) throw UsageError("loop: --gradation must be >= 1 (or 0: none)");
 
   Mesh mesh;
-  if (o.has("input")) mesh = load_mesh(o.get<std::string>("input")).mesh;
-  else mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+  std::unique_ptr<CadModel> model;
+  if (o.has("geometry") && !o.has("input")) throw UsageError("loop: --geometry needs the start mesh (-i)");
+  if (o.has("input")) {
+    auto loaded = load_mesh(o.get<std::string>("input"));
+    mesh = std::move(loaded.mesh);
+    if (o.has("geometry")) {
+      model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data);
+      lo.adapt.geometry = model.get();
+    }
+  } else {
+    mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+  }
   std::string dir;
   if (o.has("output-dir")) {
     dir = o.get<std::string>("output-dir");
@@ -97,7 +110,9 @@ int run_loop(const std::vector<std::string>& args) {
     }
     if (!dir.empty()) {
       const std::string stem = fmt::format("{}/loop-{:02d}", dir, r.iteration);
-      io::write_mesh_file(stem + ".meshb", extract_mesh_data(m));
+      auto data = extract_mesh_data(m);
+      if (model) complete_geometry_records(data, *model);
+      io::write_mesh_file(stem + ".meshb", data);
       std::vector<Sym6> metrics;
       for (VertexId v = 0; v < m.vertex_capacity(); ++v)
         if (m.vertex_alive(v)) metrics.push_back(m.metric(v));
@@ -106,6 +121,7 @@ int run_loop(const std::vector<std::string>& args) {
   };
   const auto rows = adaptive_loop(mesh, lo);
   if (o.has("csv")) io::write_file_atomically(o.get<std::string>("csv"), loop_csv(rows));
+  if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
   if (talk) fmt::print("loop: {:.1f} s in all\n", clock.seconds());
   return kOk;
 }

@@ -3,6 +3,7 @@
 namespace metrica::cli {
 
 int run_cube(const std::vector<std::string>& args);
+int run_bootstrap(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
 int run_check(const std::vector<std::string>& args);
 int run_convert(const std::vector<std::string>& args);
@@ -16,6 +17,8 @@ int run_error(const std::vector<std::string>& args);
 const std::vector<Command>& commands() {
   static const std::vector<Command> list{
       {"cube", "write a box mesh of n x m x k hexes split into 6 tets each", run_cube},
+      {"bootstrap", "write a first mesh of a CAD model (gmsh), its boundary associated with the model",
+       run_bootstrap},
       {"info", "print counts, extent, surfaces, ridges, corners and volume of a mesh", run_info},
       {"check", "read a mesh and check every invariant (exit 1 with a report if invalid)", run_check},
       {"convert", "convert between .mesh, .meshb, .vtu, .su2 (and .sol <-> .solb)", run_convert},

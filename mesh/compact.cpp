@@ -185,6 +185,7 @@ void Mesh::compact(const PartRunner& given) {
   permute(metric_, vertex_order, run);
   permute(log_metric_, vertex_order, run);
   permute(vertex_stamp_, vertex_order, run);
+  permute(geo_, vertex_order, run);
   run(parts, [&](std::size_t p) {
     const auto [first, last] = part_slice(nv, parts, p);
     for (std::size_t v = first; v < last; ++v) vert2tet_[v] = vert2tet_[v] < tcap ? new_tet[vert2tet_[v]] : kNoId;

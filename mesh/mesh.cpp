@@ -37,6 +37,7 @@ void Mesh::reserve(std::size_t vertices, std::size_t tets) {
     metric_.reserve(vertices);
     log_metric_.reserve(vertices);
   }
+  if (has_geo_params()) geo_.reserve(vertices);
   tets_.reserve(tets);
   tet2tets_.reserve(tets);
   face_surface_.reserve(tets);
@@ -52,6 +53,7 @@ void Mesh::init_vertex(VertexId v, const Point& p, int ref) {
   vertex_class_[v] = VertexClass::interior;
   vertex_flags_[v] = kAlive;
   vertex_stamp_[v] = epoch_;
+  if (has_geo_params()) geo_[v] = GeoParam{};
 }
 
 VertexId Mesh::add_vertex(const Point& p, int ref) {
@@ -81,6 +83,7 @@ VertexId Mesh::add_vertex(const Point& p, int ref) {
     metric_.push_back(Sym6{});
     log_metric_.push_back(Sym6{});
   }
+  if (has_geo_params()) geo_.push_back(GeoParam{});
   return v;
 }
 
@@ -197,6 +200,7 @@ void Mesh::append_dead(std::size_t vertex_room, std::size_t tet_room, const Part
     grow_array(metric_, v_size, Sym6{}, v_cap, run);
     grow_array(log_metric_, v_size, Sym6{}, v_cap, run);
   }
+  if (has_geo_params()) grow_array(geo_, v_size, GeoParam{}, v_cap, run);
   grow_array(tets_, t_size, TetVertices{kNoId, kNoId, kNoId, kNoId}, t_cap, run);
   grow_array(tet2tets_, t_size, std::array<FaceRef, 4>{}, t_cap, run);
   grow_array(face_surface_, t_size, std::array<SurfaceId, 4>{0, 0, 0, 0}, t_cap, run);

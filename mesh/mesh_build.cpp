@@ -169,6 +169,10 @@ io::MeshData extract_mesh_data(const Mesh& mesh) {
     d.vertex_refs.push_back(mesh.vertex_ref(v));
     if (mesh.vertex_class(v) == VertexClass::corner) d.corners.push_back(new_id[v]);
     if (mesh.is_required(v)) d.required_vertices.push_back(new_id[v]);
+    if (mesh.has_geo_params() && mesh.geo_param(v).valid()) {
+      const GeoParam& g = mesh.geo_param(v);
+      d.on_geometry[static_cast<std::size_t>(g.dim)].push_back({new_id[v], g.tag, g.u, g.v, 0.0});
+    }
   }
   for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
     if (!mesh.tet_alive(t)) continue;

@@ -5,8 +5,9 @@
 
 namespace metrica {
 
-static_assert(Spaces::size * Concurrencies::size == METRICA_ADAPT_UNITS,
-              "one adapt unit per (space, concurrency) pair: update METRICA_ADAPT_UNITS in operators/CMakeLists.txt");
+static_assert(Spaces::size * Concurrencies::size * Geometries::size == METRICA_ADAPT_UNITS,
+              "one adapt unit per (space, concurrency, geometry) triple: update METRICA_ADAPT_UNITS in "
+              "pipeline/CMakeLists.txt");
 
 PointRule point_rule_from_name(std::string_view name) {
   if (name == "edge") return PointRule::edge;
@@ -31,8 +32,10 @@ void check_policy_choice(const PolicyChoice& c) {
 
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& p) {
   return with_policy<Spaces>("space", p.space, [&]<class S>() {
-    return with_policy<Concurrencies>("concurrency", p.concurrency,
-                                      [&]<class C>() { return adapt_instance<S, C>(mesh, options, p.precision); });
+    return with_policy<Concurrencies>("concurrency", p.concurrency, [&]<class C>() {
+      if (options.geometry != nullptr) return adapt_instance<S, C, CadGeometry>(mesh, options, p.precision);
+      return adapt_instance<S, C, NoGeometry>(mesh, options, p.precision);
+    });
   });
 }
 

@@ -1,20 +1,22 @@
-// One (space, concurrency) pair of the policy lists, compiled with
-// METRICA_ADAPT_UNIT = its index (space-major): the pipeline under every
-// precision for that pair.
+// One (space, concurrency, geometry) triple of the policy lists, compiled
+// with METRICA_ADAPT_UNIT = its index (space-major, geometry last): the
+// pipeline under every precision for that triple.
 #include <metrica/pipeline/adapt_dispatch.hpp>
 
 namespace metrica {
 
-template <MetricSpace S, Concurrency C>
+template <MetricSpace S, Concurrency C, Geometry G>
 AdaptReport adapt_instance(Mesh& mesh, const AdaptOptions& options, std::string_view precision) {
-  return with_policy<Precisions>("precision", precision, [&]<class P>() { return adapt<S, P, C>(mesh, options); });
+  const G geometry = geometry_of<G>(options);
+  return with_policy<Precisions>("precision", precision,
+                                 [&]<class P>() { return adapt<S, P, C, G>(mesh, options, geometry); });
 }
 
 constexpr std::size_t kUnit = METRICA_ADAPT_UNIT;
-static_assert(kUnit < Spaces::size * Concurrencies::size,
-              "more adapt units than policy pairs (operators/CMakeLists.txt)");
-template AdaptReport adapt_instance<Spaces::at<kUnit / Concurrencies::size>,
-                                    Concurrencies::at<kUnit % Concurrencies::size>>(Mesh&, const AdaptOptions&,
-                                                                                    std::string_view);
+constexpr std::size_t kPerSpace = Concurrencies::size * Geometries::size;
+static_assert(kUnit < Spaces::size * kPerSpace, "more adapt units than policy triples (pipeline/CMakeLists.txt)");
+template AdaptReport
+adapt_instance<Spaces::at<kUnit / kPerSpace>, Concurrencies::at<kUnit % kPerSpace / Geometries::size>,
+               Geometries::at<kUnit % Geometries::size>>(Mesh&, const AdaptOptions&, std::string_view);
 
 }  // namespace metrica

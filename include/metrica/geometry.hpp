@@ -25,4 +25,17 @@ inline double triangle_area(const Point& a, const Point& b, const Point& c) {
   return 0.5 * (b - a).cross(c - a).norm();
 }
 
+// The (unnormalised) normal (b-a)x(c-a) of triangle abc.
+inline Eigen::Vector3d triangle_normal(const Point& a, const Point& b, const Point& c) {
+  return (b - a).cross(c - a);
+}
+
+// 1 - |cos| of the angle between the lines of two normals: 0 when the
+// faces are parallel, whichever way they are oriented; 1 for a flat face.
+inline double normal_deviation(const Eigen::Vector3d& n1, const Eigen::Vector3d& n2) {
+  const double d = n1.norm() * n2.norm();
+  if (d <= 0.0) return 1.0;
+  return 1.0 - std::abs(n1.dot(n2)) / d;
+}
+
 }  // namespace metrica

@@ -26,6 +26,17 @@ using Point = Eigen::Vector3d;
 // (xx, xy, yy, xz, yz, zz).
 using Sym6 = std::array<double, 6>;
 
+// Where a boundary vertex lies on the geometric model: the entity
+// (dimension 0 model vertex, 1 curve, 2 surface; -1 none) with its tag and
+// its parameters there (t = u on a curve, (u, v) on a surface).
+struct GeoParam {
+  std::int32_t tag = 0;
+  std::int8_t dim = -1;
+  double u = 0.0, v = 0.0;
+  bool valid() const { return dim >= 0; }
+  friend bool operator==(const GeoParam&, const GeoParam&) = default;
+};
+
 using TetVertices = std::array<VertexId, 4>;
 using TriangleVertices = std::array<VertexId, 3>;
 using EdgeVertices = std::array<VertexId, 2>;

@@ -12,6 +12,7 @@
 // none of them allocates per call once capacity is reserved.
 #pragma once
 
+#include <metrica/geometry.hpp>
 #include <metrica/ids.hpp>
 #include <metrica/mesh_array.hpp>
 #include <metrica/spin_lock.hpp>
@@ -74,6 +75,16 @@ class Mesh {
   const Sym6& log_metric(VertexId v) const { return log_metric_[v]; }
   // Sets M and log M of a vertex; allocates the arrays on first use.
   void set_metric(VertexId v, const Sym6& m, const Sym6& log_m);
+
+  // Geometric parameters of the vertices (GeoParam): empty until a model
+  // is attached (geometry/ fills them); interior vertices keep dim -1.
+  bool has_geo_params() const { return !geo_.empty(); }
+  const GeoParam& geo_param(VertexId v) const { return geo_[v]; }
+  // Allocates the array (every vertex unassociated); outside parallel passes.
+  void enable_geo_params() {
+    if (geo_.empty()) geo_.assign(points_.size(), GeoParam{});
+  }
+  void set_geo_param(VertexId v, const GeoParam& g) { geo_[v] = g; }
 
   // --- tets --------------------------------------------------------------
   const TetVertices& tet(TetId t) const { return tets_[t]; }
@@ -251,6 +262,7 @@ class Mesh {
   MeshArray<Sym6> metric_;
   MeshArray<Sym6> log_metric_;
   MeshArray<Epoch> vertex_stamp_;
+  MeshArray<GeoParam> geo_;
 
   MeshArray<TetVertices> tets_;
   MeshArray<std::array<FaceRef, 4>> tet2tets_;
@@ -297,6 +309,10 @@ struct BoundingBox {
   Point lo, hi;
 };
 BoundingBox bounding_box(const Mesh& mesh);
+
+inline Eigen::Vector3d face_normal(const Mesh& mesh, VertexId p, VertexId q, VertexId r) {
+  return (mesh.point(q) - mesh.point(p)).cross(mesh.point(r) - mesh.point(p));
+}
 
 // Calls f(tet, face) for every face of a live tet that has no neighbour.
 template <class F>

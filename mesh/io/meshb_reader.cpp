@@ -148,6 +148,24 @@ void read_mesh_keyword(Source& src, int code, MeshData& m, Locations& where) {
       for (auto& v : list) v = read_index(src);
       break;
     }
+    case kVerticesOnGeometricVertices:
+    case kVerticesOnGeometricEdges:
+    case kVerticesOnGeometricTriangles: {
+      // (vertex, entity) then t, dist on a curve; u, v, dist on a surface.
+      const int dim = code - kVerticesOnGeometricVertices;
+      const int reals = dim == 0 ? 0 : dim + 1;
+      const auto n = src.count(2, reals);
+      auto& list = m.on_geometry[static_cast<std::size_t>(dim)];
+      list.resize(n);
+      for (auto& r : list) {
+        r.vertex = read_index(src);
+        r.entity = read_ref(src);
+        if (dim >= 1) r.u = src.real();
+        if (dim == 2) r.v = src.real();
+        if (dim >= 1) r.dist = src.real();
+      }
+      break;
+    }
     default: break;
   }
 }
@@ -192,6 +210,12 @@ void check_indices(const MeshData& m, const std::string& file, const Locations& 
   check(kTetrahedra, m.tets);
   check(kCorners, m.corners);
   check(kRequiredVertices, m.required_vertices);
+  for (int dim = 0; dim < 3; ++dim) {
+    const auto& list = m.on_geometry[static_cast<std::size_t>(dim)];
+    for (std::size_t i = 0; i < list.size(); ++i)
+      if (list[i].vertex >= nv)
+        fail_index(file, kVerticesOnGeometricVertices + dim, where, i, list[i].vertex, nv, "vertex");
+  }
   for (std::size_t i = 0; i < m.ridges.size(); ++i)
     if (m.ridges[i] >= m.edges.size()) fail_index(file, kRidges, where, i, m.ridges[i], m.edges.size(), "edge");
 }

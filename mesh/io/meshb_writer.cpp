@@ -157,6 +157,20 @@ std::string write_mesh_to(Writer w, const MeshData& m) {
   write_elements(w, kEdges, m.edges, m.edge_refs);
   write_elements(w, kTriangles, m.triangles, m.triangle_refs);
   write_elements(w, kTetrahedra, m.tets, m.tet_refs);
+  for (int dim = 0; dim < 3; ++dim) {
+    const auto& list = m.on_geometry[static_cast<std::size_t>(dim)];
+    if (list.empty()) continue;
+    w.begin(kVerticesOnGeometricVertices + dim);
+    w.count(list.size());
+    for (const auto& r : list) {
+      w.index(r.vertex);
+      w.integer(r.entity);
+      if (dim >= 1) w.real(r.u);
+      if (dim == 2) w.real(r.v);
+      if (dim >= 1) w.real(r.dist);
+      end_line(w);
+    }
+  }
   write_list(w, kCorners, m.corners);
   write_list(w, kRidges, m.ridges);
   write_list(w, kRequiredVertices, m.required_vertices);

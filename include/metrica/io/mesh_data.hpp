@@ -15,6 +15,17 @@
 
 namespace metrica::io {
 
+// A vertex on a geometric entity (libMeshb VerticesOnGeometricVertices,
+// ...Edges, ...Triangles): the entity's id, the parameters there (u = t on
+// a curve, (u, v) on a surface; none on a model vertex) and the distance
+// the writer measured.
+struct GeoRecord {
+  VertexId vertex = 0;
+  int entity = 0;
+  double u = 0.0, v = 0.0, dist = 0.0;
+  friend bool operator==(const GeoRecord&, const GeoRecord&) = default;
+};
+
 struct MeshData {
   int version = 2;  // libMeshb version read or to write (1-4)
   std::vector<Point> vertices;
@@ -28,6 +39,9 @@ struct MeshData {
   std::vector<VertexId> corners;            // vertex indices
   std::vector<VertexId> required_vertices;  // vertex indices
   std::vector<std::uint32_t> ridges;        // indices into edges
+  // By entity dimension: on model vertices, curves, surfaces. A vertex may
+  // have several records (a curve's vertex on each of its surfaces).
+  std::array<std::vector<GeoRecord>, 3> on_geometry;
 
   friend bool operator==(const MeshData&, const MeshData&) = default;
 };

@@ -16,6 +16,9 @@ enum Keyword : int {
   kCorners = 13,
   kRidges = 14,
   kRequiredVertices = 15,
+  kVerticesOnGeometricVertices = 40,
+  kVerticesOnGeometricEdges = 41,
+  kVerticesOnGeometricTriangles = 42,
   kEnd = 54,
   kSolAtVertices = 62,
 };
@@ -34,6 +37,9 @@ constexpr std::string_view keyword_name(int code) {
     case kCorners: return "Corners";
     case kRidges: return "Ridges";
     case kRequiredVertices: return "RequiredVertices";
+    case kVerticesOnGeometricVertices: return "VerticesOnGeometricVertices";
+    case kVerticesOnGeometricEdges: return "VerticesOnGeometricEdges";
+    case kVerticesOnGeometricTriangles: return "VerticesOnGeometricTriangles";
     case kEnd: return "End";
     case kSolAtVertices: return "SolAtVertices";
     default: return "";
@@ -42,7 +48,8 @@ constexpr std::string_view keyword_name(int code) {
 
 inline int keyword_code(std::string_view name) {
   for (int code : {kVersion, kDimension, kVertices, kEdges, kTriangles, kTetrahedra, kCorners, kRidges,
-                   kRequiredVertices, kEnd, kSolAtVertices})
+                   kRequiredVertices, kVerticesOnGeometricVertices, kVerticesOnGeometricEdges,
+                   kVerticesOnGeometricTriangles, kEnd, kSolAtVertices})
     if (keyword_name(code) == name) return code;
   return 0;
 }

@@ -6,8 +6,9 @@
 //   - a corner or a required vertex never moves;
 //   - a ridge vertex moves only along a ridge edge (b on its ridge);
 //   - a surface vertex moves only along a boundary edge (b on its surface),
-//     and the boundary faces it drags keep their plane (normal deviation
-//     below a tolerance: 0 on flat boundaries, so the volume is conserved);
+//     and the boundary faces it drags fit the Geometry (NoGeometry: they
+//     keep their plane, normal deviation below a tolerance, so the volume
+//     is conserved; CadGeometry: they follow the model's normal);
 //   - every new tet is positively oriented (Precision), no new edge is
 //     longer than max_new_length, and the worst new tet is above the
 //     quality floor or no worse than the worst tet of the old ball;
@@ -91,10 +92,10 @@ struct CollapsePlan {
 // `moved_metric` (the merge at the edge's metric midpoint, which makes
 // shorter edges than either end). s.ball, s.ball_b, s.neighbours and
 // s.neighbours_b hold the two balls (the caller holds their vertices).
-template <MetricSpace S, Precision P, class Criterion = ShapeOnly>
+template <MetricSpace S, Precision P, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
                                        const CollapseOptions& o, const Point* moved = nullptr,
-                                       const VertexMetric* moved_metric = nullptr) {
+                                       const VertexMetric* moved_metric = nullptr, const G& geometry = {}) {
   if (!edge_shell(mesh, a, b, s.ball, s.shell)) return Refusal::not_applicable;
   if (!collapse_allowed(mesh, a, b, !s.shell.closed)) return Refusal::not_applicable;
   if (moved != nullptr && (mesh.vertex_class(b) != VertexClass::interior || mesh.is_required(b)))
@@ -137,7 +138,8 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
         return Refusal::rejected;
   }
   if (mesh.vertex_class(a) != VertexClass::interior) {
-    // Boundary faces through a (and not b) keep their plane.
+    // Boundary faces through a (and not b) keep their side and fit the
+    // Geometry.
     for (TetId t : s.ball) {
       const auto& v = mesh.tet(t);
       if (local_index(v, b) >= 0) continue;
@@ -147,8 +149,8 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
         const Eigen::Vector3d before = face_normal(mesh, fv[0], fv[1], fv[2]);
         for (auto& x : fv)
           if (x == a) x = b;
-        const Eigen::Vector3d after = face_normal(mesh, fv[0], fv[1], fv[2]);
-        if (before.dot(after) <= 0.0 || normal_deviation(before, after) > o.max_normal_deviation)
+        if (before.dot(face_normal(mesh, fv[0], fv[1], fv[2])) <= 0.0 ||
+            !geometry.facet_fits(mesh, fv[0], fv[1], fv[2], mesh.surface_id(t, f), before, o.max_normal_deviation))
           return Refusal::rejected;
       }
     }
@@ -221,13 +223,14 @@ FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
 // end of lower class (interior before surface before ridge), then the
 // other, then (two interior ends) to merge them at the edge's metric
 // midpoint.
-template <MetricSpace S, Precision P, class Criterion = ShapeOnly>
+template <MetricSpace S, Precision P, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 struct Collapse {
   using Item = EdgeCandidate;
   using Scratch = CollapseScratch;
   using Plan = CollapsePlan;
   static constexpr std::string_view name = "collapse";
   CollapseOptions options;
+  G geometry{};
 
   // A collapse frees tets (net); a thread reuses its own at once.
   PassRoom room() const { return {.vertices_per_item = 0, .tets_per_item = 0}; }
@@ -267,7 +270,7 @@ struct Collapse {
       }
       Decision<Plan> d = Refusal::not_applicable;
       if (attempt < 2) {
-        d = decide_collapse<S, P, Criterion>(mesh, from, to, s, options);
+        d = decide_collapse<S, P, Criterion>(mesh, from, to, s, options, nullptr, nullptr, geometry);
       } else {
         if (mesh.vertex_class(from) != VertexClass::interior || mesh.vertex_class(to) != VertexClass::interior) break;
         const auto& ma = S::vertex_metric(mesh, from);
@@ -298,11 +301,11 @@ struct Collapse {
 };
 
 // The collapse pass: edges shorter than min_length, shortest first.
-template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly>
-OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}) {
+template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   const auto todo = edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first, o.changed_since);
-  OperatorStats stats = run_pass<C>(mesh, Collapse<S, P, Criterion>{o}, todo);
+  OperatorStats stats = run_pass<C>(mesh, Collapse<S, P, Criterion, G>{o, geometry}, todo);
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -12,8 +12,10 @@
 //        on one surface id (not a ridge) and whose shell has two tets
 //        around ring vertex x is swapped for the edge v0 v2 (more generally
 //        an open shell of n tets, ring v0..vn, becomes the fans of the
-//        polygon v0..vn). The boundary faces must stay in their plane
-//        (normal deviation below a tolerance) so the volume is conserved.
+//        polygon v0..vn). The new boundary faces must fit the Geometry
+//        (NoGeometry: stay in the old faces' plane, normal deviation below
+//        a tolerance, so the volume is conserved; CadGeometry: follow the
+//        model's normal).
 //
 // Each flip is an operation (operation.hpp): find (read connectivity),
 // decide (orientation with the Precision, the Criterion, the shape floor)
@@ -21,6 +23,7 @@
 #pragma once
 
 #include <metrica/geometry.hpp>
+#include <metrica/geometry/model.hpp>
 #include <metrica/operators/cavity.hpp>
 #include <metrica/operators/criterion.hpp>
 #include <metrica/operators/operation.hpp>
@@ -106,18 +109,6 @@ bool all_positive(const Mesh& mesh, std::span<const TetVertices> tets) {
   return true;
 }
 
-inline Eigen::Vector3d face_normal(const Mesh& mesh, VertexId p, VertexId q, VertexId r) {
-  return (mesh.point(q) - mesh.point(p)).cross(mesh.point(r) - mesh.point(p));
-}
-
-// 1 - |cos| of the angle between the lines of two normals: 0 when the
-// faces are parallel, whichever way they are oriented; 1 for a flat face.
-inline double normal_deviation(const Eigen::Vector3d& n1, const Eigen::Vector3d& n2) {
-  const double d = n1.norm() * n2.norm();
-  if (d <= 0.0) return 1.0;
-  return 1.0 - std::abs(n1.dot(n2)) / d;
-}
-
 inline void tet_vertices_of(const Mesh& mesh, std::span<const TetId> ids, NewTets& out) {
   out.clear();
   for (TetId t : ids) out.push_back(mesh.tet(t));
@@ -164,9 +155,9 @@ struct EdgeRemovalPlan {
 };
 
 // Decide the removal of ab; its shell is in s.shell (edge_shell).
-template <MetricSpace S, Precision P, class Criterion>
+template <MetricSpace S, Precision P, class Criterion, Geometry G = NoGeometry>
 Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, VertexId b, FlipScratch& s,
-                                              const FlipOptions& o) {
+                                              const FlipOptions& o, const G& geometry = {}) {
   const Shell& shell = s.shell;
   const std::size_t n = shell.tets.size();
   const int ref = mesh.tet_ref(shell.tets[0]);
@@ -236,10 +227,10 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
     }
     if (!positive) continue;
     if (!shell.closed) {
-      // The new boundary faces (on the closing edge v_n v_0) must lie in
-      // the plane of the old ones.
+      // The new boundary faces (on the closing edge v_n v_0) must fit the
+      // Geometry where the old ones were.
       const Eigen::Vector3d n_old = face_normal(mesh, a, b, s.ring.front());
-      bool flat = normal_deviation(n_old, face_normal(mesh, a, b, s.ring.back())) <= o.max_normal_deviation;
+      bool flat = geometry.facet_fits(mesh, a, b, s.ring.back(), surface, n_old, o.max_normal_deviation);
       for (const auto& t : s.candidate)
         for (int f = 0; f < 4 && flat; ++f) {
           const VertexId opposite = t[f];
@@ -248,7 +239,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
                                opposite != b;
           if (!closing) continue;
           const auto fv = face_vertices(t, f);
-          flat = normal_deviation(face_normal(mesh, fv[0], fv[1], fv[2]), n_old) <= o.max_normal_deviation;
+          flat = geometry.facet_fits(mesh, fv[0], fv[1], fv[2], surface, n_old, o.max_normal_deviation);
         }
       if (!flat) continue;
     }
@@ -375,13 +366,14 @@ FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptio
 // The edge removal as an operation: items are edges with a tet that held
 // them when the work list was made (the shell walk starts there when the
 // tet still holds the edge, else from a's ball).
-template <MetricSpace S, Precision P, class Criterion>
+template <MetricSpace S, Precision P, class Criterion, Geometry G = NoGeometry>
 struct EdgeRemoval {
   using Item = EdgeSeed;
   using Scratch = FlipScratch;
   using Plan = EdgeRemovalPlan;
   static constexpr std::string_view name = "edge-removal";
   FlipOptions options;
+  G geometry{};
 
   // An edge removal of n tets makes 2n - 4, but few tries are applied
   // (1-5%): room for a net 0.05 tets per item, more between rounds.
@@ -410,7 +402,7 @@ struct EdgeRemoval {
   }
   Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {
     const auto [a, b] = edge_from_key(e.key);
-    return decide_edge_removal<S, P, Criterion>(mesh, a, b, s, options);
+    return decide_edge_removal<S, P, Criterion>(mesh, a, b, s, options, geometry);
   }
   void apply(Mesh& mesh, const Item&, const Plan& plan, Scratch& s) const {
     apply_edge_removal<Criterion>(mesh, plan, s);

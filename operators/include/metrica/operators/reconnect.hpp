@@ -38,11 +38,11 @@ struct ReconnectOptions {
   double face_flip_below = 1.0;
 };
 
-template <MetricSpace S, Precision P, Concurrency C, class Criterion>
-OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}) {
+template <MetricSpace S, Precision P, Concurrency C, class Criterion, Geometry G = NoGeometry>
+OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  const EdgeRemoval<S, P, Criterion> removal{o.flips};
+  const EdgeRemoval<S, P, Criterion, G> removal{o.flips, geometry};
   const FaceFlip<S, P, Criterion> face_flip{o.flips, o.face_flip_below};
   std::vector<TetId> seeds;
   MeshArray<EdgeSeed> edges;

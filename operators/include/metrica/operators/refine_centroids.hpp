@@ -27,6 +27,7 @@
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/refine_edges.hpp>
+#include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/split_cell.hpp>
 #include <metrica/operators/split_edge.hpp>
 #include <metrica/policies/concurrency.hpp>
@@ -150,11 +151,13 @@ struct CentroidScratch {
 
 struct CentroidPlan {
   VertexMetric metric;
+  Point p;       // the candidate's point, or its place on the model
+  GeoParam geo;  // on the model (a boundary candidate under a CAD Geometry)
 };
 
 // The insertion of a candidate of the centroid rule, as an operation: its
 // tet must be as it was when the candidate was made (Mesh epochs).
-template <MetricSpace S, Precision P, class Criterion = ShapeOnly>
+template <MetricSpace S, Precision P, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 struct CentroidInsertion {
   using Item = PointCandidate;
   using Scratch = CentroidScratch;
@@ -162,6 +165,7 @@ struct CentroidInsertion {
   static constexpr std::string_view name = "centroid";
   RefineOptions options;
   Mesh::Epoch start = 0;  // when the candidates were made
+  G geometry{};
 
   PassRoom room() const { return {.vertices_per_item = 1.0, .tets_per_item = 4.0}; }
   Found seed(const Mesh& mesh, const Item& c, Scratch& x, VertexList& hold) const {
@@ -181,46 +185,56 @@ struct CentroidInsertion {
   Decision<Plan> decide(const Mesh& mesh, const Item& c, Scratch& x) const {
     const TetVertices& v = x.seen;
     if (c.a != kNoId) {
-      if (!split_is_valid<P>(mesh, x.shell, c.a, c.b, c.p)) return Refusal::rejected;
-      if (!split_accepted<S, Criterion>(mesh, x.shell, c.a, c.b, c.p, options.quality_floor)) return Refusal::rejected;
+      const BoundaryPoint at =
+          place_boundary_vertex(geometry, edge_vertex_param(geometry, mesh, x.shell, c.a, c.b, c.t), c.p,
+                                [&](const Point& q) { return split_is_valid<P>(mesh, x.shell, c.a, c.b, q); });
+      if (!split_is_valid<P>(mesh, x.shell, c.a, c.b, at.p)) return Refusal::rejected;
+      if (!split_accepted<S, Criterion>(mesh, x.shell, c.a, c.b, at.p, options.quality_floor))
+        return Refusal::rejected;
       const std::array<VertexId, 2> ends{c.a, c.b};
       const std::array<double, 2> w{1.0 - c.t, c.t};
-      return Plan{new_vertex_metric<S>(mesh, options.metric, ends, w, c.p)};
+      return Plan{new_vertex_metric<S>(mesh, options.metric, ends, w, at.p), at.p, at.geo};
     }
     if (c.face >= 0 && (mesh.neighbour(c.tet, c.face).valid() || mesh.surface_id(c.tet, c.face) <= 0))
       return Refusal::not_applicable;
-    if (!cell_split_is_valid<P>(mesh, c.tet, c.face, c.p)) return Refusal::rejected;
-    if (!cell_split_accepted<S, Criterion>(mesh, c.tet, c.face, c.p, options.quality_floor)) return Refusal::rejected;
     std::array<VertexId, 4> ids{};
     std::array<double, 4> w{};
     std::size_t k = 0;
     for (int i = 0; i < 4; ++i)
       if (i != c.face) ids[k++] = v[i];
     std::fill(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(k), 1.0 / static_cast<double>(k));
-    return Plan{new_vertex_metric<S>(mesh, options.metric, std::span<const VertexId>(ids.data(), k),
-                                     std::span<const double>(w.data(), k), c.p)};
+    const std::span<const VertexId> parents(ids.data(), k);
+    const std::span<const double> weights(w.data(), k);
+    GeoParam param;
+    if constexpr (G::on_model)
+      if (c.face >= 0) param = geometry.boundary_vertex(mesh, parents, weights, mesh.surface_id(c.tet, c.face));
+    const BoundaryPoint at = place_boundary_vertex(
+        geometry, param, c.p, [&](const Point& q) { return cell_split_is_valid<P>(mesh, c.tet, c.face, q); });
+    if (!cell_split_is_valid<P>(mesh, c.tet, c.face, at.p)) return Refusal::rejected;
+    if (!cell_split_accepted<S, Criterion>(mesh, c.tet, c.face, at.p, options.quality_floor))
+      return Refusal::rejected;
+    return Plan{new_vertex_metric<S>(mesh, options.metric, parents, weights, at.p), at.p, at.geo};
   }
   void apply(Mesh& mesh, const Item& c, const Plan& plan, Scratch& x) const {
-    if (c.a != kNoId)
-      split_edge(mesh, x.shell, c.a, c.b, c.p, plan.metric);
-    else
-      split_cell(mesh, c.tet, c.face, c.p, plan.metric, x.cell);
+    const VertexId n = c.a != kNoId ? split_edge(mesh, x.shell, c.a, c.b, plan.p, plan.metric)
+                                    : split_cell(mesh, c.tet, c.face, plan.p, plan.metric, x.cell);
+    if (plan.geo.valid()) mesh.set_geo_param(n, plan.geo);
   }
-  void preview(const Mesh& mesh, const Item& c, const Plan&, const Scratch& x, PlannedTets& out) const {
+  void preview(const Mesh& mesh, const Item& c, const Plan& plan, const Scratch& x, PlannedTets& out) const {
     if (c.a != kNoId)
-      preview_split(mesh, x.shell, c.a, c.b, c.p, out);
+      preview_split(mesh, x.shell, c.a, c.b, plan.p, out);
     else
-      preview_cell_split(mesh, c.tet, c.face, c.p, out);
+      preview_cell_split(mesh, c.tet, c.face, plan.p, out);
   }
 };
 
-template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly>
-OperatorStats refine_centroids(Mesh& mesh, const RefineOptions& o = {}) {
+template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+OperatorStats refine_centroids(Mesh& mesh, const RefineOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   std::vector<std::uint32_t> candidate_of_tet;
   const Mesh::Epoch start = mesh.next_epoch();
   const auto candidates = centroid_candidates<S>(mesh, o, candidate_of_tet);
-  OperatorStats stats = run_pass<C>(mesh, CentroidInsertion<S, P, Criterion>{o, start}, candidates);
+  OperatorStats stats = run_pass<C>(mesh, CentroidInsertion<S, P, Criterion, G>{o, start, geometry}, candidates);
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -6,6 +6,7 @@
 // shell, the unit of work a thread owns under Speculative.
 #pragma once
 
+#include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
@@ -45,6 +46,7 @@ inline double metric_midpoint(double la, double lb) {
 struct EdgeSplitPlan {
   Point p;
   VertexMetric metric;
+  GeoParam geo;  // on the model (a boundary edge under a CAD Geometry)
 };
 
 struct EdgeSplitScratch {
@@ -55,8 +57,9 @@ struct EdgeSplitScratch {
 
 // The split of a long edge at its metric midpoint, as an operation. Its
 // criterion (ShapeOnly: none) and shape floor (0: none) may refuse splits
-// that make poor tets.
-template <MetricSpace S, Precision P, class Criterion = ShapeOnly>
+// that make poor tets. On a boundary edge the Geometry places the new
+// vertex (boundary_placement.hpp).
+template <MetricSpace S, Precision P, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 struct EdgeSplit {
   using Item = EdgeCandidate;
   using Scratch = EdgeSplitScratch;
@@ -65,6 +68,7 @@ struct EdgeSplit {
   RefineOptions options;
   // Vertices stamped with this epoch or later were created by this pass.
   Mesh::Epoch pass_epoch = 0;
+  G geometry{};
 
   // A split of a shell of n tets (5 on average) makes n new ones; the
   // proximity filter defers about half of the candidates. More comes
@@ -88,7 +92,10 @@ struct EdgeSplit {
     const auto& ma = S::vertex_metric(mesh, c.a);
     const auto& mb = S::vertex_metric(mesh, c.b);
     const double t = metric_midpoint(std::sqrt(metric_norm2(ma, e)), std::sqrt(metric_norm2(mb, e)));
-    const Point p = mesh.point(c.a) + t * e;
+    const BoundaryPoint at = place_boundary_vertex(
+        geometry, edge_vertex_param(geometry, mesh, x.shell, c.a, c.b, t), Point(mesh.point(c.a) + t * e),
+        [&](const Point& q) { return split_is_valid<P>(mesh, x.shell, c.a, c.b, q); });
+    const Point& p = at.p;
     for (VertexId v : x.cavity) {
       if (mesh.vertex_stamp(v) < pass_epoch) continue;
       const auto& mv = S::vertex_metric(mesh, v);
@@ -99,21 +106,22 @@ struct EdgeSplit {
     if (!split_accepted<S, Criterion>(mesh, x.shell, c.a, c.b, p, options.quality_floor)) return Refusal::rejected;
     const std::array<VertexId, 2> ends{c.a, c.b};
     const std::array<double, 2> w{1.0 - t, t};
-    return Plan{p, new_vertex_metric<S>(mesh, options.metric, ends, w, p)};
+    return Plan{p, new_vertex_metric<S>(mesh, options.metric, ends, w, p), at.geo};
   }
   void apply(Mesh& mesh, const Item& c, const Plan& plan, Scratch& x) const {
-    split_edge(mesh, x.shell, c.a, c.b, plan.p, plan.metric);
+    const VertexId n = split_edge(mesh, x.shell, c.a, c.b, plan.p, plan.metric);
+    if (plan.geo.valid()) mesh.set_geo_param(n, plan.geo);
   }
   void preview(const Mesh& mesh, const Item& c, const Plan& plan, const Scratch& x, PlannedTets& out) const {
     preview_split(mesh, x.shell, c.a, c.b, plan.p, out);
   }
 };
 
-template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly>
-OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}) {
+template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   const auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first, o.changed_since);
-  const EdgeSplit<S, P, Criterion> split{o, mesh.next_epoch()};
+  const EdgeSplit<S, P, Criterion, G> split{o, mesh.next_epoch(), geometry};
   OperatorStats stats = run_pass<C>(mesh, split, todo);
   stats.seconds = clock.seconds();
   return stats;

@@ -13,8 +13,11 @@
 //             projected into the plane;
 //   ridge     (only on a straight ridge) towards its two ridge neighbours;
 //   corner / required: fixed.
+// Under a Geometry on a model, boundary vertices stay where they are (a
+// trial off the model would leave them off it).
 #pragma once
 
+#include <metrica/geometry/model.hpp>
 #include <metrica/operators/flips.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
@@ -318,13 +321,14 @@ FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothO
 }
 
 // Vertex smoothing as an operation.
-template <MetricSpace S, Precision P, class Criterion = MinQuality>
+template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G = NoGeometry>
 struct Smoothing {
   using Item = VertexId;
   using Scratch = SmoothScratch;
   using Plan = SmoothPlan;
   static constexpr std::string_view name = "smooth";
   SmoothOptions options;
+  G geometry{};
 
   PassRoom room() const { return {.max_vertices = 0, .max_tets = 0, .vertices_per_item = 0, .tets_per_item = 0}; }
   Found seed(const Mesh&, VertexId v, Scratch&, VertexList& hold) const {
@@ -337,6 +341,8 @@ struct Smoothing {
     return Found::cavity;
   }
   Decision<Plan> decide(const Mesh& mesh, VertexId v, Scratch& s) const {
+    if constexpr (G::on_model)
+      if (mesh.vertex_class(v) != VertexClass::interior) return Refusal::not_applicable;
     return decide_smoothing<S, P, Criterion>(mesh, v, s, options);
   }
   void apply(Mesh& mesh, VertexId v, const Plan& plan, Scratch& s) const { apply_smoothing(mesh, v, plan, s, options); }
@@ -352,8 +358,8 @@ struct Smoothing {
 };
 
 // The smoothing pass over the vertices of tets below o.below.
-template <MetricSpace S, Precision P, Concurrency C, class Criterion = MinQuality>
-OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
+template <MetricSpace S, Precision P, Concurrency C, class Criterion = MinQuality, Geometry G = NoGeometry>
+OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   const std::vector<std::uint8_t> changed = changed_vertices<C>(mesh, o.changed_since);
   // The vertices to try, marked by a sweep over the tets (relaxed byte
@@ -374,7 +380,7 @@ OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}) {
       C::template collect<VertexId>(marked.size(), [&](std::size_t v, std::vector<VertexId>& part) {
         if (marked[v] != 0) part.push_back(static_cast<VertexId>(v));
       });
-  OperatorStats stats = run_pass<C>(mesh, Smoothing<S, P, Criterion>{o}, todo);
+  OperatorStats stats = run_pass<C>(mesh, Smoothing<S, P, Criterion, G>{o, geometry}, todo);
   stats.seconds = clock.seconds();
   return stats;
 }

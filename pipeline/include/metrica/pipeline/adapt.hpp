@@ -10,6 +10,7 @@
 // list of stages with its stopping rules, run by run_pipeline.
 #pragma once
 
+#include <metrica/geometry/cad_geometry.hpp>
 #include <metrica/operators/edge_buckets.hpp>
 #include <metrica/pipeline/adapter.hpp>
 
@@ -71,6 +72,9 @@ struct AdaptOptions {
   int repair_rounds = 8;
   // When set, new and moved vertices take this metric (analytic cases).
   const MetricFunction* metric = nullptr;
+  // When set, boundary vertices are placed on this model (CadGeometry);
+  // the mesh must be associated with it (geometry/association.hpp).
+  const CadModel* geometry = nullptr;
   // Called after every cycle and quality pass (progress output).
   std::function<void(const CycleReport&)> on_cycle;
 };
@@ -223,6 +227,10 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
     p.cycle.push_back({"flip", [=](A& a) { return a.template flips<MetricDelaunay>(delaunay, "delaunay"); }});
   }
   p.cycle.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(flips, "flip"); }});
+  // On a model: the vertices a split left off it (their tets would have
+  // inverted) try again after the reconnection around them.
+  constexpr bool on_model = A::Model::on_model;
+  if constexpr (on_model) p.cycle.push_back({"project", [](A& a) { return a.project(); }});
   p.cycle.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   p.cycle.push_back({"smooth", [=](A& a) { return a.smooth(smooth); }});
 
@@ -234,6 +242,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
     if (o.quality_phase_smooth_below > smooth.below) a.forget("smooth");
   };
   p.polish.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips, "flip"); }});
+  if constexpr (on_model) p.polish.push_back({"project", [](A& a) { return a.project(); }});
   p.polish.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
 
   // Repair: first the edges at the poor tets' vertices, of any length,
@@ -250,7 +259,8 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
                         lift.metric = a.metric();
                         lift.changed_since = a.mesh().next_epoch();
                         touch_poor_tets<S, C>(a.mesh(), below);
-                        const OperatorStats stats = collapse_edges<S, typename A::Exactness, C>(a.mesh(), lift);
+                        const OperatorStats stats =
+                            collapse_edges<S, typename A::Exactness, C>(a.mesh(), lift, a.geometry());
                         const Mesh::Epoch start = a.mesh().next_epoch();
                         touch_around_poor_tets<S, C>(a.mesh(), below);
                         a.restart_all(start);
@@ -267,16 +277,17 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   p.repair.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   p.repair.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
   p.repair.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips, "flip"); }});
+  if constexpr (on_model) p.repair.push_back({"project", [](A& a) { return a.project(); }});
   p.repair.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
   return p;
 }
 
-// The standard adaptation under <S, P, C>.
-template <MetricSpace S, Precision P, Concurrency C>
-AdaptReport adapt(Mesh& mesh, const AdaptOptions& options) {
-  Adapter<S, P, C> a(mesh, options.metric);
+// The standard adaptation under <S, P, C, G>.
+template <MetricSpace S, Precision P, Concurrency C, Geometry G = NoGeometry>
+AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const G& geometry = {}) {
+  Adapter<S, P, C, G> a(mesh, options.metric, geometry);
   a.on_cycle = options.on_cycle;
-  return run_pipeline(a, standard_pipeline<Adapter<S, P, C>>(options));
+  return run_pipeline(a, standard_pipeline<Adapter<S, P, C, G>>(options));
 }
 
 }  // namespace metrica

@@ -1,8 +1,10 @@
 // Runtime choice of the policies (the CLI's --space, --precision and
 // --concurrency) by name, from the policy lists (Spaces, Precisions,
-// Concurrencies). The pipeline is compiled once per (space, concurrency)
-// pair, in its own unit (adapt_unit.cpp, built once per pair by CMake),
-// so that a build on several cores compiles them side by side.
+// Concurrencies), and of the Geometry by AdaptOptions::geometry (a model:
+// CadGeometry; none: NoGeometry). The pipeline is compiled once per
+// (space, concurrency, geometry) triple, in its own unit (adapt_unit.cpp,
+// built once per triple by CMake), so that a build on several cores
+// compiles them side by side.
 #pragma once
 
 #include <metrica/metrics/quality_report.hpp>
@@ -29,9 +31,20 @@ void check_policy_choice(const PolicyChoice& choice);
 
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& policies = {});
 
-// adapt<S, precision, C>, the precision chosen by name: declared here,
-// defined and instantiated for each pair of the lists in adapt_unit.cpp.
-template <MetricSpace S, Concurrency C>
+using Geometries = PolicyList<NoGeometry, CadGeometry>;
+
+// The Geometry policy object of `options`.
+template <Geometry G>
+G geometry_of(const AdaptOptions& options) {
+  if constexpr (G::on_model)
+    return G{options.geometry};
+  else
+    return G{};
+}
+
+// adapt<S, precision, C, G>, the precision chosen by name: declared here,
+// defined and instantiated for each triple of the lists in adapt_unit.cpp.
+template <MetricSpace S, Concurrency C, Geometry G>
 AdaptReport adapt_instance(Mesh& mesh, const AdaptOptions& options, std::string_view precision);
 
 }  // namespace metrica

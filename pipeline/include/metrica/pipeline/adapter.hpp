@@ -1,5 +1,5 @@
-// The pipeline object: Adapter<Space, Precision, Concurrency> binds the
-// three policies once and owns what passes share: the mesh, the metric
+// The pipeline object: Adapter<Space, Precision, Concurrency, Geometry>
+// binds the policies once and owns what passes share: the mesh, the metric
 // source (an analytic metric, or interpolation), the epochs of the
 // incremental passes (each pass sees only what changed since it last ran),
 // the quality cache, and the reports, keyed by operator name.
@@ -11,6 +11,7 @@
 
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/operation.hpp>
+#include <metrica/operators/project.hpp>
 #include <metrica/operators/reconnect.hpp>
 #include <metrica/operators/refine_centroids.hpp>
 #include <metrica/operators/refine_edges.hpp>
@@ -114,23 +115,27 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
   return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
 }
 
-template <MetricSpace S, Precision P, Concurrency C>
+template <MetricSpace S, Precision P, Concurrency C, Geometry G = NoGeometry>
 class Adapter {
  public:
   using Space = S;
   using Exactness = P;
   using Threads = C;
+  using Model = G;
 
   // `metric`: when set, new and moved vertices take it (else the Space
-  // interpolates). The quality cache is cleared: the metric or the Space
-  // may have changed since it was filled.
-  explicit Adapter(Mesh& mesh, const MetricFunction* metric = nullptr) : mesh_(mesh), metric_(metric) {
+  // interpolates). `geometry`: where boundary vertices go. The quality
+  // cache is cleared: the metric or the Space may have changed since it
+  // was filled.
+  explicit Adapter(Mesh& mesh, const MetricFunction* metric = nullptr, const G& geometry = {})
+      : mesh_(mesh), metric_(metric), geometry_(geometry) {
     mesh_.clear_quality_cache();
   }
 
   Mesh& mesh() { return mesh_; }
   const Mesh& mesh() const { return mesh_; }
   const MetricFunction* metric() const { return metric_; }
+  const G& geometry() const { return geometry_; }
 
   // Epochs of the incremental passes, by key: the epoch at which the pass
   // last started (0: never, so it sees everything).
@@ -167,28 +172,37 @@ class Adapter {
   template <class Criterion = ShapeOnly>
   OperatorStats collapse(CollapseOptions o, const std::string& key = "collapse") {
     o.metric = metric_;
-    return incremental(key, o,
-                       [](Mesh& m, const CollapseOptions& x) { return collapse_edges<S, P, C, Criterion>(m, x); });
+    return incremental(key, o, [this](Mesh& m, const CollapseOptions& x) {
+      return collapse_edges<S, P, C, Criterion>(m, x, geometry_);
+    });
   }
   template <class Criterion = ShapeOnly>
   OperatorStats split(RefineOptions o) {
     o.metric = metric_;
-    return refine_edges<S, P, C, Criterion>(mesh_, o);
+    return refine_edges<S, P, C, Criterion>(mesh_, o, geometry_);
   }
   template <class Criterion = ShapeOnly>
   OperatorStats insert_centroids(RefineOptions o) {
     o.metric = metric_;
-    return refine_centroids<S, P, C, Criterion>(mesh_, o);
+    return refine_centroids<S, P, C, Criterion>(mesh_, o, geometry_);
   }
   template <class Criterion = MinQuality>
   OperatorStats flips(const ReconnectOptions& o, const std::string& key) {
-    return incremental(key, o, [](Mesh& m, const ReconnectOptions& x) { return reconnect<S, P, C, Criterion>(m, x); });
+    return incremental(key, o, [this](Mesh& m, const ReconnectOptions& x) {
+      return reconnect<S, P, C, Criterion>(m, x, geometry_);
+    });
   }
   template <class Criterion = MinQuality>
   OperatorStats smooth(SmoothOptions o, const std::string& key = "smooth") {
     o.metric = metric_;
-    return incremental(key, o,
-                       [](Mesh& m, const SmoothOptions& x) { return smooth_vertices<S, P, C, Criterion>(m, x); });
+    return incremental(key, o, [this](Mesh& m, const SmoothOptions& x) {
+      return smooth_vertices<S, P, C, Criterion>(m, x, geometry_);
+    });
+  }
+  // Boundary vertices off the model move onto it (none without a model).
+  OperatorStats project(ProjectionOptions o = {}) {
+    o.metric = metric_;
+    return project_to_model<P, C>(mesh_, o, geometry_);
   }
 
   // Closes a cycle: compaction, counts, conformity and worst tet, the
@@ -213,6 +227,7 @@ class Adapter {
  private:
   Mesh& mesh_;
   const MetricFunction* metric_;
+  G geometry_;
   std::map<std::string, Mesh::Epoch, std::less<>> epochs_;
   AdaptReport report_;
 };

@@ -1,0 +1,31 @@
+#include "cli.hpp"
+
+#include <metrica/geometry/association.hpp>
+#include <metrica/log.hpp>
+#include <metrica/timer.hpp>
+
+#include <fmt/core.h>
+
+namespace metrica::cli {
+
+std::unique_ptr<CadModel> open_geometry(const std::string& path, Mesh& mesh, const io::MeshData* input) {
+  Stopwatch clock;
+  auto model = std::make_unique<CadModel>(path);
+  const AssociationReport r = associate(mesh, *model, input);
+  log::info("{}: {} surfaces, {} curves, {} model vertices; {} boundary vertices associated ({} with the input's "
+            "parameters), farthest {:.3g} from its entity ({:.2f} s)",
+            path, model->entities(2).size(), model->entities(1).size(), model->entities(0).size(),
+            count_text(r.vertices), count_text(r.from_file), r.max_distance, clock.seconds());
+  return model;
+}
+
+std::string model_distance_text(const Mesh& mesh, const CadModel& model) {
+  const ModelDistance d = model_distance(mesh, model);
+  std::string text = fmt::format("boundary vertices on {}: {}, largest distance to their entity {:.3g}", model.source(),
+                                 count_text(d.vertices), d.max);
+  if (d.beyond > 0) text += fmt::format(" ({} beyond 1e-8)", count_text(d.beyond));
+  if (d.unassociated > 0) text += fmt::format(", {} without an entity", count_text(d.unassociated));
+  return text;
+}
+
+}  // namespace metrica::cli

@@ -1,0 +1,169 @@
+#include <metrica/error.hpp>
+#include <metrica/geometry/association.hpp>
+#include <metrica/log.hpp>
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace metrica {
+namespace {
+
+struct Candidate {
+  GeoParam param;
+  double distance = std::numeric_limits<double>::infinity();
+};
+
+// The nearest point of entity (dim, tag) to p.
+Candidate project(const CadModel& model, int dim, int tag, const Point& p) {
+  Candidate c;
+  c.param = model.parametrize(dim, tag, p);
+  c.distance = (model.value(c.param) - p).norm();
+  return c;
+}
+
+}  // namespace
+
+AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshData* input, double tolerance) {
+  if (tolerance <= 0.0) tolerance = 1e-3 * model.size();
+  // The surface ids around each boundary vertex; each id must be a model surface.
+  std::vector<std::vector<int>> surfaces(mesh.vertex_capacity());
+  std::set<int> missing;
+  for_each_boundary_face(mesh, [&](TetId t, int f) {
+    const SurfaceId s = mesh.surface_id(t, f);
+    if (!model.has(2, s)) missing.insert(s);
+    for (VertexId v : face_vertices(mesh.tet(t), f)) {
+      auto& list = surfaces[v];
+      if (std::find(list.begin(), list.end(), s) == list.end()) list.push_back(s);
+    }
+  });
+  if (!missing.empty()) {
+    std::string ids;
+    for (int s : missing) ids += fmt::format("{}{}", ids.empty() ? "" : ", ", s);
+    const auto& all = model.entities(2);
+    throw InputError(fmt::format(
+        "the mesh's surface ids {} are not surfaces of {} (its surfaces are {}..{}): the model does not match the mesh",
+        ids, model.source(), *std::min_element(all.begin(), all.end()), *std::max_element(all.begin(), all.end())));
+  }
+  // The input's (u, v) per vertex and surface.
+  std::vector<std::vector<const io::GeoRecord*>> on_surface(input != nullptr ? mesh.vertex_capacity() : 0);
+  if (input != nullptr)
+    for (const auto& r : input->on_geometry[2])
+      if (r.vertex < on_surface.size()) on_surface[r.vertex].push_back(&r);
+
+  mesh.enable_geo_params();
+  AssociationReport report;
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    if (!mesh.vertex_alive(v) || surfaces[v].empty()) continue;
+    const Point p = mesh.point(v);
+    const auto& around = surfaces[v];
+    Candidate best;
+    const VertexClass cls = mesh.vertex_class(v);
+    if (cls == VertexClass::surface && around.size() == 1) {
+      const int s = around[0];
+      if (!on_surface.empty())
+        for (const auto* r : on_surface[v])
+          if (r->entity == s) {
+            const GeoParam g{s, 2, r->u, r->v};
+            const double d = (model.value(g) - p).norm();
+            if (d < tolerance) {
+              best = {g, d};
+              ++report.from_file;
+            }
+          }
+      if (!best.param.valid()) best = project(model, 2, s, p);
+    } else {
+      // Curves of the vertex's surfaces (shared by two when it can).
+      std::vector<int> curves;
+      for (int s : around)
+        for (int c : model.curves_of_surface(s))
+          if (std::find(curves.begin(), curves.end(), c) == curves.end()) curves.push_back(c);
+      if (cls == VertexClass::corner) {
+        std::vector<int> corners;
+        for (int c : curves)
+          for (int m : model.vertices_of_curve(c))
+            if (std::find(corners.begin(), corners.end(), m) == corners.end()) corners.push_back(m);
+        for (int m : corners) {
+          const GeoParam g{m, 0, 0.0, 0.0};
+          const double d = (model.value(g) - p).norm();
+          if (d < best.distance) best = {g, d};
+        }
+      }
+      if (best.distance > tolerance)
+        for (int c : curves) {
+          const Candidate k = project(model, 1, c, p);
+          // Between two curves equally near, the one on the most of its surfaces.
+          if (k.distance < best.distance - 1e-12 * model.size()) best = k;
+        }
+      if (best.distance > tolerance && around.size() == 1) best = project(model, 2, around[0], p);
+    }
+    if (!(best.distance <= tolerance))
+      throw InputError(fmt::format(
+          "vertex {} at ({:.6g}, {:.6g}, {:.6g}) is {:.3g} from every entity of {} it may lie on (tolerance {:.3g}): "
+          "the model does not match the mesh",
+          v + 1, p.x(), p.y(), p.z(), best.distance, model.source(), tolerance));
+    mesh.set_geo_param(v, best.param);
+    report.max_distance = std::max(report.max_distance, best.distance);
+    ++report.vertices;
+  }
+  return report;
+}
+
+ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance) {
+  ModelDistance d;
+  std::vector<std::uint8_t> boundary(mesh.vertex_capacity(), 0);
+  for_each_boundary_face(mesh, [&](TetId t, int f) {
+    for (VertexId v : face_vertices(mesh.tet(t), f)) boundary[v] = 1;
+  });
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    if (!boundary[v] || !mesh.vertex_alive(v)) continue;
+    if (!mesh.has_geo_params() || !mesh.geo_param(v).valid()) {
+      ++d.unassociated;
+      continue;
+    }
+    ++d.vertices;
+    const double x = (model.value(mesh.geo_param(v)) - mesh.point(v)).norm();
+    if (x > tolerance) ++d.beyond;
+    if (x > d.max || d.worst == kNoId) {
+      d.max = std::max(d.max, x);
+      d.worst = v;
+    }
+  }
+  return d;
+}
+
+void complete_geometry_records(io::MeshData& data, const CadModel& model) {
+  std::vector<io::GeoRecord> on_curves, on_surfaces;
+  auto add_surfaces_of = [&](const io::GeoRecord& r, int dim, const std::vector<int>& surfaces) {
+    for (int s : surfaces) {
+      const GeoParam g{r.entity, static_cast<std::int8_t>(dim), r.u, 0.0};
+      const auto uv = model.on_surface(g, s);
+      on_surfaces.push_back({r.vertex, s, uv[0], uv[1], 0.0});
+    }
+  };
+  for (const auto& r : data.on_geometry[0])
+    for (int c : model.curves_of_vertex(r.entity)) {
+      const GeoParam g{r.entity, 0, 0.0, 0.0};
+      const io::GeoRecord e{r.vertex, c, model.on_curve(g, c), 0.0, 0.0};
+      on_curves.push_back(e);
+      add_surfaces_of(e, 1, model.surfaces_of_curve(c));
+    }
+  for (const auto& r : data.on_geometry[1]) add_surfaces_of(r, 1, model.surfaces_of_curve(r.entity));
+  auto& curves = data.on_geometry[1];
+  auto& surfaces = data.on_geometry[2];
+  curves.insert(curves.end(), on_curves.begin(), on_curves.end());
+  surfaces.insert(surfaces.end(), on_surfaces.begin(), on_surfaces.end());
+  auto by_vertex = [](const io::GeoRecord& a, const io::GeoRecord& b) {
+    return a.vertex < b.vertex || (a.vertex == b.vertex && a.entity < b.entity);
+  };
+  std::sort(curves.begin(), curves.end(), by_vertex);
+  std::sort(surfaces.begin(), surfaces.end(), by_vertex);
+  // A corner's surface may come from two of its curves: once is enough.
+  auto same = [](const io::GeoRecord& a, const io::GeoRecord& b) { return a.vertex == b.vertex && a.entity == b.entity; };
+  surfaces.erase(std::unique(surfaces.begin(), surfaces.end(), same), surfaces.end());
+  curves.erase(std::unique(curves.begin(), curves.end(), same), curves.end());
+}
+
+}  // namespace metrica

@@ -1,0 +1,120 @@
+#include <metrica/geometry/cad_geometry.hpp>
+
+#include <boost/container/small_vector.hpp>
+
+#include <algorithm>
+
+namespace metrica {
+namespace {
+
+using Curves = boost::container::small_vector<int, 8>;
+
+// The curves a parent may share with the others: its own, or those through
+// its model vertex.
+Curves curves_of(const CadModel& model, const GeoParam& g) {
+  Curves out;
+  if (g.dim == 1) out.push_back(g.tag);
+  if (g.dim == 0)
+    for (int c : model.curves_of_vertex(g.tag)) out.push_back(c);
+  return out;
+}
+
+}  // namespace
+
+GeoParam CadGeometry::boundary_vertex(const Mesh& mesh, std::span<const VertexId> parents,
+                                      std::span<const double> weights, SurfaceId surface) const {
+  if (!mesh.has_geo_params()) return {};
+  for (VertexId v : parents)
+    if (!mesh.geo_param(v).valid()) return {};
+  if (surface <= 0) {
+    // On the curve all parents lie on.
+    Curves shared = curves_of(*model, mesh.geo_param(parents[0]));
+    for (std::size_t i = 1; i < parents.size(); ++i) {
+      const Curves mine = curves_of(*model, mesh.geo_param(parents[i]));
+      shared.erase(std::remove_if(shared.begin(), shared.end(),
+                                  [&](int c) { return std::find(mine.begin(), mine.end(), c) == mine.end(); }),
+                   shared.end());
+    }
+    if (shared.empty()) return {};
+    Point straight = Point::Zero();
+    for (std::size_t i = 0; i < parents.size(); ++i) straight += weights[i] * mesh.point(parents[i]);
+    GeoParam best;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (int c : shared) {
+      // The reference t: a parent on the curve itself, else the first.
+      const double* near = nullptr;
+      double t_ref = 0.0;
+      for (VertexId v : parents)
+        if (mesh.geo_param(v).dim == 1) {
+          t_ref = mesh.geo_param(v).u;
+          near = &t_ref;
+          break;
+        }
+      double t = 0.0;
+      for (std::size_t i = 0; i < parents.size(); ++i) t += weights[i] * model->on_curve(mesh.geo_param(parents[i]), c, near);
+      const GeoParam g{c, 1, t, 0.0};
+      const double d = shared.size() == 1 ? 0.0 : (model->value(g) - straight).norm();
+      if (d < best_distance) {
+        best_distance = d;
+        best = g;
+      }
+    }
+    return best;
+  }
+  // On the surface: each parent's (u, v) there, the first parent that lies
+  // on the surface itself as the reference for the period shift.
+  const int s = surface;
+  if (!model->has(2, s)) return {};
+  boost::container::small_vector<std::array<double, 2>, 4> uv(parents.size());
+  std::size_t ref = 0;
+  for (std::size_t i = 0; i < parents.size(); ++i)
+    if (mesh.geo_param(parents[i]).dim == 2) {
+      ref = i;
+      break;
+    }
+  uv[ref] = model->on_surface(mesh.geo_param(parents[ref]), s);
+  for (std::size_t i = 0; i < parents.size(); ++i)
+    if (i != ref) uv[i] = model->on_surface(mesh.geo_param(parents[i]), s, &uv[ref]);
+  // Degenerate points (a cone's apex: d/du vanishes): that parameter is
+  // free there and takes the mean of the other parents'.
+  const double tiny = 1e-9 * model->size();
+  for (std::size_t k = 0; k < 2; ++k) {
+    boost::container::small_vector<bool, 4> free(parents.size(), false);
+    double sum = 0.0;
+    int n = 0;
+    for (std::size_t i = 0; i < parents.size(); ++i) {
+      if (mesh.geo_param(parents[i]).dim == 2) {
+        sum += uv[i][k];
+        ++n;
+        continue;
+      }
+      const auto d = model->derivatives(s, uv[i][0], uv[i][1]);
+      free[i] = d[k].norm() < tiny;
+      if (!free[i]) {
+        sum += uv[i][k];
+        ++n;
+      }
+    }
+    if (n == 0) continue;
+    for (std::size_t i = 0; i < parents.size(); ++i)
+      if (free[i]) uv[i][k] = sum / n;
+  }
+  GeoParam g{s, 2, 0.0, 0.0};
+  for (std::size_t i = 0; i < parents.size(); ++i) {
+    g.u += weights[i] * uv[i][0];
+    g.v += weights[i] * uv[i][1];
+  }
+  return g;
+}
+
+bool CadGeometry::facet_fits(const Mesh& mesh, VertexId p, VertexId q, VertexId r, SurfaceId surface,
+                             const Eigen::Vector3d& old_normal, double tolerance) const {
+  const Eigen::Vector3d n = face_normal(mesh, p, q, r);
+  const std::array<VertexId, 3> corners{p, q, r};
+  const std::array<double, 3> third{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
+  const GeoParam c = boundary_vertex(mesh, corners, third, surface);
+  if (!c.valid()) return normal_deviation(n, old_normal) <= tolerance;
+  return normal_deviation(n, model->normal(surface, c.u, c.v)) <= std::max(tolerance, max_deviation);
+}
+
+}  // namespace metrica

@@ -1,0 +1,46 @@
+// The association of a mesh's boundary vertices with a CAD model: each
+// boundary vertex's entity (model vertex, curve, surface) and parameters
+// (Mesh::geo_param), what the Geometry policy interpolates from.
+//
+// The mesh's surface ids are the model's surface tags. Surface vertices
+// take the (u, v) of the input's VerticesOnGeometricTriangles records
+// when the model's point there is the vertex, else their projection;
+// ridge vertices the nearest curve among those of their surfaces, corners
+// the nearest model vertex (matched by geometry: other tools number
+// curves and model vertices differently).
+#pragma once
+
+#include <metrica/geometry/cad_model.hpp>
+#include <metrica/io/mesh_data.hpp>
+#include <metrica/mesh.hpp>
+
+namespace metrica {
+
+struct AssociationReport {
+  std::size_t vertices = 0;   // boundary vertices associated
+  std::size_t from_file = 0;  // of which with the input's parameters
+  double max_distance = 0.0;  // largest distance from a vertex to its entity's point
+};
+
+// Associates every boundary vertex. Throws InputError when a surface id is
+// not a surface of the model, or a vertex is farther than `tolerance`
+// (0: 1e-3 of the model's size) from every entity it may lie on.
+AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshData* input = nullptr,
+                            double tolerance = 0.0);
+
+// How far the boundary vertices are from their entities.
+struct ModelDistance {
+  std::size_t vertices = 0;       // boundary vertices with an entity
+  std::size_t unassociated = 0;   // boundary vertices without one
+  double max = 0.0;               // largest distance
+  VertexId worst = kNoId;         // where
+  std::size_t beyond = 0;         // vertices farther than the tolerance asked
+};
+ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance = 1e-8);
+
+// Adds to `data` (whose primary records extract_mesh_data wrote) what
+// refine and Feflo.a also read: a model vertex's t on each of its curves,
+// and a curve's or model vertex's (u, v) on each adjacent surface.
+void complete_geometry_records(io::MeshData& data, const CadModel& model);
+
+}  // namespace metrica

@@ -1,0 +1,102 @@
+// Projection onto the model: a boundary vertex off its entity's point
+// (a placement that had to backtrack, boundary_placement.hpp) moves to
+// that point when its ball stays positively oriented, else as far toward
+// it as it can (the step halved up to five times) and waits for the next
+// projection pass, after the reconnection around it.
+#pragma once
+
+#include <metrica/geometry/model.hpp>
+#include <metrica/operators/boundary_placement.hpp>
+#include <metrica/operators/operation.hpp>
+#include <metrica/operators/smooth.hpp>
+
+namespace metrica {
+
+struct ProjectionOptions {
+  // A vertex this close to its entity's point is on the model.
+  double tolerance = 1e-10;
+  // When set, a moved vertex takes this metric at its new position.
+  const MetricFunction* metric = nullptr;
+};
+
+template <Precision P, Geometry G>
+struct Projection {
+  using Item = VertexId;
+  using Scratch = SmoothScratch;
+  using Plan = SmoothPlan;
+  static constexpr std::string_view name = "project";
+  ProjectionOptions options;
+  G geometry{};
+
+  PassRoom room() const { return {.max_vertices = 0, .max_tets = 0, .vertices_per_item = 0, .tets_per_item = 0}; }
+  Found seed(const Mesh&, VertexId v, Scratch&, VertexList& hold) const {
+    hold.push_back(v);
+    return Found::cavity;
+  }
+  Found find(const Mesh& mesh, VertexId v, Scratch& s, VertexList& hold) const {
+    find_smoothing_cavity(mesh, v, s);
+    hold.insert(hold.end(), s.neighbours.begin(), s.neighbours.end());
+    return Found::cavity;
+  }
+  Decision<Plan> decide(const Mesh& mesh, VertexId v, Scratch& s) const {
+    if (!mesh.has_geo_params() || !mesh.geo_param(v).valid()) return Refusal::not_applicable;
+    const Point x = mesh.point(v);
+    Eigen::Vector3d step = geometry.point(mesh.geo_param(v)) - x;
+    if (step.norm() <= options.tolerance) return Refusal::not_applicable;
+    for (int k = 0; k <= kBacktrackSteps; ++k, step *= 0.5) {
+      const Point q = x + step;
+      bool positive = true;
+      for (TetId t : s.ball) {
+        const auto& tv = mesh.tet(t);
+        TetPoints pts = detail::tet_points(mesh, tv);
+        pts[local_index(tv, v)] = q;
+        if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) {
+          positive = false;
+          break;
+        }
+      }
+      if (positive) return Plan{q};
+    }
+    return Refusal::rejected;
+  }
+  void apply(Mesh& mesh, VertexId v, const Plan& plan, Scratch& s) const {
+    apply_smoothing(mesh, v, plan, s, SmoothOptions{.metric = options.metric});
+  }
+  void preview(const Mesh& mesh, VertexId v, const Plan& plan, const Scratch& s, PlannedTets& out) const {
+    out.clear();
+    for (TetId t : s.ball) {
+      const auto& tv = mesh.tet(t);
+      TetPoints pts = detail::tet_points(mesh, tv);
+      pts[local_index(tv, v)] = plan.to;
+      out.push_back({tv, pts});
+    }
+  }
+};
+
+// The boundary vertices farther than o.tolerance from their entity's point.
+template <Concurrency C, Geometry G>
+std::vector<VertexId> vertices_off_model(const Mesh& mesh, const G& geometry, double tolerance) {
+  if constexpr (!G::on_model) {
+    return {};
+  } else {
+    if (!mesh.has_geo_params()) return {};
+    return C::template collect<VertexId>(mesh.vertex_capacity(), [&](std::size_t i, std::vector<VertexId>& part) {
+      const auto v = static_cast<VertexId>(i);
+      if (!mesh.vertex_alive(v) || !mesh.geo_param(v).valid()) return;
+      if ((geometry.point(mesh.geo_param(v)) - mesh.point(v)).norm() > tolerance) part.push_back(v);
+    });
+  }
+}
+
+// The projection pass: every boundary vertex off the model.
+template <Precision P, Concurrency C, Geometry G>
+OperatorStats project_to_model(Mesh& mesh, const ProjectionOptions& o, const G& geometry) {
+  Stopwatch clock;
+  const auto todo = vertices_off_model<C>(mesh, geometry, o.tolerance);
+  OperatorStats stats;
+  if (!todo.empty()) stats = run_pass<C>(mesh, Projection<P, G>{o, geometry}, todo);
+  stats.seconds = clock.seconds();
+  return stats;
+}
+
+}  // namespace metrica
