@@ -16,11 +16,16 @@ struct Candidate {
   double distance = std::numeric_limits<double>::infinity();
 };
 
-// The nearest point of entity (dim, tag) to p.
+// The nearest point of entity (dim, tag) to p; none (infinitely far) on
+// an entity gmsh cannot project on (a degenerate curve: a cone's apex).
 Candidate project(const CadModel& model, int dim, int tag, const Point& p) {
   Candidate c;
-  c.param = model.parametrize(dim, tag, p);
-  c.distance = (model.value(c.param) - p).norm();
+  try {
+    c.param = model.parametrize(dim, tag, p);
+    c.distance = (model.value(c.param) - p).norm();
+  } catch (const InputError&) {
+    c = Candidate{};
+  }
   return c;
 }
 

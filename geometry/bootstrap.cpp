@@ -4,6 +4,8 @@
 #include <fmt/core.h>
 #include <gmsh.h>
 
+#include "keep_threads.hpp"
+
 #include <cmath>
 #include <unordered_map>
 
@@ -15,6 +17,7 @@ io::MeshData bootstrap_mesh(const CadModel& model, const BootstrapOptions& optio
   const double h = options.size > 0.0 ? options.size : 0.1 * model.size();
   if (!std::isfinite(h)) throw InputError("bootstrap: the target size must be finite");
   io::MeshData d;
+  const detail::KeepThreads keep;
   try {
     gmsh::model::mesh::clear();
     gmsh::option::setNumber("Mesh.MeshSizeMax", h);

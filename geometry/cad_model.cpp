@@ -5,6 +5,8 @@
 #include <fmt/core.h>
 #include <gmsh.h>
 
+#include "keep_threads.hpp"
+
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -44,6 +46,7 @@ CadModel::CadModel(const std::string& path) : source_(path) {
   if (!fs::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such model file", path));
   if (model_open.exchange(true))
     throw std::logic_error("CadModel: gmsh holds one model per process and one is open already");
+  const detail::KeepThreads keep;
   try {
     gmsh_call("initialize", [] {
       gmsh::initialize();
@@ -51,6 +54,7 @@ CadModel::CadModel(const std::string& path) : source_(path) {
       gmsh::option::setNumber("General.Verbosity", 0);
     });
     gmsh_call(path.c_str(), [&] { gmsh::open(path); });
+    sew_into_volume();
     read_topology();
   } catch (...) {
     try {
@@ -68,6 +72,35 @@ CadModel::~CadModel() {
   } catch (...) {
   }
   model_open = false;
+}
+
+// IGES files (and some STEP files) hold surfaces without the volume they
+// bound: sewn together, a closed set of them becomes one volume.
+void CadModel::sew_into_volume() {
+  gmsh::vectorpair volumes, surfaces;
+  gmsh::model::getEntities(volumes, 3);
+  gmsh::model::getEntities(surfaces, 2);
+  if (!volumes.empty() || surfaces.empty()) return;
+  std::vector<int> tags;
+  for (auto [d, t] : surfaces) tags.push_back(t);
+  try {
+    const int loop = gmsh::model::occ::addSurfaceLoop(tags, -1, true);
+    const int volume = gmsh::model::occ::addVolume({loop});
+    gmsh::model::occ::synchronize();
+    // Sewing made new surfaces: the old ones go.
+    gmsh::vectorpair bounding, old;
+    gmsh::model::getBoundary({{3, volume}}, bounding, false, false, false);
+    for (auto [d, t] : surfaces)
+      if (std::find_if(bounding.begin(), bounding.end(), [&](const auto& b) { return std::abs(b.second) == t; }) ==
+          bounding.end())
+        old.emplace_back(2, t);
+    if (!old.empty()) {
+      gmsh::model::occ::remove(old, true);
+      gmsh::model::occ::synchronize();
+    }
+  } catch (...) {
+    // Not closed, or not an OpenCASCADE model: the surfaces stay as they are.
+  }
 }
 
 void CadModel::read_topology() {

@@ -69,6 +69,7 @@ class CadModel {
   double on_curve(const GeoParam& g, int curve, const double* near = nullptr) const;
 
  private:
+  void sew_into_volume();
   void read_topology();
   std::string source_;
   double size_ = 1.0;
