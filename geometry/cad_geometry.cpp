@@ -114,7 +114,11 @@ bool CadGeometry::facet_fits(const Mesh& mesh, VertexId p, VertexId q, VertexId 
   const std::array<double, 3> third{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
   const GeoParam c = boundary_vertex(mesh, corners, third, surface);
   if (!c.valid()) return normal_deviation(n, old_normal) <= tolerance;
-  return normal_deviation(n, model->normal(surface, c.u, c.v)) <= std::max(tolerance, max_deviation);
+  // Within the bound, or no farther from the model than the facets it
+  // replaces (thin facets near a ridge deviate whichever way they turn).
+  const Eigen::Vector3d model_normal = model->normal(surface, c.u, c.v);
+  const double bound = std::max({tolerance, max_deviation, normal_deviation(old_normal, model_normal)});
+  return normal_deviation(n, model_normal) <= bound;
 }
 
 }  // namespace metrica

@@ -4,8 +4,9 @@
 // degenerate-aware: at a cone's apex u is free and takes the others'),
 // and its point is the model's there. A boundary facet fits when its
 // normal deviates from the model's normal at its centroid (parameters
-// interpolated) by no more than max_deviation (1 - |cos|), or the
-// planar tolerance the operation asks when that is larger.
+// interpolated) by no more than max_deviation (1 - |cos|), the planar
+// tolerance the operation asks, or the deviation of the facets it
+// replaces, whichever is largest.
 #pragma once
 
 #include <metrica/geometry/cad_model.hpp>

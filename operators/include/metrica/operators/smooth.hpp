@@ -13,8 +13,12 @@
 //             projected into the plane;
 //   ridge     (only on a straight ridge) towards its two ridge neighbours;
 //   corner / required: fixed.
-// Under a Geometry on a model, boundary vertices stay where they are (a
-// trial off the model would leave them off it).
+// Under a Geometry on a model (CadGeometry) a boundary vertex moves on it,
+// in its parameters: a surface vertex towards the midpoints of the outer
+// edges of its boundary faces and towards the mean of its neighbours on
+// the surface, a ridge vertex towards its two ridge neighbours along the
+// curve, each trial interpolated by the Geometry and evaluated on the
+// model, whatever the shape of the surface.
 #pragma once
 
 #include <metrica/geometry/model.hpp>
@@ -64,6 +68,7 @@ struct SmoothScratch {
   TetList ball;
   VertexList neighbours;
   boost::container::small_vector<Point, 96> trials;
+  boost::container::small_vector<GeoParam, 32> trial_params;  // on a model: each trial's parameters
   // The metric of each ball tet, and its terms.
   boost::container::small_vector<Sym6, 64> metrics;
   boost::container::small_vector<BallTerm, 64> terms;
@@ -96,6 +101,7 @@ inline void find_smoothing_cavity(const Mesh& mesh, VertexId v, SmoothScratch& s
 
 struct SmoothPlan {
   Point to;
+  GeoParam geo;  // on a model: the parameters of `to`
 };
 
 // Decide where vertex v moves; s holds its cavity (find_smoothing_cavity),
@@ -103,13 +109,18 @@ struct SmoothPlan {
 // mean ratio cubed (MinQuality) a trial is scored from the ball terms;
 // under any other, from its scores at the trial position, with the shape
 // floor.
-template <MetricSpace S, Precision P, class Criterion = MinQuality>
-Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o) {
+template <Geometry G>
+bool boundary_trials_on_model(const Mesh& mesh, VertexId v, SmoothScratch& s, const G& geometry);
+
+template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G = NoGeometry>
+Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o,
+                                      const G& geometry = {}) {
   const VertexClass cls = mesh.vertex_class(v);
   if (cls == VertexClass::corner || mesh.is_required(v)) return Refusal::not_applicable;
   if (s.ball.empty()) return Refusal::not_applicable;
   const Point x = mesh.point(v);
   s.trials.clear();
+  s.trial_params.clear();
   s.metrics.clear();
   s.terms.clear();
   for (TetId t : s.ball) s.metrics.push_back(S::tet_metric(mesh, mesh.tet(t)));
@@ -147,6 +158,8 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
       const Point c = (mesh.point(f[0]) + mesh.point(f[1]) + mesh.point(f[2])) / 3.0;
       s.trials.push_back(x + 0.25 * (c - x));
     }
+  } else if (G::on_model) {
+    if (!boundary_trials_on_model(mesh, v, s, geometry)) return Refusal::not_applicable;
   } else if (cls == VertexClass::surface) {
     // Its boundary faces, which must be coplanar; trials towards the
     // midpoints of their edges opposite v and the projected optimal point.
@@ -251,7 +264,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     }
     const int bad_old = out_of_range(x);
     double q_best = q_old, q3_best = q_old * q_old * q_old;
-    Point best = x;
+    std::size_t best = s.trials.size();
     for (std::size_t i = 0; i < s.trials.size(); ++i) {
       if (i == secondary && improves_min_quality(q_old, q_best)) break;
       const Point& p = s.trials[i];
@@ -259,11 +272,11 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
       if (q3 > q3_best && out_of_range(p) <= bad_old && all_positive_at(p)) {
         q3_best = q3;
         q_best = std::cbrt(q3);
-        best = p;
+        best = i;
       }
     }
-    if (!improves_min_quality(q_old, q_best)) return Refusal::rejected;
-    return SmoothPlan{best};
+    if (best == s.trials.size() || !improves_min_quality(q_old, q_best)) return Refusal::rejected;
+    return SmoothPlan{s.trials[best], s.trial_params.empty() ? GeoParam{} : s.trial_params[best]};
   } else {
     // Any other criterion: its smallest score over the ball at each trial,
     // and the shape floor.
@@ -282,21 +295,74 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     const double old_score = min_score_of<Criterion, S>(mesh, view(s.ball));
     const int bad_old = out_of_range(x);
     double best_score = old_score;
-    Point best = x;
-    bool moved = false;
+    std::size_t best = s.trials.size();
     for (std::size_t i = 0; i < s.trials.size(); ++i) {
-      if (i == secondary && moved) break;
+      if (i == secondary && best != s.trials.size()) break;
       const Point& p = s.trials[i];
       const double score = score_at(p);
       if (score > Criterion::bar(best_score) && out_of_range(p) <= bad_old && all_positive_at(p)) {
         best_score = score;
-        best = p;
-        moved = true;
+        best = i;
       }
     }
-    if (!moved) return Refusal::rejected;
-    return SmoothPlan{best};
+    if (best == s.trials.size()) return Refusal::rejected;
+    return SmoothPlan{s.trials[best], s.trial_params.empty() ? GeoParam{} : s.trial_params[best]};
   }
+}
+
+// The trials of boundary vertex v on the model (s.trials and their
+// parameters in s.trial_params); false when v has no parameters or no
+// trial. A surface vertex: towards the midpoint of each outer edge of its
+// boundary faces (halfway and a quarter of the way) and towards the mean
+// of its surface neighbours; a ridge vertex: towards each ridge neighbour
+// (a half, a quarter, a tenth of the way along the curve).
+template <Geometry G>
+bool boundary_trials_on_model(const Mesh& mesh, VertexId v, SmoothScratch& s, const G& geometry) {
+  if (!mesh.has_geo_params() || !mesh.geo_param(v).valid()) return false;
+  auto add = [&](std::span<const VertexId> parents, std::span<const double> w, SurfaceId surface) {
+    const GeoParam g = geometry.boundary_vertex(mesh, parents, w, surface);
+    if (!g.valid()) return;
+    s.trials.push_back(geometry.point(g));
+    s.trial_params.push_back(g);
+  };
+  if (mesh.vertex_class(v) == VertexClass::ridge) {
+    for (VertexId u : s.neighbours) {
+      if (!mesh.is_ridge(v, u)) continue;
+      const std::array<VertexId, 2> ends{v, u};
+      for (double w : {0.5, 0.25, 0.1}) {
+        const std::array<double, 2> weights{1.0 - w, w};
+        add(ends, weights, 0);
+      }
+    }
+    return !s.trials.empty();
+  }
+  const SurfaceId surface = mesh.geo_param(v).dim == 2 ? mesh.geo_param(v).tag : 0;
+  if (surface <= 0) return false;
+  boost::container::small_vector<VertexId, 32> around;  // v's neighbours on its boundary faces
+  for (TetId t : s.ball) {
+    const auto& tv = mesh.tet(t);
+    for (int f = 0; f < 4; ++f) {
+      if (tv[f] == v || mesh.neighbour(t, f).valid()) continue;
+      const auto fv = face_vertices(tv, f);
+      const int k = fv[0] == v ? 0 : fv[1] == v ? 1 : 2;
+      const std::array<VertexId, 3> parents{v, fv[(k + 1) % 3], fv[(k + 2) % 3]};
+      for (double w : {0.5, 0.25}) {
+        const std::array<double, 3> weights{1.0 - w, 0.5 * w, 0.5 * w};
+        add(parents, weights, surface);
+      }
+      for (int j = 1; j <= 2; ++j)
+        if (std::find(around.begin(), around.end(), parents[j]) == around.end()) around.push_back(parents[j]);
+    }
+  }
+  if (around.size() >= 2) {
+    boost::container::small_vector<VertexId, 33> parents{v};
+    parents.insert(parents.end(), around.begin(), around.end());
+    boost::container::small_vector<double, 33> weights(parents.size(), 0.5 / static_cast<double>(around.size()));
+    weights[0] = 0.5;
+    add(std::span<const VertexId>(parents.data(), parents.size()),
+        std::span<const double>(weights.data(), weights.size()), surface);
+  }
+  return !s.trials.empty();
 }
 
 // Apply: v moves to the plan's point (and takes the metric there when an
@@ -304,6 +370,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
 inline void apply_smoothing(Mesh& mesh, VertexId v, const SmoothPlan& plan, const SmoothScratch& s,
                             const SmoothOptions& o) {
   mesh.point(v) = plan.to;
+  if (plan.geo.valid()) mesh.set_geo_param(v, plan.geo);
   for (TetId t : s.ball) mesh.touch_tet(t);
   if (o.metric != nullptr && *o.metric) {
     const Sym6 m = (*o.metric)(plan.to);
@@ -341,9 +408,7 @@ struct Smoothing {
     return Found::cavity;
   }
   Decision<Plan> decide(const Mesh& mesh, VertexId v, Scratch& s) const {
-    if constexpr (G::on_model)
-      if (mesh.vertex_class(v) != VertexClass::interior) return Refusal::not_applicable;
-    return decide_smoothing<S, P, Criterion>(mesh, v, s, options);
+    return decide_smoothing<S, P, Criterion>(mesh, v, s, options, geometry);
   }
   void apply(Mesh& mesh, VertexId v, const Plan& plan, Scratch& s) const { apply_smoothing(mesh, v, plan, s, options); }
   void preview(const Mesh& mesh, VertexId v, const Plan& plan, const Scratch& s, PlannedTets& out) const {
