@@ -16,11 +16,19 @@ namespace {
 // Rounds reals to float, as a version-1 file stores them. Through a
 // volatile: GCC 12 -O2 folds the double->float->double round trip of this
 // loop away when it vectorises it.
+double to_float(double x) {
+  volatile float f = static_cast<float>(x);
+  return f;
+}
+
 MeshData as_float(MeshData m) {
   for (auto& p : m.vertices)
-    for (int c = 0; c < 3; ++c) {
-      volatile float f = static_cast<float>(p[c]);
-      p[c] = f;
+    for (int c = 0; c < 3; ++c) p[c] = to_float(p[c]);
+  for (auto& list : m.on_geometry)
+    for (auto& r : list) {
+      r.u = to_float(r.u);
+      r.v = to_float(r.v);
+      r.dist = to_float(r.dist);
     }
   return m;
 }

@@ -1,0 +1,366 @@
+// The geometry policy: the CAD model through gmsh, the association of
+// boundary vertices, placement on the model (interpolation across a seam,
+// backtracking), and the operators that create, move or remove boundary
+// vertices under CadGeometry, under each Concurrency policy.
+#include "operator_test_support.hpp"
+
+#include <metrica/error.hpp>
+#include <metrica/geometry/association.hpp>
+#include <metrica/geometry/bootstrap.hpp>
+#include <metrica/geometry/cad_geometry.hpp>
+#include <metrica/io/meshb.hpp>
+#include <metrica/mesh_build.hpp>
+#include <metrica/operators/collapse.hpp>
+#include <metrica/operators/project.hpp>
+#include <metrica/operators/reconnect.hpp>
+#include <metrica/operators/refine_centroids.hpp>
+#include <metrica/operators/refine_edges.hpp>
+#include <metrica/operators/smooth.hpp>
+#include <metrica/pipeline/adapt.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+namespace metrica {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+const std::string kCylinderModel = std::string(METRICA_TEST_DATA_DIR) + "/cylinder.geo";
+
+// The UGAWG cube-cylinder mesh associated with its STEP model.
+struct CubeCylinder {
+  io::MeshData data = io::read_meshb(test::ugawg("cube-cylinder.meshb"));
+  Mesh mesh = build_mesh(data);
+  CadModel model{test::ugawg("cube-cylinder.step")};
+  CubeCylinder() { associate(mesh, model, &data); }
+};
+
+double largest_distance(const Mesh& mesh, const CadModel& model) { return model_distance(mesh, model).max; }
+
+// Vertices on the quarter cylinder (surface 5) are at radius 0.5.
+double largest_radius_error(const Mesh& mesh) {
+  double e = 0.0;
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v) && mesh.geo_param(v).dim == 2 && mesh.geo_param(v).tag == 5)
+      e = std::max(e, std::abs(std::hypot(mesh.point(v).x(), mesh.point(v).y()) - 0.5));
+  return e;
+}
+
+// A Geometry whose model point is `straight + offset` for any parameters,
+// to test placement without a CAD model.
+struct ShiftedGeometry {
+  static constexpr bool on_model = true;
+  static constexpr std::string_view name = "shifted";
+  Point target = Point::Zero();
+  GeoParam boundary_vertex(const Mesh&, std::span<const VertexId>, std::span<const double>, SurfaceId) const {
+    return {1, 2, 0.0, 0.0};
+  }
+  Point point(const GeoParam&) const { return target; }
+  bool facet_fits(const Mesh&, VertexId, VertexId, VertexId, SurfaceId, const Eigen::Vector3d&, double) const {
+    return true;
+  }
+};
+static_assert(Geometry<ShiftedGeometry>);
+
+}  // namespace
+
+TEST_SUITE("unit") {
+  TEST_CASE("a CAD model reads its entities - adjacency - ranges and periods") {
+    {
+      CadModel m(test::ugawg("cube-cylinder.step"));
+      CHECK(m.entities(0).size() == 10);
+      CHECK(m.entities(1).size() == 15);
+      CHECK(m.entities(2).size() == 7);
+      CHECK(m.entities(3).size() == 1);
+      CHECK(m.curves_of_surface(5).size() == 4);
+      const auto& r = m.range(2, 5);
+      CHECK(r.hi[0] == doctest::Approx(kPi / 2));
+      CHECK(r.period[0] == 0.0);  // a quarter cylinder does not wrap
+      const Point p = m.value({5, 2, kPi / 4, 0.6});
+      CHECK(std::hypot(p.x(), p.y()) == doctest::Approx(0.5).epsilon(1e-12));
+      CHECK(p.z() == doctest::Approx(0.5));
+    }
+    {
+      CadModel m(kCylinderModel);
+      CHECK(m.range(2, 1).period[0] == doctest::Approx(2 * kPi));  // the full cylinder wraps in u
+      CHECK(m.range(2, 1).period[1] == 0.0);
+      CHECK(m.range(1, 1).period[0] == doctest::Approx(2 * kPi));  // a closed circle
+    }
+  }
+
+  TEST_CASE("a model file that gmsh cannot read or that is missing is an InputError") {
+    CHECK_THROWS_AS(CadModel("/nonexistent/model.step"), InputError);
+    const test::TempDir dir;
+    const std::string bad = dir / "bad.step";
+    {
+      std::ofstream f(bad);
+      f << "not a STEP file\n";
+    }
+    CHECK_THROWS_AS(CadModel{bad}, InputError);
+  }
+
+  TEST_CASE("the UGAWG association records are read - and surface vertices take their (u, v)") {
+    CubeCylinder c;
+    CHECK(c.data.on_geometry[0].size() == 10);
+    CHECK(c.data.on_geometry[1].size() == 77);
+    CHECK(c.data.on_geometry[2].size() == 278);
+    const AssociationReport r = associate(c.mesh, c.model, &c.data);
+    CHECK(r.from_file > 100);
+    CHECK(r.max_distance < 1e-12);
+    CHECK(largest_distance(c.mesh, c.model) < 1e-12);
+  }
+
+  TEST_CASE("association round trip through meshb: every boundary vertex keeps its entity and parameters") {
+    CubeCylinder c;
+    io::MeshData out = extract_mesh_data(c.mesh);  // the build kept the file's vertex order
+    complete_geometry_records(out, c.model);
+    const test::TempDir dir;
+    for (const char* ext : {".meshb", ".mesh"}) {
+      const std::string path = dir / (std::string("assoc") + ext);
+      io::write_meshb(path, out);
+      const io::MeshData back = io::read_meshb(path);
+      CHECK(back.on_geometry == out.on_geometry);
+      Mesh again = build_mesh(back);
+      associate(again, c.model, &back);
+      std::size_t same = 0, boundary = 0;
+      for (VertexId v = 0; v < again.vertex_capacity(); ++v) {
+        if (!c.mesh.geo_param(v).valid()) continue;
+        ++boundary;
+        const GeoParam a = c.mesh.geo_param(v), b = again.geo_param(v);
+        same += a.dim == b.dim && a.tag == b.tag && std::abs(a.u - b.u) < 1e-12 && std::abs(a.v - b.v) < 1e-12;
+      }
+      CHECK(boundary > 200);
+      CHECK(same == boundary);
+    }
+    // Every curve vertex also has its (u, v) on each surface along its curve.
+    std::size_t on_curves = 0;
+    for (VertexId v = 0; v < c.mesh.vertex_capacity(); ++v)
+      on_curves += c.mesh.geo_param(v).dim == 1;
+    CHECK(out.on_geometry[2].size() > c.data.on_geometry[2].size() - 10);
+    CHECK(on_curves > 0);
+  }
+
+  TEST_CASE("a mesh that does not match the model is refused with the reason") {
+    {
+      auto data = io::read_meshb(test::ugawg("cube-linear-00.meshb"));
+      Mesh mesh = build_mesh(data);
+      CadModel model(test::ugawg("cube-cylinder.step"));
+      try {
+        associate(mesh, model);
+        FAIL("no error");
+      } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find("does not match") != std::string::npos);
+      }
+    }
+    {
+      Mesh mesh = make_box({.nx = 2, .ny = 2, .nz = 2});
+      for_each_boundary_face(mesh, [&](TetId t, int f) { mesh.set_surface_id(t, f, 42); });
+      CadModel model(test::ugawg("cube-cylinder.step"));
+      try {
+        associate(mesh, model);
+        FAIL("no error");
+      } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find("42") != std::string::npos);
+      }
+    }
+  }
+
+  TEST_CASE("parameters interpolate across the seam of a periodic surface and of a closed curve") {
+    CadModel model(kCylinderModel);
+    const CadGeometry g{&model};
+    Mesh mesh;
+    const VertexId a = mesh.add_vertex(Point::Zero()), b = mesh.add_vertex(Point::Zero());
+    mesh.enable_geo_params();
+    const std::array<VertexId, 2> ends{a, b};
+    const std::array<double, 2> half{0.5, 0.5};
+    // Either side of the seam u = 0 = 2 pi, at z = 0.5.
+    mesh.set_geo_param(a, {1, 2, 0.1, 0.5});
+    mesh.set_geo_param(b, {1, 2, 2 * kPi - 0.1, 0.5});
+    const Point mid = g.point(g.boundary_vertex(mesh, ends, half, 1));
+    CHECK(mid.x() == doctest::Approx(0.5));  // u = 0, not u = pi (x = -0.5)
+    CHECK(std::abs(mid.y()) < 1e-12);
+    // The same on the closed circle (curve 3, z = 0).
+    mesh.set_geo_param(a, {3, 1, 0.2, 0.0});
+    mesh.set_geo_param(b, {3, 1, 2 * kPi - 0.2, 0.0});
+    const Point on_curve = g.point(g.boundary_vertex(mesh, ends, half, 0));
+    CHECK(on_curve.x() == doctest::Approx(0.5));
+    // A vertex of the seam curve (curve 2) and a surface vertex past the
+    // seam: the seam's u is taken on the surface vertex's side.
+    mesh.set_geo_param(a, {2, 1, 0.5, 0.0});
+    mesh.set_geo_param(b, {1, 2, 2 * kPi - 0.4, 0.5});
+    const GeoParam m = g.boundary_vertex(mesh, ends, half, 1);
+    CHECK(std::abs(m.u - (2 * kPi - 0.2)) < 1e-9);
+  }
+
+  TEST_CASE("at a cone's apex u is free: the midpoint takes the other vertex's u") {
+    CadModel model(test::ugawg("cone-cone.step"));
+    const CadGeometry g{&model};
+    // A cone surface: one whose u-derivative vanishes somewhere on v's range.
+    int cone = 0;
+    double v_apex = 0.0;
+    for (int s : model.entities(2)) {
+      const auto& r = model.range(2, s);
+      for (double v : {r.lo[1], r.hi[1]})
+        if (model.derivatives(s, 0.5 * (r.lo[0] + r.hi[0]), v)[0].norm() < 1e-9) {
+          cone = s;
+          v_apex = v;
+        }
+    }
+    REQUIRE(cone != 0);
+    const auto& r = model.range(2, cone);
+    const double u_far = r.lo[0] + 0.3 * (r.hi[0] - r.lo[0]);
+    const double v_far = 0.5 * (r.lo[1] + r.hi[1]);
+    // The apex is a model vertex: the one at the apex's point.
+    const Point apex_point = model.value({cone, 2, r.lo[0], v_apex});
+    int apex = 0;
+    for (int m : model.entities(0))
+      if ((model.value({m, 0, 0.0, 0.0}) - apex_point).norm() < 1e-9) apex = m;
+    REQUIRE(apex != 0);
+    Mesh mesh;
+    const VertexId a = mesh.add_vertex(apex_point), b = mesh.add_vertex(model.value({cone, 2, u_far, v_far}));
+    mesh.enable_geo_params();
+    mesh.set_geo_param(a, {apex, 0, 0.0, 0.0});
+    mesh.set_geo_param(b, {cone, 2, u_far, v_far});
+    const std::array<VertexId, 2> ends{a, b};
+    const std::array<double, 2> half{0.5, 0.5};
+    const GeoParam m = g.boundary_vertex(mesh, ends, half, cone);
+    CHECK(m.u == doctest::Approx(u_far));
+    // On the straight generator from the apex: the model point is the chord's midpoint.
+    CHECK((g.point(m) - 0.5 * (mesh.point(a) + mesh.point(b))).norm() < 1e-9);
+  }
+
+  TEST_CASE("backtracking halves the way to the model until the cavity accepts - else stays straight") {
+    Mesh mesh;
+    const ShiftedGeometry g{Point(1.0, 0.0, 0.0)};
+    const GeoParam param{1, 2, 0.0, 0.0};
+    const Point straight = Point::Zero();
+    auto within = [](double d) { return [d](const Point& q) { return q.norm() <= d + 1e-15; }; };
+    CHECK(place_boundary_vertex(g, param, straight, within(2.0)).p.x() == 1.0);
+    CHECK(place_boundary_vertex(g, param, straight, within(0.3)).p.x() == 0.25);
+    CHECK(place_boundary_vertex(g, param, straight, within(1.0 / 32)).p.x() == 1.0 / 32);
+    const BoundaryPoint none = place_boundary_vertex(g, param, straight, within(0.01));
+    CHECK(none.p.x() == 0.0);
+    CHECK(none.geo == param);  // the parameters stay: the projection pass tries again
+    // Without a model: the straight point, no parameters.
+    const BoundaryPoint flat = place_boundary_vertex(NoGeometry{}, param, straight, within(2.0));
+    CHECK(flat.p == straight);
+    CHECK(!flat.geo.valid());
+  }
+
+  TEST_CASE("bootstrap meshes a model with every boundary vertex on it - STEP - IGES - periodic") {
+    for (const std::string& path : {test::ugawg("cube-cylinder.step"), test::ugawg("cone-cone.step"),
+                                   test::ugawg("cone-cone.iges"), kCylinderModel}) {
+      CAPTURE(path);
+      CadModel model(path);
+      const io::MeshData data = bootstrap_mesh(model, {.size = 0.25 * model.size()});
+      Mesh mesh = build_mesh(data);
+      const auto report = mesh.validate();
+      INFO(report.to_string());
+      CHECK(report.ok());
+      associate(mesh, model, &data);
+      const ModelDistance d = model_distance(mesh, model);
+      CHECK(d.unassociated == 0);
+      CHECK(d.max < 1e-8);
+      if (path == kCylinderModel) CHECK(mesh.volume() == doctest::Approx(kPi * 0.25).epsilon(0.05));
+    }
+  }
+}
+
+TEST_SUITE("invariant") {
+  TEST_CASE_TEMPLATE("splits on curves and surfaces of a CAD model put the new vertices on it", T,
+                     METRICA_POLICY_COMBINATIONS) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    using C = typename T::Concurrency;
+    CubeCylinder c;
+    const CadGeometry g{&c.model};
+    const double exact = 1.0 - kPi / 16;
+    const double faceted = c.mesh.volume();
+    test::set_uniform_metric(c.mesh, 0.08);
+    for (int pass = 0; pass < 3; ++pass) {
+      refine_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+      project_to_model<P, C>(c.mesh, {}, g);
+      const auto report = c.mesh.validate();
+      INFO(report.to_string());
+      REQUIRE(report.ok());
+    }
+    CHECK(largest_distance(c.mesh, c.model) < 1e-8);
+    CHECK(largest_radius_error(c.mesh) < 1e-8);
+    CHECK(model_distance(c.mesh, c.model).unassociated == 0);
+    // Without a model the volume stays the faceted one; on it, the chords of
+    // h = 0.08 on the wall leave about 70% of the first faceting's error.
+    CHECK(std::abs(c.mesh.volume() - exact) < 0.8 * std::abs(faceted - exact));
+  }
+
+  TEST_CASE_TEMPLATE("centroid insertion on boundary faces and ridges of a CAD model stays on it", T,
+                     METRICA_POLICY_COMBINATIONS) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    using C = typename T::Concurrency;
+    CubeCylinder c;
+    const CadGeometry g{&c.model};
+    test::set_uniform_metric(c.mesh, 0.1);
+    for (int pass = 0; pass < 2; ++pass) {
+      refine_centroids<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+      project_to_model<P, C>(c.mesh, {}, g);
+      const auto report = c.mesh.validate();
+      INFO(report.to_string());
+      REQUIRE(report.ok());
+    }
+    CHECK(largest_distance(c.mesh, c.model) < 1e-8);
+    CHECK(model_distance(c.mesh, c.model).unassociated == 0);
+  }
+
+  TEST_CASE_TEMPLATE("collapse - flips and smoothing on a CAD model keep the boundary on it", T,
+                     METRICA_POLICY_COMBINATIONS) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    using C = typename T::Concurrency;
+    CubeCylinder c;
+    const CadGeometry g{&c.model};
+    test::set_uniform_metric(c.mesh, 0.06);
+    refine_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+    project_to_model<P, C>(c.mesh, {}, g);
+    test::set_uniform_metric(c.mesh, 0.15);  // now most edges are short
+    const std::size_t before = c.mesh.num_vertices();
+    collapse_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+    CHECK(c.mesh.num_vertices() < before);
+    const OperatorStats flips = reconnect<S, P, C, MinQuality, CadGeometry>(c.mesh, {}, g);
+    CHECK(flips.applied > 0);
+    // Boundary vertices move too, on the model.
+    std::vector<Point> was(c.mesh.vertex_capacity());
+    for (VertexId v = 0; v < c.mesh.vertex_capacity(); ++v) was[v] = c.mesh.point(v);
+    smooth_vertices<S, P, C, MinQuality, CadGeometry>(c.mesh, {.below = 1.0}, g);
+    std::size_t moved_on_boundary = 0;
+    for (VertexId v = 0; v < c.mesh.vertex_capacity(); ++v)
+      moved_on_boundary += c.mesh.vertex_alive(v) && c.mesh.geo_param(v).valid() && c.mesh.point(v) != was[v];
+    CHECK(moved_on_boundary > 0);
+    const auto report = c.mesh.validate();
+    INFO(report.to_string());
+    REQUIRE(report.ok());
+    CHECK(largest_distance(c.mesh, c.model) < 1e-8);
+    CHECK(largest_radius_error(c.mesh) < 1e-8);
+  }
+}
+
+TEST_SUITE("regression") {
+  TEST_CASE("cube-cylinder polar-2 on the model: the volume of the model and every vertex on it") {
+    CubeCylinder c;
+    const MetricFunction metric = [](const Point& p) { return evaluate(AnalyticMetric::polar2, p); };
+    test::set_metric_function(c.mesh, metric);
+    AdaptOptions o;
+    o.metric = &metric;
+    o.geometry = &c.model;
+    adapt<LogEuclidean, Filtered, Serial, CadGeometry>(c.mesh, o, CadGeometry{&c.model});
+    const auto report = c.mesh.validate();
+    INFO(report.to_string());
+    REQUIRE(report.ok());
+    CHECK(largest_distance(c.mesh, c.model) < 1e-8);
+    // One adaptation from the 418-triangle faceting (relative error 1.2e-3).
+    const double exact = 1.0 - kPi / 16;
+    CHECK(std::abs(c.mesh.volume() - exact) / exact < 2e-4);
+  }
+}
+
+}  // namespace metrica
