@@ -317,6 +317,38 @@ TEST_SUITE("regression") {
     CHECK(files == 3);
   }
 
+  TEST_CASE("bootstrap - adapt and check on a CAD model: the boundary on the model - the association written") {
+    test::TempDir dir;
+    const std::string step = test::ugawg("cube-cylinder.step");
+    const auto boot = metrica_cli("bootstrap " + step + " -o " + (dir / "start.meshb") + " --size 0.25");
+    INFO(boot.output);
+    REQUIRE(boot.code == 0);
+    const auto start = io::read_meshb(dir / "start.meshb");
+    CHECK(!start.on_geometry[0].empty());
+    CHECK(!start.on_geometry[1].empty());
+    CHECK(!start.on_geometry[2].empty());
+    const auto adapt = metrica_cli("adapt " + (dir / "start.meshb") + " --geometry " + step +
+                                   " --analytic polar-2 --cycles 4 --quality-passes 1 -o " + (dir / "a.meshb"));
+    INFO(adapt.output);
+    REQUIRE(adapt.code == 0);
+    CHECK(has(adapt, "largest distance to their entity"));
+    const auto adapted = io::read_meshb(dir / "a.meshb");
+    CHECK(adapted.on_geometry[2].size() > start.on_geometry[2].size());
+    const auto check = metrica_cli("check " + (dir / "a.meshb") + " --geometry " + step);
+    INFO(check.output);
+    CHECK(check.code == 0);
+    CHECK(has(check, "valid"));
+    // The mesh of another model: exit 1, the reason, nothing written.
+    const auto wrong = metrica_cli("adapt " + (dir / "start.meshb") + " --geometry " + test::ugawg("cone-cone.step") +
+                                   " --analytic polar-2 -o " + (dir / "b.meshb"));
+    CHECK(wrong.code == 1);
+    CHECK(has(wrong, "does not match"));
+    CHECK(!std::filesystem::exists(dir / "b.meshb"));
+    const auto missing = metrica_cli("check " + (dir / "a.meshb") + " --geometry " + (dir / "none.step"));
+    CHECK(missing.code == 1);
+    CHECK(has(missing, "no such model file"));
+  }
+
   TEST_CASE("usage errors exit 2 - --help exits 0 for every command") {
     CHECK(metrica_cli("").code == 2);
     CHECK(metrica_cli("frobnicate").code == 2);
@@ -334,7 +366,12 @@ TEST_SUITE("regression") {
     CHECK(metrica_cli("loop --field tanh3 --norm 0.5").code == 2);
     CHECK(metrica_cli("loop --field nofield --quick").code == 1);
     CHECK(metrica_cli("interpolate a.meshb --to b.meshb -o c.solb").code == 2);  // no field
-    for (const char* c : {"cube", "info", "check", "convert", "metric", "quality", "adapt", "loop", "interpolate", "error"}) {
+    CHECK(metrica_cli("bootstrap model.step").code == 2);  // no output
+    CHECK(metrica_cli("bootstrap " + test::ugawg("cube-cylinder.step") + " -o x.meshb --size 0").code == 2);
+    CHECK(metrica_cli("bootstrap " + test::ugawg("cube-cylinder.step") + " -o x.meshb --size 1e-9").code == 2);
+    CHECK(metrica_cli("loop --field tanh3 --quick --geometry m.step").code == 2);  // no start mesh
+    for (const char* c : {"cube", "bootstrap", "info", "check", "convert", "metric", "quality", "adapt", "loop",
+                          "interpolate", "error"}) {
       const auto r = metrica_cli(std::string(c) + " --help");
       CHECK(r.code == 0);
       CHECK(has(r, "Example"));

@@ -123,6 +123,8 @@ struct Pipeline {
   std::function<void(A&)> before_polish;
   Stages<A> polish;
   Stages<A> repair;
+  // Run once at the end (e.g. the last vertices onto the model).
+  Stages<A> closing;
   int max_cycles = 15;
   // Stop cycling when a cycle's "collapse" and "split" stages change fewer
   // than this share of the vertices, or, once the mesh is nearly a unit
@@ -177,6 +179,14 @@ const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
     a.finish(c, clock);
     idle_rounds = c.min_quality > worst ? 0 : idle_rounds + 1;
   }
+  if (!p.closing.empty()) {
+    Stopwatch clock;
+    CycleReport c;
+    c.cycle = static_cast<int>(a.report().cycles.size());
+    c.quality_phase = true;
+    run_stages(a, p.closing, c);
+    a.finish(c, clock);
+  }
   a.report().seconds = total.seconds();
   return a.report();
 }
@@ -189,7 +199,11 @@ const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
 //             of every vertex;
 //   repair    collapses that lift the poor tets, then the cycle's
 //             operators on the balls of the poor tets' vertices, and one
-//             more flip and smoothing pass.
+//             more flip and smoothing pass;
+//   closing   on a model: the vertices left off it, after flips and
+//             smoothing around them.
+// On a model every cycle, pass and round also projects onto it the
+// vertices whose placement had to backtrack.
 template <class A>
 Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   using S = typename A::Space;
@@ -279,6 +293,29 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   p.repair.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips, "flip"); }});
   if constexpr (on_model) p.repair.push_back({"project", [](A& a) { return a.project(); }});
   p.repair.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
+  // On a model, the vertices still off it (their ball would invert) go
+  // onto it after flips and smoothing around them, a few times; flips and
+  // smoothing follow each projection (it moves vertices for the model,
+  // not for quality).
+  if constexpr (on_model)
+    p.closing.push_back({"project", [=](A& a) {
+                           OperatorStats stats;
+                           ReconnectOptions around = polish_flips;
+                           around.seed_below = 1.0;
+                           for (int round = 0; round < 4; ++round) {
+                             stats += a.project();
+                             const auto off = vertices_off_model<C>(a.mesh(), a.geometry(), ProjectionOptions{}.tolerance);
+                             TetList ball;
+                             for (VertexId v : off) {
+                               vertex_ball(a.mesh(), v, ball);
+                               for (TetId t : ball) a.mesh().touch_tet(t);
+                             }
+                             a.template flips<MinQuality>(around, "flip");
+                             a.smooth(polish_smooth);
+                             if (off.empty()) break;
+                           }
+                           return stats;
+                         }});
   return p;
 }
 
