@@ -8,6 +8,9 @@
 #include "keep_threads.hpp"
 
 #include <atomic>
+#include <cstdio>
+#include <fcntl.h>
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 
@@ -33,6 +36,30 @@ auto gmsh_call(const char* what, F&& f) {
   }
 }
 
+// Sends the process's stdout to /dev/null while in scope.
+class QuietStdout {
+ public:
+  QuietStdout() {
+    std::fflush(stdout);
+    saved_ = ::dup(1);
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (saved_ >= 0 && null >= 0) ::dup2(null, 1);
+    if (null >= 0) ::close(null);
+  }
+  ~QuietStdout() {
+    std::fflush(stdout);
+    if (saved_ >= 0) {
+      ::dup2(saved_, 1);
+      ::close(saved_);
+    }
+  }
+  QuietStdout(const QuietStdout&) = delete;
+  QuietStdout& operator=(const QuietStdout&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
 double wrap_near(double x, double period, double near) {
   if (period <= 0.0) return x;
   return x + period * std::round((near - x) / period);
@@ -53,7 +80,11 @@ CadModel::CadModel(const std::string& path) : source_(path) {
       gmsh::option::setNumber("General.Terminal", 0);
       gmsh::option::setNumber("General.Verbosity", 0);
     });
-    gmsh_call(path.c_str(), [&] { gmsh::open(path); });
+    {
+      // OpenCASCADE's IGES reader prints to stdout whatever gmsh's options say.
+      const QuietStdout quiet;
+      gmsh_call(path.c_str(), [&] { gmsh::open(path); });
+    }
     sew_into_volume();
     read_topology();
   } catch (...) {
@@ -90,10 +121,12 @@ void CadModel::sew_into_volume() {
     // Sewing made new surfaces: the old ones go.
     gmsh::vectorpair bounding, old;
     gmsh::model::getBoundary({{3, volume}}, bounding, false, false, false);
-    for (auto [d, t] : surfaces)
-      if (std::find_if(bounding.begin(), bounding.end(), [&](const auto& b) { return std::abs(b.second) == t; }) ==
+    for (const auto& s : surfaces) {
+      const int tag = s.second;
+      if (std::find_if(bounding.begin(), bounding.end(), [tag](const auto& b) { return std::abs(b.second) == tag; }) ==
           bounding.end())
-        old.emplace_back(2, t);
+        old.emplace_back(2, tag);
+    }
     if (!old.empty()) {
       gmsh::model::occ::remove(old, true);
       gmsh::model::occ::synchronize();
