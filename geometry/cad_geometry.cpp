@@ -107,18 +107,34 @@ GeoParam CadGeometry::boundary_vertex(const Mesh& mesh, std::span<const VertexId
   return g;
 }
 
+namespace {
+// The model's normal at the centroid of facet pqr (parameters interpolated
+// from its vertices), or zero when they have none.
+Eigen::Vector3d model_normal_at_centroid(const CadGeometry& g, const Mesh& mesh, VertexId p, VertexId q, VertexId r,
+                                         SurfaceId surface) {
+  const std::array<VertexId, 3> corners{p, q, r};
+  const std::array<double, 3> third{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
+  const GeoParam c = g.boundary_vertex(mesh, corners, third, surface);
+  if (!c.valid()) return Eigen::Vector3d::Zero();
+  return g.model->normal(surface, c.u, c.v);
+}
+}  // namespace
+
 bool CadGeometry::facet_fits(const Mesh& mesh, VertexId p, VertexId q, VertexId r, SurfaceId surface,
                              const Eigen::Vector3d& old_normal, double tolerance) const {
   const Eigen::Vector3d n = face_normal(mesh, p, q, r);
-  const std::array<VertexId, 3> corners{p, q, r};
-  const std::array<double, 3> third{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
-  const GeoParam c = boundary_vertex(mesh, corners, third, surface);
-  if (!c.valid()) return normal_deviation(n, old_normal) <= tolerance;
+  const Eigen::Vector3d model_normal = model_normal_at_centroid(*this, mesh, p, q, r, surface);
+  if (model_normal.squaredNorm() == 0.0) return normal_deviation(n, old_normal) <= tolerance;
   // Within the bound, or no farther from the model than the facets it
   // replaces (thin facets near a ridge deviate whichever way they turn).
-  const Eigen::Vector3d model_normal = model->normal(surface, c.u, c.v);
   const double bound = std::max({tolerance, max_deviation, normal_deviation(old_normal, model_normal)});
   return normal_deviation(n, model_normal) <= bound;
+}
+
+double CadGeometry::facet_deviation(const Mesh& mesh, VertexId p, VertexId q, VertexId r, SurfaceId surface) const {
+  const Eigen::Vector3d model_normal = model_normal_at_centroid(*this, mesh, p, q, r, surface);
+  if (model_normal.squaredNorm() == 0.0) return 0.0;
+  return normal_deviation(face_normal(mesh, p, q, r), model_normal);
 }
 
 }  // namespace metrica

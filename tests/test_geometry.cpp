@@ -10,6 +10,7 @@
 #include <metrica/geometry/cad_geometry.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/mesh_build.hpp>
+#include <metrica/operators/boundary_swap.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/project.hpp>
 #include <metrica/operators/reconnect.hpp>
@@ -51,7 +52,6 @@ double largest_radius_error(const Mesh& mesh) {
 // to test placement without a CAD model.
 struct ShiftedGeometry {
   static constexpr bool on_model = true;
-  static constexpr std::string_view name = "shifted";
   Point target = Point::Zero();
   GeoParam boundary_vertex(const Mesh&, std::span<const VertexId>, std::span<const double>, SurfaceId) const {
     return {1, 2, 0.0, 0.0};
@@ -60,6 +60,7 @@ struct ShiftedGeometry {
   bool facet_fits(const Mesh&, VertexId, VertexId, VertexId, SurfaceId, const Eigen::Vector3d&, double) const {
     return true;
   }
+  double facet_deviation(const Mesh&, VertexId, VertexId, VertexId, SurfaceId) const { return 0.0; }
 };
 static_assert(Geometry<ShiftedGeometry>);
 
@@ -341,6 +342,37 @@ TEST_SUITE("invariant") {
     REQUIRE(report.ok());
     CHECK(largest_distance(c.mesh, c.model) < 1e-8);
     CHECK(largest_radius_error(c.mesh) < 1e-8);
+  }
+}
+
+TEST_SUITE("invariant") {
+  TEST_CASE_TEMPLATE("boundary 2-2 flips toward the model lower the facets' deviation and keep the mesh valid", T,
+                     METRICA_POLICY_COMBINATIONS) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    using C = typename T::Concurrency;
+    CubeCylinder c;
+    const CadGeometry g{&c.model};
+    test::set_uniform_metric(c.mesh, 0.07);
+    refine_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+    project_to_model<P, C>(c.mesh, {}, g);
+    auto deviation = [&] {
+      double sum = 0.0;
+      for_each_boundary_face(c.mesh, [&](TetId t, int f) {
+        const auto v = face_vertices(c.mesh.tet(t), f);
+        sum += g.facet_deviation(c.mesh, v[0], v[1], v[2], c.mesh.surface_id(t, f));
+      });
+      return sum;
+    };
+    const double before = deviation();
+    const OperatorStats st = swap_toward_model<S, P, C>(c.mesh, {}, g);
+    CHECK(st.applied > 0);
+    CHECK(deviation() < before);
+    const auto report = c.mesh.validate();
+    INFO(report.to_string());
+    REQUIRE(report.ok());
+    // Without a model nothing deviates: nothing is swapped.
+    CHECK(swap_toward_model<S, P, C>(c.mesh, {}, NoGeometry{}).applied == 0);
   }
 }
 

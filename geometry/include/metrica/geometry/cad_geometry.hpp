@@ -28,6 +28,9 @@ struct CadGeometry {
   Point point(const GeoParam& g) const { return model->value(g); }
   bool facet_fits(const Mesh& mesh, VertexId p, VertexId q, VertexId r, SurfaceId surface,
                   const Eigen::Vector3d& old_normal, double tolerance) const;
+  // 1 - |cos| between the facet's normal and the model's at its centroid
+  // (0 when its vertices have no parameters).
+  double facet_deviation(const Mesh& mesh, VertexId p, VertexId q, VertexId r, SurfaceId surface) const;
 };
 static_assert(Geometry<CadGeometry>);
 

@@ -14,6 +14,8 @@
 //   facet_fits(mesh, p, q, r, surface, old_normal, tolerance)
 //       may a reconnection leave boundary facet pqr on `surface` where
 //       facets of normal `old_normal` were (2-2 flip, collapse)?
+//   facet_deviation(mesh, p, q, r, surface)
+//       how far facet pqr turns from the surface (0: along it).
 //
 // NoGeometry keeps the first faceting: new vertices stay where the
 // operation puts them, and a boundary facet must keep the plane of the
@@ -37,6 +39,7 @@ concept Geometry = requires(const G& g, const Mesh& mesh, std::span<const Vertex
   { g.boundary_vertex(mesh, parents, weights, surface) } -> std::same_as<GeoParam>;
   { g.point(param) } -> std::same_as<Point>;
   { g.facet_fits(mesh, VertexId{}, VertexId{}, VertexId{}, surface, normal, 0.0) } -> std::same_as<bool>;
+  { g.facet_deviation(mesh, VertexId{}, VertexId{}, VertexId{}, surface) } -> std::same_as<double>;
 };
 
 struct NoGeometry {
@@ -50,6 +53,7 @@ struct NoGeometry {
                   double tolerance) const {
     return normal_deviation(face_normal(mesh, p, q, r), old_normal) <= tolerance;
   }
+  double facet_deviation(const Mesh&, VertexId, VertexId, VertexId, SurfaceId) const { return 0.0; }
 };
 static_assert(Geometry<NoGeometry>);
 

@@ -91,13 +91,23 @@ struct CollapsePlan {
 // `moved` is given (both ends interior), moved to that point with metric
 // `moved_metric` (the merge at the edge's metric midpoint, which makes
 // shorter edges than either end). s.ball, s.ball_b, s.neighbours and
-// s.neighbours_b hold the two balls (the caller holds their vertices).
+// s.neighbours_b hold the two balls and the vertices joined to each end
+// (the caller holds them).
 template <MetricSpace S, Precision P, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
                                        const CollapseOptions& o, const Point* moved = nullptr,
                                        const VertexMetric* moved_metric = nullptr, const G& geometry = {}) {
   if (!edge_shell(mesh, a, b, s.ball, s.shell)) return Refusal::not_applicable;
   if (!collapse_allowed(mesh, a, b, !s.shell.closed)) return Refusal::not_applicable;
+  // The link condition on edges: a vertex joined to both a and b must be
+  // on a tet of ab, else edge bx would end up in two fans of tets (a
+  // pinched edge; on the boundary, an edge of four boundary faces).
+  for (VertexId x : s.neighbours) {
+    if (x == b || std::find(s.neighbours_b.begin(), s.neighbours_b.end(), x) == s.neighbours_b.end()) continue;
+    bool on_shell = false;
+    for (TetId t : s.shell.tets) on_shell = on_shell || local_index(mesh.tet(t), x) >= 0;
+    if (!on_shell) return Refusal::not_applicable;
+  }
   if (moved != nullptr && (mesh.vertex_class(b) != VertexClass::interior || mesh.is_required(b)))
     return Refusal::not_applicable;
   const int ref = mesh.tet_ref(s.ball[0]);

@@ -2,11 +2,14 @@
 // (a placement that had to backtrack, boundary_placement.hpp) moves to
 // that point when its ball stays positively oriented, else as far toward
 // it as it can (the step halved up to five times) and waits for the next
-// projection pass, after the reconnection around it.
+// projection pass, after the reconnection around it. A vertex that still
+// cannot reach the model at the end is collapsed onto a neighbour on the
+// boundary (collapse_off_model).
 #pragma once
 
 #include <metrica/geometry/model.hpp>
 #include <metrica/operators/boundary_placement.hpp>
+#include <metrica/operators/collapse.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/smooth.hpp>
 
@@ -95,6 +98,44 @@ OperatorStats project_to_model(Mesh& mesh, const ProjectionOptions& o, const G& 
   const auto todo = vertices_off_model<C>(mesh, geometry, o.tolerance);
   OperatorStats stats;
   if (!todo.empty()) stats = run_pass<C>(mesh, Projection<P, G>{o, geometry}, todo);
+  stats.seconds = clock.seconds();
+  return stats;
+}
+
+// The last resort for the vertices in `off` (off the model, their
+// projection refused): each is collapsed onto one of its neighbours along
+// a boundary edge, at any length, when the Geometry's rules and a
+// positive, not flat ball allow it (serial: few vertices, outside a
+// pass). Returns the stats; the vertices that stay are the caller's to
+// report.
+template <MetricSpace S, Precision P, Geometry G>
+OperatorStats collapse_off_model(Mesh& mesh, std::span<const VertexId> off, const G& geometry) {
+  Stopwatch clock;
+  OperatorStats stats;
+  CollapseOptions o;
+  o.min_length = std::numeric_limits<double>::infinity();
+  o.max_new_length = 4.0;
+  o.quality_floor = 0.02;
+  CollapseScratch s;
+  for (VertexId v : off) {
+    if (!mesh.vertex_alive(v)) continue;
+    vertex_ball(mesh, v, s.ball);
+    vertex_neighbours(mesh, s.ball, v, s.neighbours);
+    const VertexList around = s.neighbours;
+    for (VertexId u : around) {
+      if (!mesh.has_geo_params() || !mesh.geo_param(u).valid()) continue;  // not on the boundary
+      ++stats.tried;
+      vertex_ball(mesh, v, s.ball);
+      vertex_neighbours(mesh, s.ball, v, s.neighbours);
+      vertex_ball(mesh, u, s.ball_b);
+      vertex_neighbours(mesh, s.ball_b, u, s.neighbours_b);
+      const auto d = decide_collapse<S, P, ShapeOnly>(mesh, v, u, s, o, nullptr, nullptr, geometry);
+      if (!d) continue;
+      apply_collapse(mesh, d.plan(), s);
+      ++stats.applied;
+      break;
+    }
+  }
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -203,7 +203,8 @@ const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
 //   closing   on a model: the vertices left off it, after flips and
 //             smoothing around them.
 // On a model every cycle, pass and round also projects onto it the
-// vertices whose placement had to backtrack.
+// vertices whose placement had to backtrack, and cycles and passes flip
+// boundary edges whose facets then follow the model better (swap).
 template <class A>
 Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   using S = typename A::Space;
@@ -245,6 +246,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   // inverted) try again after the reconnection around them.
   constexpr bool on_model = A::Model::on_model;
   if constexpr (on_model) p.cycle.push_back({"project", [](A& a) { return a.project(); }});
+  if constexpr (on_model) p.cycle.push_back({"swap", [](A& a) { return a.swap(); }});
   p.cycle.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   p.cycle.push_back({"smooth", [=](A& a) { return a.smooth(smooth); }});
 
@@ -257,6 +259,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   };
   p.polish.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips, "flip"); }});
   if constexpr (on_model) p.polish.push_back({"project", [](A& a) { return a.project(); }});
+  if constexpr (on_model) p.polish.push_back({"swap", [](A& a) { return a.swap(); }});
   p.polish.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
 
   // Repair: first the edges at the poor tets' vertices, of any length,
@@ -296,7 +299,8 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   // On a model, the vertices still off it (their ball would invert) go
   // onto it after flips and smoothing around them, a few times; flips and
   // smoothing follow each projection (it moves vertices for the model,
-  // not for quality).
+  // not for quality). Those the last round leaves are collapsed onto a
+  // boundary neighbour.
   if constexpr (on_model)
     p.closing.push_back({"project", [=](A& a) {
                            OperatorStats stats;
@@ -310,6 +314,8 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
                                vertex_ball(a.mesh(), v, ball);
                                for (TetId t : ball) a.mesh().touch_tet(t);
                              }
+                             if (round == 3 && !off.empty())  // the last resort
+                               stats += collapse_off_model<S, typename A::Exactness>(a.mesh(), off, a.geometry());
                              a.template flips<MinQuality>(around, "flip");
                              a.smooth(polish_smooth);
                              if (off.empty()) break;

@@ -9,6 +9,7 @@
 // a work list with run(). adapt.hpp builds the standard pipeline from it.
 #pragma once
 
+#include <metrica/operators/boundary_swap.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/project.hpp>
@@ -199,6 +200,9 @@ class Adapter {
       return smooth_vertices<S, P, C, Criterion>(m, x, geometry_);
     });
   }
+  // Boundary 2-2 flips that bring facets closer to the model (none
+  // without a model).
+  OperatorStats swap(const BoundarySwapOptions& o = {}) { return swap_toward_model<S, P, C>(mesh_, o, geometry_); }
   // Boundary vertices off the model move onto it (none without a model).
   OperatorStats project(ProjectionOptions o = {}) {
     o.metric = metric_;
