@@ -37,7 +37,7 @@ int run_check(const std::vector<std::string>& args) {
     if (!(tolerance >= 0.0)) throw UsageError("check: --model-tolerance must be >= 0");
     const auto model = open_geometry(o.get<std::string>("geometry"), loaded.mesh, &loaded.data);
     const ModelDistance d = model_distance(loaded.mesh, *model, tolerance);
-    fmt::print("{}: {}\n", input, model_distance_text(loaded.mesh, *model));
+    if (log::level() >= log::Level::normal) fmt::print("{}: {}\n", input, model_distance_text(loaded.mesh, *model));
     if (d.max > tolerance) {
       fmt::print("{}: vertex {} is {:.3g} from its entity (tolerance {:.3g})\n", input, d.worst + 1, d.max, tolerance);
       return kInvalid;
