@@ -99,7 +99,7 @@ AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshDat
       if (best.distance > tolerance)
         for (int c : curves) {
           const Candidate k = project(model, 1, c, p);
-          // Between two curves equally near, the one on the most of its surfaces.
+          // Between two curves equally near (a model vertex), the first found.
           if (k.distance < best.distance - 1e-12 * model.size()) best = k;
         }
       if (best.distance > tolerance && around.size() == 1) best = project(model, 2, around[0], p);
