@@ -328,7 +328,8 @@ TEST_SUITE("regression") {
     CHECK(!start.on_geometry[1].empty());
     CHECK(!start.on_geometry[2].empty());
     const auto adapt = metrica_cli("adapt " + (dir / "start.meshb") + " --geometry " + step +
-                                   " --analytic polar-2 --cycles 4 --quality-passes 1 -o " + (dir / "a.meshb"));
+                                   " --analytic polar-2 --cycles 4 --quality-passes 1 --concurrency serial -o " +
+                                   (dir / "a.meshb"));
     INFO(adapt.output);
     REQUIRE(adapt.code == 0);
     CHECK(has(adapt, "largest distance to their entity"));

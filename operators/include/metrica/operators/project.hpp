@@ -104,18 +104,19 @@ OperatorStats project_to_model(Mesh& mesh, const ProjectionOptions& o, const G& 
 
 // The last resort for the vertices in `off` (off the model, their
 // projection refused): each is collapsed onto one of its neighbours along
-// a boundary edge, at any length, when the Geometry's rules and a
-// positive, not flat ball allow it (serial: few vertices, outside a
-// pass). Returns the stats; the vertices that stay are the caller's to
+// a boundary edge, at any length and shape, when the Geometry's rules
+// and a positive ball allow it (serial: few vertices, outside a pass). Returns the stats; the vertices that stay are the caller's to
 // report.
 template <MetricSpace S, Precision P, Geometry G>
 OperatorStats collapse_off_model(Mesh& mesh, std::span<const VertexId> off, const G& geometry) {
   Stopwatch clock;
   OperatorStats stats;
+  // Any length, any shape but a non-positive tet: the smoothing and flips
+  // that follow lift what this leaves.
   CollapseOptions o;
   o.min_length = std::numeric_limits<double>::infinity();
-  o.max_new_length = 4.0;
-  o.quality_floor = 0.02;
+  o.max_new_length = std::numeric_limits<double>::infinity();
+  o.quality_floor = 0.0;
   CollapseScratch s;
   for (VertexId v : off) {
     if (!mesh.vertex_alive(v)) continue;
