@@ -48,17 +48,7 @@ struct Projection {
     if (step.norm() <= options.tolerance) return Refusal::not_applicable;
     for (int k = 0; k <= kBacktrackSteps; ++k, step *= 0.5) {
       const Point q = x + step;
-      bool positive = true;
-      for (TetId t : s.ball) {
-        const auto& tv = mesh.tet(t);
-        TetPoints pts = detail::tet_points(mesh, tv);
-        pts[local_index(tv, v)] = q;
-        if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) {
-          positive = false;
-          break;
-        }
-      }
-      if (positive) return Plan{q};
+      if (ball_positive_at<P>(mesh, v, s.ball, q)) return Plan{q};
     }
     return Refusal::rejected;
   }
@@ -66,13 +56,7 @@ struct Projection {
     apply_smoothing(mesh, v, plan, s, SmoothOptions{.metric = options.metric});
   }
   void preview(const Mesh& mesh, VertexId v, const Plan& plan, const Scratch& s, PlannedTets& out) const {
-    out.clear();
-    for (TetId t : s.ball) {
-      const auto& tv = mesh.tet(t);
-      TetPoints pts = detail::tet_points(mesh, tv);
-      pts[local_index(tv, v)] = plan.to;
-      out.push_back({tv, pts});
-    }
+    ball_moved_to(mesh, v, s.ball, plan.to, out);
   }
 };
 

@@ -99,6 +99,30 @@ inline void find_smoothing_cavity(const Mesh& mesh, VertexId v, SmoothScratch& s
   vertex_neighbours(mesh, s.ball, v, s.neighbours);
 }
 
+// The tets of v's ball (from find_smoothing_cavity) with v at p: the
+// preview of a move of v.
+inline void ball_moved_to(const Mesh& mesh, VertexId v, const TetList& ball, const Point& p, PlannedTets& out) {
+  out.clear();
+  for (TetId t : ball) {
+    const auto& tv = mesh.tet(t);
+    TetPoints pts = detail::tet_points(mesh, tv);
+    pts[local_index(tv, v)] = p;
+    out.push_back({tv, pts});
+  }
+}
+
+// Is every tet of v's ball positively oriented (Precision) with v at p?
+template <Precision P>
+bool ball_positive_at(const Mesh& mesh, VertexId v, const TetList& ball, const Point& p) {
+  for (TetId t : ball) {
+    const auto& tv = mesh.tet(t);
+    TetPoints pts = detail::tet_points(mesh, tv);
+    pts[local_index(tv, v)] = p;
+    if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return false;
+  }
+  return true;
+}
+
 struct SmoothPlan {
   Point to;
   GeoParam geo;  // on a model: the parameters of `to`
@@ -220,13 +244,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     pts[local_index(tv, v)] = p;
     return pts;
   };
-  auto all_positive_at = [&](const Point& p) {
-    for (TetId t : s.ball) {
-      const TetPoints pts = points_at(t, p);
-      if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return false;
-    }
-    return true;
-  };
+  auto all_positive_at = [&](const Point& p) { return ball_positive_at<P>(mesh, v, s.ball, p); };
   if constexpr (score_is_mean_ratio_cubed<Criterion>()) {
     // The cube of the mean ratio of ball tet i with v at p, from its terms.
     const std::size_t n = s.ball.size();
@@ -412,13 +430,7 @@ struct Smoothing {
   }
   void apply(Mesh& mesh, VertexId v, const Plan& plan, Scratch& s) const { apply_smoothing(mesh, v, plan, s, options); }
   void preview(const Mesh& mesh, VertexId v, const Plan& plan, const Scratch& s, PlannedTets& out) const {
-    out.clear();
-    for (TetId t : s.ball) {
-      const auto& tv = mesh.tet(t);
-      TetPoints pts = detail::tet_points(mesh, tv);
-      pts[local_index(tv, v)] = plan.to;
-      out.push_back({tv, pts});
-    }
+    ball_moved_to(mesh, v, s.ball, plan.to, out);
   }
 };
 
