@@ -1,8 +1,11 @@
 #include "cli.hpp"
 
+#include <metrica/error.hpp>
+#include <metrica/input_checks.hpp>
+#include <metrica/io/file_format.hpp>
+#include <metrica/io/output_set.hpp>
 #include <metrica/log.hpp>
 #include <metrica/mesh_build.hpp>
-#include <metrica/io/file_format.hpp>
 #include <metrica/policies/threads.hpp>
 #include <metrica/timer.hpp>
 
@@ -10,6 +13,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <unistd.h>
 
 namespace metrica::cli {
 
@@ -24,7 +28,8 @@ Options::Options(std::string command, std::string usage, std::string description
 bool Options::parse(const std::vector<std::string>& args) {
   po::options_description common("Common options");
   common.add_options()("help,h", "print this help and exit")("verbose,v", "print more detail (timings, warnings)")(
-      "quiet,q", "print only errors")("threads", po::value<int>()->value_name("N"),
+      "quiet,q", "print only errors")(
+      "dry-run", "check the options and the inputs, print what would be done, compute and write nothing")("threads", po::value<int>()->value_name("N"),
                                       "threads for parallel work (default: all cores; at most 8 per core)");
   po::options_description all;
   all.add(own_).add(common);
@@ -53,7 +58,32 @@ bool Options::parse(const std::vector<std::string>& args) {
     }
     set_thread_count(n);
   }
+  if (vm_.count("format-version")) in_range("format-version", 1, 4);
+  // Outputs: a known extension (usage), a file that can be written (input).
+  for (const auto& out : outputs_) {
+    if (!vm_.count(out.name)) continue;
+    const auto path = vm_[out.name].as<std::string>();
+    if (!out.formats.empty() &&
+        std::find(out.formats.begin(), out.formats.end(), io::format_of(path)) == out.formats.end()) {
+      std::string list;
+      for (auto f : out.formats) list += std::string(list.empty() ? "" : ", ") + io::to_string(f);
+      throw UsageError(fmt::format("{}: --{} {}: unknown format (use {})", command_, out.name, path, list));
+    }
+    io::writable_target(path);
+  }
   return true;
+}
+
+double Options::positive(const char* name, double hi) const {
+  const double x = get<double>(name);
+  if (!(x > 0.0 && x <= hi))
+    throw_out_of_range(name, hi < 1e300 ? fmt::format("in (0, {}]", hi) : std::string("finite and > 0"),
+                       fmt::format("{}", x));
+  return x;
+}
+
+void Options::throw_out_of_range(const char* name, const std::string& domain, const std::string& value) const {
+  throw UsageError(fmt::format("{}: --{} must be {} (got {})", command_, name, domain, value));
 }
 
 void Options::input(const char* what) {
@@ -61,9 +91,15 @@ void Options::input(const char* what) {
   positional_.add("input", 1);
 }
 
-void Options::output(const char* what) {
+void Options::output(const char* what, std::initializer_list<io::FileFormat> formats) {
   own_.add_options()("output,o", po::value<std::string>()->value_name("FILE"), what);
   positional_.add("output", 1);
+  outputs_.push_back({"output", formats});
+}
+
+void Options::output_option(const char* name, const char* what, std::initializer_list<io::FileFormat> formats) {
+  own_.add_options()(name, po::value<std::string>()->value_name("FILE"), what);
+  outputs_.push_back({name, formats});
 }
 
 void Options::format_version(const char* what) {
@@ -75,25 +111,52 @@ std::string Options::required(const char* name, const char* what) const {
   return vm_[name].as<std::string>();
 }
 
-LoadedMesh load_mesh(const std::string& path) {
+LoadedMesh load_mesh(const std::string& path, Valid valid) {
   LoadedMesh out;
   Stopwatch clock;
   out.data = io::read_mesh_file(path);
+  check_coordinates(out.data, path);
   out.read_seconds = clock.seconds();
   clock.restart();
   BuildOptions opt;
   opt.source = path;
+  opt.require_boundary_triangles = valid == Valid::required;
   out.mesh = build_mesh(out.data, opt);
   out.build_seconds = clock.seconds();
   log::info("read {} in {:.3f} s, built adjacency in {:.3f} s", path, out.read_seconds, out.build_seconds);
+  if (valid == Valid::required) check_valid_input(out.mesh, path);
   return out;
+}
+
+std::size_t default_max_tets() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page <= 0) return 100'000'000;
+  return static_cast<std::size_t>(0.9 * double(pages) * double(page) / kBytesPerTet);
+}
+
+void max_tets_option(Options& o) {
+  o.add()("max-tets", po::value<double>()->value_name("N"),
+          "refuse a run predicted to make more than N tets (default: what 90% of this machine's memory holds, "
+          "300 bytes per tet)");
+}
+
+double check_predicted_size(const Options& o, double complexity, const std::string& what) {
+  const double limit = o.has("max-tets") ? o.positive("max-tets") : double(default_max_tets());
+  const double predicted = kTetsPerComplexity * complexity;
+  if (!(predicted <= limit))
+    throw InputError(fmt::format("{}: {} has complexity {:.4g}: about {:.3g} tets and {} of memory; the limit is "
+                                 "{:.3g} tets (--max-tets N raises it; the default is what 90% of this machine's "
+                                 "memory holds)",
+                                 o.command(), what, complexity, predicted, bytes_text(predicted * kBytesPerTet),
+                                 limit));
+  return predicted;
 }
 
 std::string bytes_text(double bytes) {
   if (bytes < 1024) return fmt::format("{:.0f} B", bytes);
   if (bytes < 1024.0 * 1024) return fmt::format("{:.1f} KiB", bytes / 1024);
   if (bytes < 1024.0 * 1024 * 1024) return fmt::format("{:.1f} MiB", bytes / (1024.0 * 1024));
-  return fmt::format("{:.2f} GiB", bytes / (1024.0 * 1024 * 1024));
+  return fmt::format("{:.3g} GiB", bytes / (1024.0 * 1024 * 1024));
 }
 
 std::string count_text(std::size_t n) {

@@ -3,11 +3,16 @@
 #pragma once
 
 #include <metrica/geometry/cad_model.hpp>
+#include <metrica/io/file_format.hpp>
 #include <metrica/io/mesh_data.hpp>
 #include <metrica/mesh.hpp>
 
 #include <boost/program_options.hpp>
 
+#include <fmt/core.h>
+
+#include <cmath>
+#include <initializer_list>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -17,7 +22,9 @@ namespace metrica::cli {
 
 namespace po = boost::program_options;
 
-// Exit codes: 0 success, 1 invalid input or failed check, 2 bad usage.
+// Exit codes: 0 success, 1 invalid input or failed run or check, 2 bad
+// usage (an unknown option, a missing argument, an option or argument out
+// of its domain). Usage is checked before any file is read.
 inline constexpr int kOk = 0;
 inline constexpr int kInvalid = 1;
 inline constexpr int kUsage = 2;
@@ -35,6 +42,11 @@ struct Command {
 
 const std::vector<Command>& commands();
 
+// The whole command line after the program name: runs the command in an
+// io::OutputSet committed only when it returns 0, maps errors to exit codes
+// and prints them. Used by main() and by the option fuzzer.
+int run_command_line(const std::vector<std::string>& args);
+
 // A subcommand's options: its own plus the common ones (-h, -v, -q,
 // --threads), and positional names. parse() returns false when --help was
 // asked for (and printed).
@@ -45,12 +57,19 @@ class Options {
   void positional(const char* name, int max_count) { positional_.add(name, max_count); }
   // The common -i/--input and -o/--output, each also accepted
   // positionally (input before output, in the order these are called).
+  // An output's extension must be one of `formats` (none: any), and the
+  // file must be writable (io::writable_target): both checked by parse().
   void input(const char* what);
-  void output(const char* what);
+  void output(const char* what, std::initializer_list<io::FileFormat> formats);
+  // Another output option (--vtu FILE, --csv FILE, ...), checked alike.
+  void output_option(const char* name, const char* what, std::initializer_list<io::FileFormat> formats);
   // --format-version V (libMeshb version to write); 0 when not given.
   void format_version(const char* what);
-  int format_version() const { return has("format-version") ? get<int>("format-version") : 0; }
+  int format_version() const { return has("format-version") ? in_range("format-version", 1, 4) : 0; }
   bool parse(const std::vector<std::string>& args);
+  // --dry-run: the options and inputs are checked, nothing is computed or
+  // written (the command says what it would do).
+  bool dry_run() const { return has("dry-run"); }
   const po::variables_map& vm() const { return vm_; }
   bool has(const char* name) const { return vm_.count(name) != 0; }
   template <class T>
@@ -59,21 +78,54 @@ class Options {
   }
   // A required string option, with a usage error naming it if missing.
   std::string required(const char* name, const char* what) const;
+  // A numeric option's value checked against its domain [lo, hi] (NaN is
+  // refused): a usage error names the option, the domain and the value.
+  template <class T>
+  T in_range(const char* name, T lo, T hi) const {
+    const T x = get<T>(name);
+    if (!(x >= lo && x <= hi)) throw_out_of_range(name, fmt::format("in [{}, {}]", lo, hi), fmt::format("{}", x));
+    return x;
+  }
+  // A real option that must be finite and > 0 (and at most hi).
+  double positive(const char* name, double hi = 1e300) const;
+  [[noreturn]] void throw_out_of_range(const char* name, const std::string& domain, const std::string& value) const;
+  const std::string& command() const { return command_; }
 
  private:
   std::string command_, usage_, description_;
   po::options_description own_;
   po::positional_options_description positional_;
   po::variables_map vm_;
+  struct Output {
+    std::string name;
+    std::vector<io::FileFormat> formats;
+  };
+  std::vector<Output> outputs_;
 };
 
-// Reads a mesh file and builds the Mesh, reporting time when verbose.
+// Reads a mesh file and builds the Mesh, reporting time when verbose. The
+// coordinates are checked (finite, within +-1e12); with Valid::required
+// the mesh must pass validate() (orientation, adjacency, a closed manifold
+// boundary), else an InputError names the first problems.
 struct LoadedMesh {
   io::MeshData data;
   Mesh mesh;
   double read_seconds = 0, build_seconds = 0;
 };
-LoadedMesh load_mesh(const std::string& path);
+enum class Valid { required, not_required };
+LoadedMesh load_mesh(const std::string& path, Valid valid = Valid::required);
+
+// --max-tets: the most tetrahedra a run may be asked to make. Its default
+// is what 90% of the machine's memory holds at kBytesPerTet.
+inline constexpr double kBytesPerTet = 300;
+// Output tets per unit of complexity: 10-14 measured on the UGAWG cases.
+inline constexpr double kTetsPerComplexity = 10;
+std::size_t default_max_tets();
+// Adds --max-tets to a command's options.
+void max_tets_option(Options& o);
+// Refuses (InputError) a run whose predicted output, kTetsPerComplexity x
+// `complexity`, exceeds --max-tets; returns the prediction.
+double check_predicted_size(const Options& o, double complexity, const std::string& what);
 
 // --geometry FILE: opens the CAD model and associates the mesh's boundary
 // vertices with it (InputError when they do not match).

@@ -9,6 +9,8 @@
 #include <metrica/log.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
+#include <metrica/metrics/complexity.hpp>
+#include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
@@ -82,7 +84,8 @@ int run_adapt(const std::vector<std::string>& args) {
             "  metrica adapt cube.meshb --analytic linear --threads 2 -o linear.meshb\n"
             "  metrica adapt cube-cylinder.meshb --geometry cube-cylinder.step --analytic polar-2 -o cc.meshb");
   o.input("mesh (.mesh, .meshb)");
-  o.output("adapted mesh (.mesh, .meshb, .vtu, .su2)");
+  o.output("adapted mesh (.mesh, .meshb, .vtu, .su2)",
+           {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2});
   o.add()("metric,m", po::value<std::string>()->value_name("FILE"), "metric at the input's vertices (.sol, .solb)")(
       "analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
       "iterations", po::value<int>()->default_value(1)->value_name("N"),
@@ -112,17 +115,20 @@ int run_adapt(const std::vector<std::string>& args) {
       "a collapse may not make a tet worse than Q (unless the ball was already worse)")(
       "smooth-below", po::value<double>()->default_value(0.3, "0.3")->value_name("Q"),
       "smooth the vertices of tets with mean ratio below Q during the cycles")(
-      "metric-out", po::value<std::string>()->value_name("FILE"), "also write the metric at the output's vertices")(
-      "vtu", po::value<std::string>()->value_name("FILE"), "also write the adapted mesh for ParaView")(
+      "hmin", po::value<double>()->value_name("H"), "clamp the metric's sizes to at least H")(
+      "hmax", po::value<double>()->value_name("H"), "clamp the metric's sizes to at most H")(
       "geometry", po::value<std::string>()->value_name("MODEL"),
       "CAD model the boundary lies on (.step .stp .iges .igs .brep .geo): new boundary vertices go on it");
+  o.output_option("metric-out", "also write the metric at the output's vertices (.sol, .solb)",
+                  {io::FileFormat::sol, io::FileFormat::solb});
+  o.output_option("vtu", "also write the adapted mesh for ParaView (.vtu)", {io::FileFormat::vtu});
   o.format_version("libMeshb version to write (default: the input's)");
+  max_tets_option(o);
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   const auto output = o.required("output", "the output mesh (-o)");
   if (o.has("metric") == o.has("analytic")) throw UsageError("adapt: give one of -m METRIC or --analytic NAME");
-  const int iterations = o.get<int>("iterations");
-  if (iterations < 1) throw UsageError("adapt: --iterations must be at least 1");
+  const int iterations = o.in_range("iterations", 1, 1000);
   if (iterations > 1 && !o.has("analytic"))
     throw UsageError("adapt: --iterations needs --analytic (a metric file holds values at the input's vertices only)");
   const PolicyChoice policies{o.get<std::string>("space"), o.get<std::string>("precision"),
@@ -135,23 +141,35 @@ int run_adapt(const std::vector<std::string>& args) {
   const bool serial = policies.concurrency == Serial::name;
 
   AdaptOptions ao;
-  ao.max_cycles = o.get<int>("cycles");
-  ao.points = point_rule_from_name(o.get<std::string>("points"));
-  ao.quality_passes = o.get<int>("quality-passes");
-  ao.repair_rounds = o.get<int>("repair-rounds");
-  ao.repair_below = o.get<double>("repair-below");
-  if (o.has("max-length")) ao.refine.max_length = o.get<double>("max-length");
-  if (o.has("min-length")) ao.collapse.min_length = o.get<double>("min-length");
-  ao.collapse.quality_floor = o.get<double>("quality-floor");
-  if (o.has("collapse-max-length")) ao.collapse.max_new_length = o.get<double>("collapse-max-length");
-  ao.smooth.below = o.get<double>("smooth-below");
-  if (!(ao.refine.max_length > ao.collapse.min_length) || !(ao.collapse.min_length > 0.0))
-    throw UsageError(fmt::format("adapt: need 0 < --min-length < --max-length (got {} and {})", ao.collapse.min_length,
+  ao.max_cycles = o.in_range("cycles", 0, 1000);
+  try {
+    ao.points = point_rule_from_name(o.get<std::string>("points"));
+  } catch (const InputError& e) {
+    throw UsageError(fmt::format("adapt: {}", e.what()));
+  }
+  ao.quality_passes = o.in_range("quality-passes", 0, 1000);
+  ao.repair_rounds = o.in_range("repair-rounds", 0, 1000);
+  ao.repair_below = o.in_range("repair-below", 0.0, 1.0);
+  if (o.has("max-length")) ao.refine.max_length = o.positive("max-length", 1e6);
+  if (o.has("min-length")) ao.collapse.min_length = o.positive("min-length", 1e6);
+  ao.collapse.quality_floor = o.in_range("quality-floor", 0.0, 1.0);
+  if (o.has("collapse-max-length")) ao.collapse.max_new_length = o.positive("collapse-max-length", 1e6);
+  ao.smooth.below = o.in_range("smooth-below", 0.0, 1.0);
+  if (!(ao.refine.max_length > ao.collapse.min_length))
+    throw UsageError(fmt::format("adapt: need --min-length < --max-length (got {} and {})", ao.collapse.min_length,
                                  ao.refine.max_length));
-  if (ao.max_cycles < 0 || ao.quality_passes < 0 || ao.repair_rounds < 0)
-    throw UsageError("adapt: --cycles, --quality-passes and --repair-rounds must be >= 0");
-  if (!(ao.repair_below >= 0.0 && ao.repair_below <= 1.0))
-    throw UsageError(fmt::format("adapt: --repair-below must be in [0, 1] (got {})", ao.repair_below));
+  MetricBounds bounds;
+  if (o.has("hmin")) bounds.hmin = o.positive("hmin");
+  if (o.has("hmax")) bounds.hmax = o.positive("hmax");
+  if (bounds.hmin > bounds.hmax) throw UsageError("adapt: --hmin is larger than --hmax");
+  std::optional<AnalyticMetric> analytic;
+  if (o.has("analytic")) {
+    try {
+      analytic = analytic_metric_from_name(o.get<std::string>("analytic"));
+    } catch (const InputError& e) {
+      throw UsageError(fmt::format("adapt: {}", e.what()));
+    }
+  }
 
   Stopwatch clock;
   auto loaded = load_mesh(input);
@@ -162,11 +180,12 @@ int run_adapt(const std::vector<std::string>& args) {
     model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data);
     ao.geometry = model.get();
   }
-  std::optional<AnalyticMetric> analytic;
   MetricFunction exact;
-  if (o.has("analytic")) {
-    analytic = analytic_metric_from_name(o.get<std::string>("analytic"));
-    exact = [kind = *analytic](const Point& p) { return evaluate(kind, p); };
+  if (analytic) {
+    if (bounds.active())
+      exact = [kind = *analytic, bounds](const Point& p) { return clamp_metric(evaluate(kind, p), bounds); };
+    else
+      exact = [kind = *analytic](const Point& p) { return evaluate(kind, p); };
     ao.metric = &exact;
   }
   const bool talk = log::level() >= log::Level::normal;
@@ -181,6 +200,19 @@ int run_adapt(const std::vector<std::string>& args) {
     } else {
       const auto path = o.get<std::string>("metric");
       field = metric_field_from_sol(io::read_sol(path), loaded.data.vertices.size(), path);
+    }
+    clamp_metrics(field, bounds);
+    const std::string source = analytic ? fmt::format("metric '{}'", to_string(*analytic)) : o.get<std::string>("metric");
+    check_metric_field(field, source);
+    // An analytic metric is sampled inside the tets (the vertex formula
+    // overestimates it on a coarse start mesh).
+    const double c = analytic ? sampled_complexity(mesh, exact) : complexity(mesh, field);
+    const double predicted = check_predicted_size(o, c, "the metric");
+    if (o.dry_run()) {
+      fmt::print("adapt: {} vertices, {} tets in; about {:.3g} tets out (complexity x {}), about {} of memory\n",
+                 count_text(mesh.num_vertices()), count_text(mesh.num_tets()), predicted, kTetsPerComplexity,
+                 bytes_text(predicted * kBytesPerTet));
+      return kOk;
     }
     assign_metric(mesh, field);
     if (talk)
@@ -212,6 +244,7 @@ int run_adapt(const std::vector<std::string>& args) {
   if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
   auto data = extract_mesh_data(mesh);
   data.version = loaded.data.version;
+  const auto report = quality_report(mesh, policies.space);  // InputError on a non-finite value
   if (model) complete_geometry_records(data, *model);
   io::write_mesh_file(output, data, o.format_version());
   if (o.has("metric-out")) {
@@ -222,7 +255,7 @@ int run_adapt(const std::vector<std::string>& args) {
   if (o.has("vtu")) io::write_mesh_file(o.get<std::string>("vtu"), data);
   if (talk) {
     fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());
-    fmt::print("{}", format_report(quality_report(mesh, policies.space)));
+    fmt::print("{}", format_report(report));
   }
   return kOk;
 }

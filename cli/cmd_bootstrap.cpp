@@ -26,23 +26,22 @@ int run_bootstrap(const std::vector<std::string>& args) {
             "  metrica bootstrap cube-cylinder.step -o start.meshb --size 0.2\n"
             "  metrica adapt start.meshb --geometry cube-cylinder.step --analytic polar-2 -o cc.meshb");
   o.input("CAD model (.step .stp .iges .igs .brep .geo)");
-  o.output("mesh (.mesh, .meshb; .vtu, .su2 without the association)");
+  o.output("mesh (.mesh, .meshb; .vtu, .su2 without the association)",
+           {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2});
   o.add()("size", po::value<double>()->value_name("H"), "target edge length (default: a tenth of the model's diagonal)");
   o.format_version("libMeshb version to write, 1-4 (default 2)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the CAD model (-i)");
   const auto output = o.required("output", "the output mesh (-o)");
   BootstrapOptions bo;
-  if (o.has("size")) {
-    bo.size = o.get<double>("size");
-    if (!(bo.size > 0.0) || !std::isfinite(bo.size))
-      throw UsageError(fmt::format("bootstrap: --size must be a positive number (got {})", bo.size));
-  }
+  if (o.has("size")) bo.size = o.positive("size");
+  const int version = o.format_version();
   Stopwatch clock;
   CadModel model(input);
   if (bo.size > 0.0 && bo.size < 1e-4 * model.size())
     throw UsageError(fmt::format("bootstrap: --size {} is below 1e-4 of the model's size {:.3g} (too many tets)",
                                  bo.size, model.size()));
+  if (o.dry_run()) return kOk;
   auto data = bootstrap_mesh(model, bo);
   Mesh mesh = build_mesh(data, {.source = input});
   const auto check = mesh.validate();
@@ -50,7 +49,7 @@ int run_bootstrap(const std::vector<std::string>& args) {
   // The association as the adaptation will read it back.
   associate(mesh, model, &data);
   auto out = extract_mesh_data(mesh);
-  out.version = o.format_version() != 0 ? o.format_version() : 2;
+  out.version = version != 0 ? version : 2;
   complete_geometry_records(out, model);
   io::write_mesh_file(output, out);
   if (log::level() >= log::Level::normal) {

@@ -20,21 +20,21 @@ int run_check(const std::vector<std::string>& args) {
             "  metrica check cube.meshb\n"
             "  metrica check adapted.meshb --geometry cube-cylinder.step");
   o.input("mesh to check (.mesh, .meshb)");
-  o.add()("max-messages", po::value<std::size_t>()->default_value(20)->value_name("N"),
+  o.add()("max-messages", po::value<int>()->default_value(20)->value_name("N"),
       "problems listed per check (counts stay exact)")(
       "geometry", po::value<std::string>()->value_name("MODEL"), "CAD model the boundary must lie on")(
       "model-tolerance", po::value<double>()->default_value(1e-8, "1e-8")->value_name("D"),
       "largest distance of a boundary vertex to its entity (--geometry)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
-
-  auto loaded = load_mesh(input);
   ValidateOptions vo;
-  vo.max_messages_per_check = o.get<std::size_t>("max-messages");
+  vo.max_messages_per_check = static_cast<std::size_t>(o.in_range("max-messages", 0, 1000000));
+  const double tolerance = o.in_range("model-tolerance", 0.0, 1e300);
+
+  auto loaded = load_mesh(input, Valid::not_required);
+  if (o.dry_run()) return kOk;
   const auto report = loaded.mesh.validate(vo);
   if (report.ok() && o.has("geometry")) {
-    const double tolerance = o.get<double>("model-tolerance");
-    if (!(tolerance >= 0.0)) throw UsageError("check: --model-tolerance must be >= 0");
     const auto model = open_geometry(o.get<std::string>("geometry"), loaded.mesh, &loaded.data);
     const ModelDistance d = model_distance(loaded.mesh, *model, tolerance);
     if (log::level() >= log::Level::normal) fmt::print("{}: {}\n", input, model_distance_text(loaded.mesh, *model));

@@ -1,5 +1,7 @@
 #include "cli.hpp"
 
+#include <metrica/input_checks.hpp>
+
 #include <metrica/error.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
@@ -21,7 +23,9 @@ int run_convert(const std::vector<std::string>& args) {
             "          metrica convert cube.meshb cube.vtu\n"
             "          metrica convert metric.solb metric.sol --format-version 2");
   o.input("input file");
-  o.output("output file; its extension picks the format");
+  o.output("output file; its extension picks the format",
+           {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2, io::FileFormat::sol,
+            io::FileFormat::solb});
   o.format_version("libMeshb version to write (default: the input's)");
   o.add()("no-check", "write even if the mesh fails its checks");
   if (!o.parse(args)) return kOk;
@@ -36,8 +40,11 @@ int run_convert(const std::vector<std::string>& args) {
   if (in_sol != out_sol)
     throw UsageError(fmt::format("convert: cannot convert {} to {} (a solution converts to a solution, a mesh to a mesh)",
                                  io::to_string(in_format), io::to_string(out_format)));
+  if (in_format == io::FileFormat::unknown || in_format == io::FileFormat::vtu || in_format == io::FileFormat::su2)
+    throw UsageError(fmt::format("convert: cannot read {} (Metrica reads .mesh, .meshb, .sol and .solb)", input));
   if (in_sol) {
     const auto sol = io::read_sol(input);
+    if (o.dry_run()) return kOk;
     io::write_sol(output, sol, version);
     if (log::level() >= log::Level::normal)
       fmt::print("wrote {}: {} vertices x {} fields ({:.2f} s)\n", output, count_text(sol.count), sol.types.size(),
@@ -46,6 +53,8 @@ int run_convert(const std::vector<std::string>& args) {
   }
 
   const auto data = io::read_mesh_file(input);
+  check_coordinates(data, input);
+  if (o.dry_run()) return kOk;
   if (!o.has("no-check")) {
     BuildOptions bo;
     bo.source = input;

@@ -1,11 +1,16 @@
 #include "cli.hpp"
 
+#include <metrica/input_checks.hpp>
+
 #include <metrica/box.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/log.hpp>
 #include <metrica/timer.hpp>
 
 #include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include <cstdio>
 
@@ -21,7 +26,8 @@ int run_cube(const std::vector<std::string>& args) {
           "hexes per direction (one value for all three, or three)")(
       "lo", po::value<std::string>()->value_name("X,Y,Z"), "lower corner (default 0,0,0; negative: --lo=-1,-1,-1)")(
       "hi", po::value<std::string>()->value_name("X,Y,Z"), "upper corner (default 1,1,1)");
-  o.output("output mesh (.mesh, .meshb, .vtu, .su2)");
+  o.output("output mesh (.mesh, .meshb, .vtu, .su2)",
+           {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2});
   o.format_version("libMeshb version to write, 1-4 (default 2)");
   if (!o.parse(args)) return kOk;
 
@@ -34,6 +40,12 @@ int run_cube(const std::vector<std::string>& args) {
     spec.nx = n[0], spec.ny = n[1], spec.nz = n[2];
   else
     throw UsageError("cube: --n takes one value or three");
+  // 6 tets per hex: at most 600 million tets (a 100M-tet start is already
+  // more than the UGAWG cases ever need).
+  for (int k : {spec.nx, spec.ny, spec.nz})
+    if (k < 1 || k > 1000) throw UsageError(fmt::format("cube: --n must be in [1, 1000] (got {})", k));
+  if (6.0 * spec.nx * spec.ny * spec.nz > 6e8)
+    throw UsageError(fmt::format("cube: {} x {} x {} hexes make more than 600 million tets", spec.nx, spec.ny, spec.nz));
   auto corner = [&](const char* name, Point& p) {
     if (!o.has(name)) return;
     const auto text = o.get<std::string>(name);
@@ -42,14 +54,24 @@ int run_cube(const std::vector<std::string>& args) {
     if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &x, &y, &z, &tail) != 3)
       throw UsageError(fmt::format("cube: --{} takes X,Y,Z, got '{}'", name, text));
     p = Point(x, y, z);
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(p[k]) <= kCoordinateLimit))
+        throw UsageError(fmt::format("cube: --{} coordinates must be finite and within +-{:g}, got '{}'", name,
+                                     kCoordinateLimit, text));
   };
   corner("lo", spec.lo);
   corner("hi", spec.hi);
+  for (int k = 0; k < 3; ++k)
+    if (!(spec.hi[k] - spec.lo[k] > 1e-12 * std::max(1.0, std::abs(spec.lo[k]))))
+      throw UsageError(fmt::format("cube: need --lo < --hi in every direction (got {} and {} in {})", spec.lo[k],
+                                   spec.hi[k], "xyz"[k]));
   const auto output = o.required("output", "the output file (-o)");
+  const int version = o.format_version();
+  if (o.dry_run()) return kOk;
 
   Stopwatch clock;
   auto data = box_mesh_data(spec);
-  data.version = o.format_version() != 0 ? o.format_version() : 2;
+  data.version = version != 0 ? version : 2;
   io::write_mesh_file(output, data);
   if (log::level() >= log::Level::normal)
     fmt::print("wrote {}: {} vertices, {} tets, {} boundary triangles ({:.2f} s)\n", output,

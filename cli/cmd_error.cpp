@@ -54,7 +54,13 @@ int run_error(const std::vector<std::string>& args) {
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the mesh (-i)");
   std::optional<AnalyticField> analytic;
-  if (o.has("analytic")) analytic = analytic_field_from_name(o.get<std::string>("analytic"));
+  if (o.has("analytic")) {
+    try {
+      analytic = analytic_field_from_name(o.get<std::string>("analytic"));
+    } catch (const InputError& e) {
+      throw UsageError(fmt::format("error: {}", e.what()));
+    }
+  }
   if (!analytic && !o.has("field")) throw UsageError("metrica error: give --analytic NAME or --field F.solb");
   if (!o.has("truth") && !analytic)
     throw UsageError("metrica error: without --truth the reference is an analytic field: give --analytic NAME");
@@ -65,6 +71,7 @@ int run_error(const std::vector<std::string>& args) {
   Stopwatch clock;
   const auto mesh = load_mesh(input);
   const auto values = field_on(mesh, o, "field", analytic);
+  if (o.dry_run()) return kOk;
   double error = 0;
   std::string against;
   if (o.has("truth")) {
@@ -81,6 +88,7 @@ int run_error(const std::vector<std::string>& args) {
     error = l2_interpolation_error(mesh.mesh, values, [&](const Point& p) { return evaluate(*analytic, p); });
     against = fmt::format("against the exact {}", to_string(*analytic));
   }
+  if (!std::isfinite(error)) throw InputError(fmt::format("error: the L2 error of {} is not finite", input));
   const std::size_t n = mesh.mesh.num_vertices();
   if (log::level() >= log::Level::normal)
     fmt::print("{}: vertices {}  h {:.6e}  L2 error {:.6e}  {}  {:.2f} s\n", input, n,

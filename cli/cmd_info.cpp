@@ -1,9 +1,13 @@
 #include "cli.hpp"
 
+#include <metrica/error.hpp>
+
 #include <metrica/io/file_format.hpp>
 #include <metrica/mesh_summary.hpp>
 
 #include <fmt/core.h>
+
+#include <cmath>
 
 #include <filesystem>
 
@@ -18,9 +22,12 @@ int run_info(const std::vector<std::string>& args) {
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
 
-  auto loaded = load_mesh(input);
+  auto loaded = load_mesh(input, Valid::not_required);
+  if (o.dry_run()) return kOk;
   const auto& d = loaded.data;
   const auto s = summarize(loaded.mesh);
+  if (!std::isfinite(s.volume) || !std::isfinite(s.min_tet_volume) || !std::isfinite(s.max_tet_volume))
+    throw InputError(fmt::format("{}: the volume is not finite ({})", input, s.volume));
   std::error_code ec;
   const auto file_size = std::filesystem::file_size(input, ec);
 

@@ -21,7 +21,7 @@ int run_interpolate(const std::vector<std::string>& args) {
             "Example:\n"
             "  metrica interpolate old.meshb --field old.solb --to adapted.meshb -o restart.solb");
   o.input("source mesh (.mesh, .meshb)");
-  o.output("interpolated field (.sol, .solb)");
+  o.output("interpolated field (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
   o.add()("field", po::value<std::string>()->value_name("FILE"), "scalar field at the source's vertices (.sol, .solb)")(
       "to", po::value<std::string>()->value_name("MESH"), "target mesh (.mesh, .meshb)");
   if (!o.parse(args)) return kOk;
@@ -33,6 +33,7 @@ int run_interpolate(const std::vector<std::string>& args) {
   const auto from = load_mesh(input);
   const auto values = scalar_field_from_sol(io::read_sol(field_path), from.data.vertices.size(), field_path);
   const auto to = load_mesh(to_path);
+  if (o.dry_run()) return kOk;
   std::size_t outside = 0;
   const auto out = interpolate_vertex_field(from.mesh, values, to.mesh, &outside);
   io::SolData sol;

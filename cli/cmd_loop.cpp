@@ -6,6 +6,7 @@
 #include <metrica/io/atomic_file.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
+#include <metrica/io/output_set.hpp>
 #include <metrica/log.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/metrics/analytic_field.hpp>
@@ -13,9 +14,11 @@
 #include <metrica/pipeline/adaptive_loop.hpp>
 #include <metrica/policies/threads.hpp>
 #include <metrica/timer.hpp>
+#include <metrica/validate.hpp>
 
 #include <fmt/core.h>
 
+#include <cmath>
 #include <filesystem>
 
 namespace metrica::cli {
@@ -45,21 +48,27 @@ int run_loop(const std::vector<std::string>& args) {
       "interpolate", "also transfer the previous field to each new mesh (a solver restart) and report its error")(
       "concurrency", po::value<std::string>()->default_value("speculative")->value_name("C"),
       "speculative (--threads threads) or serial")(
-      "csv", po::value<std::string>()->value_name("FILE"), "write one row per iteration")(
       "output-dir", po::value<std::string>()->value_name("DIR"),
       "write each iteration's mesh and metric (loop-NN.meshb, loop-NN.solb)")(
       "geometry", po::value<std::string>()->value_name("MODEL"),
       "CAD model the start mesh's boundary lies on: new boundary vertices go on it (needs -i)");
+  o.output_option("csv", "write one row per iteration", {});
+  max_tets_option(o);
   if (!o.parse(args)) return kOk;
   if (!o.has("field")) throw UsageError("loop: give --field NAME (sinfun3, tanh3, sinatan3)");
-  const AnalyticField field = analytic_field_from_name(o.get<std::string>("field"));
+  AnalyticField field;
+  try {
+    field = analytic_field_from_name(o.get<std::string>("field"));
+  } catch (const InputError& e) {
+    throw UsageError(fmt::format("loop: {}", e.what()));
+  }
   LoopOptions lo;
   lo.field = [field](const Point& p) { return evaluate(field, p); };
-  lo.complexity = o.get<double>("complexity");
-  lo.double_every = o.get<int>("double-every");
-  lo.iterations = o.get<int>("iterations");
-  lo.norm = o.get<double>("norm");
-  lo.gradation = o.get<double>("gradation");
+  lo.complexity = o.positive("complexity");
+  lo.double_every = o.in_range("double-every", 1, 100000);
+  lo.iterations = o.in_range("iterations", 1, 100000);
+  lo.norm = o.in_range("norm", 1.0, 1e6);
+  lo.gradation = o.in_range("gradation", 0.0, 1e6);
   lo.interpolate = o.has("interpolate");
   lo.concurrency = o.get<std::string>("concurrency");
   if (!Concurrencies::contains(lo.concurrency))
@@ -69,14 +78,14 @@ int run_loop(const std::vector<std::string>& args) {
     lo.double_every = 3;
     lo.complexity = 1000.0;
   }
-  if (lo.iterations < 1 || lo.double_every < 1) throw UsageError("loop: --iterations and --double-every must be >= 1");
-  if (!(lo.complexity > 0)) throw UsageError("loop: --complexity must be > 0");
-  if (!(lo.norm >= 1)) throw UsageError("loop: --norm must be >= 1");
   if (lo.gradation != 0 && !(lo.gradation >= 1)) throw UsageError("loop: --gradation must be >= 1 (or 0: none)");
+  if (o.has("geometry") && !o.has("input")) throw UsageError("loop: --geometry needs the start mesh (-i)");
+  // The last iteration's complexity bounds the run's size.
+  const double last = loop_complexity(lo, lo.iterations - 1);
+  const double predicted = check_predicted_size(o, last, fmt::format("the last iteration (iteration {})", lo.iterations));
 
   Mesh mesh;
   std::unique_ptr<CadModel> model;
-  if (o.has("geometry") && !o.has("input")) throw UsageError("loop: --geometry needs the start mesh (-i)");
   if (o.has("input")) {
     auto loaded = load_mesh(o.get<std::string>("input"));
     mesh = std::move(loaded.mesh);
@@ -87,10 +96,19 @@ int run_loop(const std::vector<std::string>& args) {
   } else {
     mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
   }
+  if (o.dry_run()) {
+    fmt::print("loop: {} iterations from {} vertices; the last at complexity {:.4g}, about {:.3g} tets and {} of "
+               "memory\n",
+               lo.iterations, count_text(mesh.num_vertices()), last, predicted, bytes_text(predicted * kBytesPerTet));
+    return kOk;
+  }
   std::string dir;
   if (o.has("output-dir")) {
     dir = o.get<std::string>("output-dir");
-    std::filesystem::create_directories(dir);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw InputError(fmt::format("loop: cannot create --output-dir {}: {}", dir, ec.message()));
+    io::writable_target(dir + "/loop-01.meshb");
   }
   const bool talk = log::level() >= log::Level::normal;
   if (talk)
@@ -120,6 +138,12 @@ int run_loop(const std::vector<std::string>& args) {
     }
   };
   const auto rows = adaptive_loop(mesh, lo);
+  for (const auto& r : rows)
+    if (!std::isfinite(r.l2_error) || !std::isfinite(r.min_quality))
+      throw InputError(fmt::format("loop: iteration {} measured a non-finite error or quality; nothing written",
+                                   r.iteration));
+  if (const auto check = mesh.validate(); !check.ok())
+    throw InputError(fmt::format("loop: the last mesh is invalid; nothing written\n{}", check.to_string()));
   if (o.has("csv")) io::write_file_atomically(o.get<std::string>("csv"), loop_csv(rows));
   if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
   if (talk) fmt::print("loop: {:.1f} s in all\n", clock.seconds());

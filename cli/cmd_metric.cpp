@@ -12,6 +12,8 @@
 
 #include <fmt/core.h>
 
+#include <optional>
+
 namespace metrica::cli {
 
 int run_metric(const std::vector<std::string>& args) {
@@ -31,7 +33,8 @@ int run_metric(const std::vector<std::string>& args) {
             "  metrica metric cube-linear-00.meshb --analytic linear -o linear.solb\n"
             "  metrica metric cube.meshb --field sinfun3 --complexity 8000 --gradation 3 -o m.solb");
   o.input("mesh (.mesh, .meshb)");
-  o.output("metric (.sol, .solb)");
+  o.output("metric (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
+  max_tets_option(o);
   o.format_version("libMeshb version to write (default: the mesh's)");
   o.add()("analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
       "field", po::value<std::string>()->value_name("NAME"), "analytic field for a multiscale metric")(
@@ -53,28 +56,37 @@ int run_metric(const std::vector<std::string>& args) {
   if (sources != 1)
     throw UsageError("metric: give exactly one source: --analytic, --field, --field-file or -m");
 
+  MetricBounds bounds;
+  if (o.has("hmin")) bounds.hmin = o.positive("hmin");
+  if (o.has("hmax")) bounds.hmax = o.positive("hmax");
+  if (o.has("max-anisotropy")) bounds.max_anisotropy = o.in_range("max-anisotropy", 1.0, 1e300);
+  GradationOptions grading;
+  std::optional<AnalyticField> analytic_field;
+  std::optional<AnalyticMetric> analytic_metric;
+  try {
+    check_bounds(bounds);
+    grading.space = gradation_space_from_name(o.get<std::string>("gradation-space"));
+    if (o.has("field")) analytic_field = analytic_field_from_name(o.get<std::string>("field"));
+    if (o.has("analytic")) analytic_metric = analytic_metric_from_name(o.get<std::string>("analytic"));
+  } catch (const InputError& e) {
+    throw UsageError(fmt::format("metric: {}", e.what()));
+  }
+  if (o.has("gradation")) grading.beta = o.in_range("gradation", 1.0, 1e6);
+  const double norm = o.in_range("norm", 1.0, 1e6);
+  if (o.has("complexity")) o.positive("complexity");
+
   Stopwatch clock;
   const auto loaded = load_mesh(input);
   const Mesh& mesh = loaded.mesh;
   const std::size_t n = loaded.data.vertices.size();
-
-  MetricBounds bounds;
-  if (o.has("hmin")) bounds.hmin = o.get<double>("hmin");
-  if (o.has("hmax")) bounds.hmax = o.get<double>("hmax");
-  if (o.has("max-anisotropy")) bounds.max_anisotropy = o.get<double>("max-anisotropy");
-  check_bounds(bounds);
-  GradationOptions grading;
-  grading.space = gradation_space_from_name(o.get<std::string>("gradation-space"));
-  if (o.has("gradation")) grading.beta = o.get<double>("gradation");
-  if (o.has("complexity") && !(o.get<double>("complexity") > 0.0))
-    throw InputError(fmt::format("the target complexity must be > 0 (got {})", o.get<double>("complexity")));
+  if (o.has("complexity")) check_predicted_size(o, o.get<double>("complexity"), "the target (--complexity)");
 
   std::vector<Sym6> field;
   std::string what;
   if (o.has("field") || o.has("field-file")) {
     std::vector<double> values;
-    if (o.has("field")) {
-      const auto f = analytic_field_from_name(o.get<std::string>("field"));
+    if (analytic_field) {
+      const auto f = *analytic_field;
       values = analytic_field_values(f, loaded.data.vertices);
       what = fmt::format("multiscale metric of {}", to_string(f));
     } else {
@@ -82,9 +94,10 @@ int run_metric(const std::vector<std::string>& args) {
       values = scalar_field_from_sol(io::read_sol(path), n, path);
       what = fmt::format("multiscale metric of {}", path);
     }
+    if (o.dry_run()) return kOk;
     MultiscaleOptions ms;
     ms.complexity = o.has("complexity") ? o.get<double>("complexity") : 1000.0;
-    ms.norm = o.get<double>("norm");
+    ms.norm = norm;
     ms.bounds = bounds;
     ms.gradation = o.has("gradation");
     ms.gradation_options = grading;
@@ -93,8 +106,8 @@ int run_metric(const std::vector<std::string>& args) {
     log::info("multiscale: Hessian {:.3f} s, gradation {:.3f} s, {} relaxations, total {:.3f} s", rep.hessian_seconds,
               rep.gradation_seconds, rep.relaxations, rep.total_seconds);
   } else {
-    if (o.has("analytic")) {
-      const auto kind = analytic_metric_from_name(o.get<std::string>("analytic"));
+    if (analytic_metric) {
+      const auto kind = *analytic_metric;
       field = analytic_metric_field(kind, loaded.data.vertices);
       what = fmt::format("metric '{}'", to_string(kind));
     } else {
@@ -102,6 +115,7 @@ int run_metric(const std::vector<std::string>& args) {
       field = metric_field_from_sol(io::read_sol(path), n, path);
       what = fmt::format("metric of {}", path);
     }
+    if (o.dry_run()) return kOk;
     const auto dual = dual_volumes(mesh);
     if (o.has("complexity")) scale_to_complexity(field, dual, o.get<double>("complexity"));
     clamp_metrics(field, bounds);
@@ -117,6 +131,7 @@ int run_metric(const std::vector<std::string>& args) {
     what += fmt::format(" intersected with {}", path);
   }
   check_metric_field(field, what);
+  check_predicted_size(o, complexity(mesh, field), "the metric");
   auto sol = metric_field_to_sol(field);
   sol.version = loaded.data.version;
   io::write_sol(output, sol, o.format_version());

@@ -1,14 +1,19 @@
 #include "cli.hpp"
 
+#include <metrica/error.hpp>
+
 #include <metrica/io/atomic_file.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/log.hpp>
+#include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/metrics/space.hpp>
 
 #include <fmt/core.h>
+
+#include <optional>
 
 namespace metrica::cli {
 
@@ -26,22 +31,39 @@ int run_quality(const std::vector<std::string>& args) {
       "analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
       "space", po::value<std::string>()->default_value("log-euclidean")->value_name("S"),
       "metric interpolation for Q: log-euclidean, anisotropic, isotropic")(
-      "csv", po::value<std::string>()->value_name("FILE"), "also write the report as CSV (section,key,lo,hi,value)");
+      "hmin", po::value<double>()->value_name("H"), "clamp the metric's sizes to at least H")(
+      "hmax", po::value<double>()->value_name("H"), "clamp the metric's sizes to at most H");
+  o.output_option("csv", "also write the report as CSV (section,key,lo,hi,value)", {});
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   if (o.has("metric") == o.has("analytic")) throw UsageError("quality: give one of -m METRIC or --analytic NAME");
   const auto space = o.get<std::string>("space");
   if (!Spaces::contains(space)) throw UsageError(fmt::format("quality: unknown space '{}' ({})", space, Spaces::names()));
+  MetricBounds bounds;
+  if (o.has("hmin")) bounds.hmin = o.positive("hmin");
+  if (o.has("hmax")) bounds.hmax = o.positive("hmax");
+  if (bounds.hmin > bounds.hmax) throw UsageError("quality: --hmin is larger than --hmax");
+  std::optional<AnalyticMetric> analytic;
+  if (o.has("analytic")) {
+    try {
+      analytic = analytic_metric_from_name(o.get<std::string>("analytic"));
+    } catch (const InputError& e) {
+      throw UsageError(fmt::format("quality: {}", e.what()));
+    }
+  }
 
   auto loaded = load_mesh(input);
   const std::size_t n = loaded.data.vertices.size();
   std::vector<Sym6> field;
-  if (o.has("analytic")) {
-    field = analytic_metric_field(analytic_metric_from_name(o.get<std::string>("analytic")), loaded.data.vertices);
+  if (analytic) {
+    field = analytic_metric_field(*analytic, loaded.data.vertices);
   } else {
     const auto path = o.get<std::string>("metric");
     field = metric_field_from_sol(io::read_sol(path), n, path);
   }
+  clamp_metrics(field, bounds);
+  check_metric_field(field, analytic ? fmt::format("metric '{}'", to_string(*analytic)) : o.get<std::string>("metric"));
+  if (o.dry_run()) return kOk;
   assign_metric(loaded.mesh, field);
   const auto report = quality_report(loaded.mesh, space);
   if (o.has("csv")) io::write_file_atomically(o.get<std::string>("csv"), report_csv(report));

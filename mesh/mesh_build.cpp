@@ -132,6 +132,10 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
       mesh.set_surface_id(t, f, id);
     }
   }
+  if (untagged > 0 && opt.require_boundary_triangles)
+    throw InputError(fmt::format("{}: {} boundary faces have no input triangle: give the whole boundary as Triangles "
+                                 "with surface ids (their edges between ids become ridges)",
+                                 src, untagged));
   if (untagged > 0)
     log::warn("{}: {} boundary faces have no input triangle; they get surface id {}", src, untagged, default_id);
   if (nonpositive > 0)

@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace metrica {
@@ -30,6 +31,31 @@ double complexity(const std::vector<Sym6>& field, const std::vector<double>& dua
 }
 
 double complexity(const Mesh& mesh, const std::vector<Sym6>& field) { return complexity(field, dual_volumes(mesh)); }
+
+double sampled_complexity(const Mesh& mesh, const std::function<Sym6(const Point&)>& metric, double samples) {
+  const double tets = std::max<double>(1.0, double(mesh.num_tets()));
+  // A lattice of order m has (m+1)(m+2)(m+3)/6 points.
+  int m = 1;
+  while (m < 16 && double(m + 2) * (m + 3) * (m + 4) / 6.0 * tets <= samples) ++m;
+  double c = 0.0;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const auto& k = mesh.tet(t);
+    const Point a = mesh.point(k[0]), b = mesh.point(k[1]), d = mesh.point(k[2]), e = mesh.point(k[3]);
+    double sum = 0.0;
+    int count = 0;
+    for (int i = 0; i <= m; ++i)
+      for (int j = 0; i + j <= m; ++j)
+        for (int l = 0; i + j + l <= m; ++l) {
+          const int r = m - i - j - l;
+          const Point p = (double(i) * a + double(j) * b + double(l) * d + double(r) * e) / double(m);
+          sum += std::sqrt(std::max(0.0, determinant(metric(p))));
+          ++count;
+        }
+    c += tet_volume(a, b, d, e) * sum / count;
+  }
+  return c;
+}
 
 void scale_metrics(std::vector<Sym6>& field, double s) {
   for (auto& m : field)

@@ -8,7 +8,7 @@
 
 namespace metrica {
 
-void check_metric_field(const std::vector<Sym6>& metrics, const std::string& source) {
+void check_metric_entries(const std::vector<Sym6>& metrics, const std::string& source) {
   for (std::size_t v = 0; v < metrics.size(); ++v) {
     const auto& m = metrics[v];
     for (double x : m)
@@ -18,6 +18,19 @@ void check_metric_field(const std::vector<Sym6>& metrics, const std::string& sou
     if (!(e.values[0] > 0.0))
       throw InputError(fmt::format("{}: metric at vertex {} is not positive definite (eigenvalues {:.3g} {:.3g} {:.3g})",
                                    source, v + 1, e.values[0], e.values[1], e.values[2]));
+  }
+}
+
+void check_metric_field(const std::vector<Sym6>& metrics, const std::string& source) {
+  check_metric_entries(metrics, source);
+  const double lo = 1.0 / (kLargestSize * kLargestSize), hi = 1.0 / (kSmallestSize * kSmallestSize);
+  for (std::size_t v = 0; v < metrics.size(); ++v) {
+    const auto e = eigen_decomposition(metrics[v]);
+    if (!(e.values[0] >= lo && e.values[2] <= hi))
+      throw InputError(fmt::format("{}: metric at vertex {} asks for sizes {:.3g} to {:.3g}, outside [{:g}, {:g}] "
+                                   "(bound them with --hmin/--hmax)",
+                                   source, v + 1, 1.0 / std::sqrt(e.values[2]), 1.0 / std::sqrt(e.values[0]),
+                                   kSmallestSize, kLargestSize));
   }
 }
 
@@ -42,7 +55,7 @@ std::vector<Sym6> metric_field_from_sol(const io::SolData& sol, std::size_t vert
     } else {
       continue;
     }
-    check_metric_field(out, source);
+    check_metric_entries(out, source);
     return out;
   }
   throw InputError(fmt::format("{}: no scalar or symmetric-matrix field to use as a metric", source));

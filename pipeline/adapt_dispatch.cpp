@@ -3,6 +3,8 @@
 
 #include <fmt/core.h>
 
+#include <type_traits>
+
 namespace metrica {
 
 static_assert(Spaces::size * Concurrencies::size * Geometries::size == METRICA_ADAPT_UNITS,
@@ -32,9 +34,15 @@ void check_policy_choice(const PolicyChoice& c) {
 
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& p) {
   return with_policy<Spaces>("space", p.space, [&]<class S>() {
-    return with_policy<Concurrencies>("concurrency", p.concurrency, [&]<class C>() {
-      if (options.geometry != nullptr) return adapt_instance<S, C, CadGeometry>(mesh, options, p.precision);
-      return adapt_instance<S, C, NoGeometry>(mesh, options, p.precision);
+    return with_policy<Concurrencies>("concurrency", p.concurrency, [&]<class C>() -> AdaptReport {
+      if constexpr (METRICA_ADAPT_FIRST_SPACE_ONLY && !std::is_same_v<S, Spaces::at<0>>) {
+        throw InputError(fmt::format("space '{}': this build compiles the pipeline for the space '{}' only "
+                                     "(METRICA_ADAPT_FIRST_SPACE_ONLY, a sanitizer build)",
+                                     S::name, Spaces::at<0>::name));
+      } else {
+        if (options.geometry != nullptr) return adapt_instance<S, C, CadGeometry>(mesh, options, p.precision);
+        return adapt_instance<S, C, NoGeometry>(mesh, options, p.precision);
+      }
     });
   });
 }

@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 
 #include <cstring>
+#include <filesystem>
 
 using namespace metrica;
 using namespace metrica::io;
@@ -98,6 +99,33 @@ TEST_SUITE("unit") {
       put32(b, 20 + 12 + 64 * 28 + 12, 0);
       CHECK(contains(error_of(b, Encoding::binary), "index 0 out of range"));
     }
+  }
+
+  TEST_CASE("binary: a count that disagrees with the data - an offset that skips a keyword - are errors") {
+    const auto good = small_binary();
+    constexpr std::size_t triangles = 20 + 12 + 64 * 28;  // Triangles' keyword code
+    std::int32_t after_triangles = 0;                     // its next-keyword offset
+    std::memcpy(&after_triangles, good.data() + triangles + 4, 4);
+    {
+      auto b = good;
+      put32(b, triangles + 8, 1);  // 1 triangle where the file holds 108
+      const auto e = error_of(b, Encoding::binary);
+      CHECK(contains(e, "Triangles"));
+      CHECK(contains(e, "its count disagrees with the data"));
+    }
+    {
+      auto b = good;
+      put32(b, 24, after_triangles);  // Vertices' offset skips Triangles
+      const auto e = error_of(b, Encoding::binary);
+      CHECK(contains(e, "Vertices"));
+      CHECK(contains(e, "skips data"));
+    }
+  }
+
+  TEST_CASE("a folder given as a file is named as such") {
+    test::TempDir dir;
+    std::filesystem::create_directory(dir / "d.meshb");
+    CHECK_THROWS_WITH_AS(read_meshb(dir / "d.meshb"), doctest::Contains("is a folder"), IoError);
   }
 
   TEST_CASE("binary: truncation at every byte gives an error - never a crash") {

@@ -12,6 +12,10 @@ struct BuildOptions {
   // Surface id given to boundary faces that no input triangle covers;
   // 0 means one more than the largest id in the input.
   SurfaceId default_surface_id = 0;
+  // When set, a boundary face that no input triangle covers is an
+  // InputError: the adaptation takes its surfaces and ridges from the
+  // triangles' ids, and a boundary without them would lose its corners.
+  bool require_boundary_triangles = false;
   // Name used in messages (usually the file).
   std::string source = "mesh";
 };

@@ -1,26 +1,64 @@
 #include <metrica/error.hpp>
 #include <metrica/io/atomic_file.hpp>
+#include <metrica/io/output_set.hpp>
 
 #include <fmt/core.h>
 
-#include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace metrica::io {
 
-AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
-  static std::atomic<unsigned> counter{0};
-  tmp_path_ = fmt::format("{}.tmp-{}-{}", path_, static_cast<long>(::getpid()), counter++);
-  file_ = std::fopen(tmp_path_.c_str(), "wb");
-  if (!file_) throw IoError(fmt::format("{}: cannot open for writing: {}", path_, std::strerror(errno)));
+namespace {
+
+std::string folder_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+mode_t new_file_mode() {
+  static const mode_t mode = [] {
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    return static_cast<mode_t>(0666 & ~mask);
+  }();
+  return mode;
+}
+
+void sync_folder(const std::string& folder) {
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd < 0) return;
+  ::fsync(fd);  // best effort: some file systems refuse fsync on folders
+  ::close(fd);
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), target_(writable_target(path_)) {
+  const int fd = create_temporary(folder_of(target_), tmp_path_);
+  if (fd < 0) throw IoError(fmt::format("{}: cannot create a temporary file beside it: {}", path_, std::strerror(errno)));
+  struct stat st {};
+  const mode_t mode = ::stat(target_.c_str(), &st) == 0 ? (st.st_mode & 07777) : new_file_mode();
+  ::fchmod(fd, mode);
+  file_ = ::fdopen(fd, "wb");
+  if (!file_) {
+    const int err = errno;
+    ::close(fd);
+    ::unlink(tmp_path_.c_str());
+    unregister_temporary(tmp_path_);
+    throw IoError(fmt::format("{}: cannot open for writing: {}", path_, std::strerror(err)));
+  }
 }
 
 AtomicFile::~AtomicFile() {
   if (file_) {
     std::fclose(file_);
-    std::remove(tmp_path_.c_str());
+    ::unlink(tmp_path_.c_str());
+    unregister_temporary(tmp_path_);
   }
 }
 
@@ -33,17 +71,27 @@ void AtomicFile::write(const void* data, std::size_t size) {
 void AtomicFile::commit() {
   std::FILE* f = file_;
   file_ = nullptr;
-  const bool flushed = std::fflush(f) == 0;
-  const int saved = errno;
-  if (std::fclose(f) != 0 || !flushed) {
-    std::remove(tmp_path_.c_str());
-    throw IoError(fmt::format("{}: write failed: {}", path_, std::strerror(flushed ? errno : saved)));
+  int err = 0;
+  if (std::fflush(f) != 0 || ::fsync(::fileno(f)) != 0) err = errno;
+  if (std::fclose(f) != 0 && err == 0) err = errno;
+  if (err != 0) {
+    ::unlink(tmp_path_.c_str());
+    unregister_temporary(tmp_path_);
+    throw IoError(fmt::format("{}: write failed: {}", path_, std::strerror(err)));
   }
-  if (std::rename(tmp_path_.c_str(), path_.c_str()) != 0) {
+  if (OutputSet::stage(tmp_path_, target_)) return;
+  rename_into_place(tmp_path_, target_, path_);
+}
+
+void rename_into_place(const std::string& temporary, const std::string& target, const std::string& shown) {
+  if (std::rename(temporary.c_str(), target.c_str()) != 0) {
     const int err = errno;
-    std::remove(tmp_path_.c_str());
-    throw IoError(fmt::format("{}: cannot rename the finished output into place: {}", path_, std::strerror(err)));
+    ::unlink(temporary.c_str());
+    unregister_temporary(temporary);
+    throw IoError(fmt::format("{}: cannot rename the finished output into place: {}", shown, std::strerror(err)));
   }
+  unregister_temporary(temporary);
+  sync_folder(folder_of(target));
 }
 
 void write_file_atomically(const std::string& path, std::string_view bytes) {

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <sys/stat.h>
 
 namespace metrica::io {
 namespace {
@@ -121,8 +122,9 @@ void read_elements(Source& src, std::vector<std::array<VertexId, N>>& elements, 
 // Where each keyword was found, for messages about its content.
 using Locations = std::map<int, std::string>;
 
+// Returns false for a keyword whose content is skipped (not parsed).
 template <class Source>
-void read_mesh_keyword(Source& src, int code, MeshData& m, Locations& where) {
+bool read_mesh_keyword(Source& src, int code, MeshData& m, Locations& where) {
   where[code] = src.location();
   switch (code) {
     case kVertices: {
@@ -166,8 +168,9 @@ void read_mesh_keyword(Source& src, int code, MeshData& m, Locations& where) {
       }
       break;
     }
-    default: break;
+    default: return false;
   }
+  return true;
 }
 
 template <class Source>
@@ -258,7 +261,14 @@ int walk_binary(ByteReader& in, const std::string& file, Visit&& visit) {
       check_dimension(in.raw<std::int32_t>(), file);
       dimension_seen = true;
     } else if (!name.empty()) {
-      visit(code, BinarySource{in, w});
+      // A parsed keyword must end where the next one starts: a count that
+      // disagrees with the data, or an offset that skips a keyword, is an
+      // error, not a guess.
+      if (visit(code, BinarySource{in, w}) && next != 0 && in.pos() != std::size_t(next))
+        in.fail_at(fmt::format("the keyword's data ends at byte {} but the next keyword is at {}: its count "
+                               "disagrees with the data, or the offset skips data",
+                               in.pos(), next),
+                   start);
     }
     if (next == 0) in.fail("file is truncated: no End keyword");
     in.seek(static_cast<std::size_t>(next));
@@ -309,6 +319,9 @@ int walk_text(TextReader& in, const std::string& file, Visit&& visit) {
 }  // namespace
 
 std::string read_file_bytes(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    throw IoError(fmt::format("{}: {}", path, S_ISDIR(st.st_mode) ? "is a folder, not a file" : "is not a regular file"));
   std::ifstream f(path, std::ios::binary);
   if (!f) throw IoError(fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
   std::string bytes;
@@ -325,7 +338,7 @@ std::string read_file_bytes(const std::string& path) {
 MeshData parse_mesh(std::string_view bytes, Encoding encoding, const std::string& name) {
   MeshData m;
   Locations where;
-  auto visit = [&](int code, auto src) { read_mesh_keyword(src, code, m, where); };
+  auto visit = [&](int code, auto src) { return read_mesh_keyword(src, code, m, where); };
   if (encoding == Encoding::binary) {
     ByteReader in(bytes, name);
     m.version = walk_binary(in, name, visit);
@@ -342,9 +355,10 @@ SolData parse_sol(std::string_view bytes, Encoding encoding, const std::string& 
   SolData s;
   bool found = false;
   auto visit = [&](int code, auto src) {
-    if (code != kSolAtVertices) return;
+    if (code != kSolAtVertices) return false;
     read_sol_keyword(src, s);
     found = true;
+    return true;
   };
   if (encoding == Encoding::binary) {
     ByteReader in(bytes, name);

@@ -241,11 +241,13 @@ std::string format_sol(const SolData& data, Encoding encoding, int version) {
 
 void write_meshb(const std::string& path, const MeshData& data, int version) {
   const auto enc = encoding_of(path, ".mesh", ".meshb");
+  check_finite(data, path);
   write_file_atomically(path, format_mesh(data, enc, version));
 }
 
 void write_sol(const std::string& path, const SolData& data, int version) {
   const auto enc = encoding_of(path, ".sol", ".solb");
+  check_finite(data, path);
   write_file_atomically(path, format_sol(data, enc, version));
 }
 

@@ -32,6 +32,9 @@ std::string format_su2(const MeshData& m) {
   return fmt::to_string(out);
 }
 
-void write_su2(const std::string& path, const MeshData& mesh) { write_file_atomically(path, format_su2(mesh)); }
+void write_su2(const std::string& path, const MeshData& mesh) {
+  check_finite(mesh, path);
+  write_file_atomically(path, format_su2(mesh));
+}
 
 }  // namespace metrica::io

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -98,6 +100,12 @@ std::string format_vtu(const MeshData& m, const std::vector<VtuField>& point_fie
 
 void write_vtu(const std::string& path, const MeshData& mesh, const std::vector<VtuField>& point_fields,
                const std::vector<VtuField>& cell_fields) {
+  check_finite(mesh, path);
+  for (const auto& f : point_fields)
+    for (std::size_t i = 0; i < f.values.size(); ++i)
+      if (!std::isfinite(f.values[i]))
+        throw IoError(fmt::format("{}: field {} is not finite at vertex {}; nothing written", path, f.name,
+                                  i / std::size_t(std::max(1, f.components)) + 1));
   write_file_atomically(path, format_vtu(mesh, point_fields, cell_fields));
 }
 

@@ -1,6 +1,10 @@
 // Output written to a temporary file beside the target and renamed over it
 // on commit(), so that a failed or interrupted run never leaves a
-// half-written mesh where a user expects a good one.
+// half-written mesh where a user expects a good one. The temporary has a
+// short name of its own (".metrica-XXXXXX", created exclusively), takes the
+// replaced file's permissions (else 0666 less the umask) and is fsynced
+// before the rename. Within an open OutputSet the rename waits for the
+// set's commit (output_set.hpp).
 #pragma once
 
 #include <cstdio>
@@ -18,16 +22,21 @@ class AtomicFile {
 
   void write(const void* data, std::size_t size);
   void write(std::string_view text) { write(text.data(), text.size()); }
-  // Flushes, closes and renames the temporary file onto the target.
+  // Flushes, syncs, closes and renames the temporary file onto the target
+  // (or stages it in the open OutputSet).
   void commit();
 
  private:
-  std::string path_;
+  std::string path_;    // as the user named it
+  std::string target_;  // the file replaced (symlinks followed)
   std::string tmp_path_;
   std::FILE* file_ = nullptr;
 };
 
 // Writes `bytes` to `path` atomically.
 void write_file_atomically(const std::string& path, std::string_view bytes);
+
+// Renames `temporary` onto `target` and syncs the target's folder.
+void rename_into_place(const std::string& temporary, const std::string& target, const std::string& shown);
 
 }  // namespace metrica::io

@@ -88,4 +88,9 @@ struct SolData {
   friend bool operator==(const SolData&, const SolData&) = default;
 };
 
+// Every writer refuses a non-finite value (IoError naming `path`, the
+// entity and its index): no run reports success with a NaN in its output.
+void check_finite(const MeshData& m, const std::string& path);
+void check_finite(const SolData& s, const std::string& path);
+
 }  // namespace metrica::io

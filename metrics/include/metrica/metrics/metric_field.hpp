@@ -26,7 +26,17 @@ io::SolData metric_field_to_sol(const std::vector<Sym6>& metrics);
 
 std::vector<Sym6> analytic_metric_field(AnalyticMetric m, const std::vector<Point>& points);
 
-// Checks each tensor (finite, SPD); InputError names the first bad one.
+// Sizes a metric may ask for (h = 1/sqrt(eigenvalue)): with coordinates
+// within +-1e12 (input_checks.hpp), lengths, volumes and the mean ratio
+// then stay far from double's overflow and underflow. A size beyond them is
+// refused, not clamped; --hmin/--hmax clamp it first when the user asks.
+inline constexpr double kSmallestSize = 1e-30;
+inline constexpr double kLargestSize = 1e30;
+
+// Checks each tensor: finite, symmetric positive definite; InputError
+// names the first bad one.
+void check_metric_entries(const std::vector<Sym6>& metrics, const std::string& source);
+// check_metric_entries, and every size within [kSmallestSize, kLargestSize].
 void check_metric_field(const std::vector<Sym6>& metrics, const std::string& source);
 
 // Sets M and log M at every live vertex; `metrics` is indexed by vertex id.

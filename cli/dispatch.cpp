@@ -1,0 +1,74 @@
+// The command line to an exit code: the command runs inside an OutputSet,
+// so its outputs replace their targets together and only on success.
+#include "cli.hpp"
+
+#include <metrica/error.hpp>
+#include <metrica/io/output_set.hpp>
+
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <exception>
+#include <new>
+
+namespace metrica::cli {
+
+namespace {
+
+void print_usage(std::FILE* out) {
+  fmt::print(out,
+             "usage: metrica <command> [options]\n\n"
+             "Metric-based anisotropic adaptation of tetrahedral meshes.\n\n"
+             "Commands:\n");
+  for (const auto& c : commands()) fmt::print(out, "  {:<12} {}\n", c.name, c.summary);
+  fmt::print(out,
+             "\nRun 'metrica <command> --help' for a command's options.\n"
+             "Exit status: 0 success, 1 invalid input or failed run, 2 bad usage.\n");
+}
+
+int fail(int code, const char* what) {
+  std::fflush(stdout);
+  fmt::print(stderr, "error: {}\n", what);
+  return code;
+}
+
+}  // namespace
+
+int run_command_line(const std::vector<std::string>& args) {
+  if (args.empty()) {
+    print_usage(stderr);
+    return kUsage;
+  }
+  const std::string& name = args[0];
+  if (name == "-h" || name == "--help" || name == "help") {
+    print_usage(stdout);
+    return kOk;
+  }
+  if (name == "--version") {
+    fmt::print("metrica 0.1.0\n");
+    return kOk;
+  }
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  for (const auto& c : commands()) {
+    if (name != c.name) continue;
+    try {
+      io::OutputSet outputs;
+      const int code = c.run(rest);
+      if (code == kOk) outputs.commit();
+      return code;
+    } catch (const UsageError& e) {
+      return fail(kUsage, e.what());
+    } catch (const InputError& e) {
+      return fail(kInvalid, e.what());
+    } catch (const std::bad_alloc&) {
+      return fail(kInvalid, "out of memory");
+    } catch (const std::exception& e) {
+      return fail(kInvalid, e.what());
+    }
+  }
+  fmt::print(stderr, "error: unknown command '{}'\n\n", name);
+  print_usage(stderr);
+  return kUsage;
+}
+
+}  // namespace metrica::cli

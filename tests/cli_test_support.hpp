@@ -1,0 +1,35 @@
+// Runs the `metrica` command as a user does (a child process, stdout and
+// stderr together) and tells how it ended.
+#pragma once
+
+#include <doctest/doctest.h>
+
+#include <cstdio>
+#include <string>
+#include <sys/wait.h>
+
+namespace metrica::test {
+
+struct Run {
+  int code = -1;
+  bool signalled = false;
+  std::string output;  // stdout and stderr together
+};
+
+inline Run metrica_cli(const std::string& args) {
+  Run r;
+  const std::string cmd = std::string(METRICA_CLI) + " " + args + " 2>&1";
+  std::FILE* p = popen(cmd.c_str(), "r");
+  REQUIRE(p != nullptr);
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
+  const int status = pclose(p);
+  r.signalled = WIFSIGNALED(status);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+inline bool has(const Run& r, const std::string& s) { return r.output.find(s) != std::string::npos; }
+
+}  // namespace metrica::test
