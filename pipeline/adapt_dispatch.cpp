@@ -32,6 +32,10 @@ void check_policy_choice(const PolicyChoice& c) {
   check_name<Concurrencies>("concurrency", c.concurrency);
 }
 
+bool space_compiled(std::string_view space) {
+  return !METRICA_ADAPT_FIRST_SPACE_ONLY || space == Spaces::at<0>::name;
+}
+
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& p) {
   return with_policy<Spaces>("space", p.space, [&]<class S>() {
     return with_policy<Concurrencies>("concurrency", p.concurrency, [&]<class C>() -> AdaptReport {

@@ -69,7 +69,7 @@ inline Mesh jittered_box(int n, double amount, std::uint64_t stream) {
   auto r = test::rng(stream);
   std::uniform_real_distribution<double> u(-amount / n, amount / n);
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-    if (mesh.vertex_class(v) == VertexClass::interior) mesh.point(v) += Point(u(r), u(r), u(r));
+    if (mesh.vertex_class(v) == VertexClass::interior) mesh.point(v) += test::draw_point(u, r);
   return mesh;
 }
 

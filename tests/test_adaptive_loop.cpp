@@ -102,8 +102,7 @@ TEST_SUITE("regression") {
   TEST_CASE("a quick adaptive loop on sinfun3: valid meshes, and the error falls when the complexity doubles") {
     Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
     LoopOptions o;
-    const AnalyticField f = AnalyticField::sinfun3;
-    o.field = [f](const Point& p) { return evaluate(f, p); };
+    o.field = [](const Point& p) { return evaluate(AnalyticField::sinfun3, p); };
     o.iterations = 6;
     o.double_every = 3;
     o.complexity = 1000;

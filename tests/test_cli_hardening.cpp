@@ -238,7 +238,7 @@ TEST_SUITE("regression") {
     test::TempDir dir;
     const std::string out = dir / "out";
     // The loop stages each iteration's mesh while it runs; stop it after the first.
-    const std::string cmd = std::string(METRICA_CLI) + " loop --field tanh3 --complexity 20000 --iterations 40 " +
+    const std::string cmd = std::string(METRICA_CLI) + " loop --field tanh3 --complexity 1000 --iterations 60 " +
                             "--concurrency serial -q --output-dir " + out;
     const pid_t child = ::fork();
     REQUIRE(child >= 0);
@@ -247,7 +247,7 @@ TEST_SUITE("regression") {
       ::_exit(127);
     }
     bool staged = false;
-    for (int i = 0; i < 600 && !staged; ++i) {
+    for (int i = 0; i < 2400 && !staged; ++i) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
       staged = fs::exists(out) && files_starting(out, ".metrica-") > 0;
     }

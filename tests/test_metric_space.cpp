@@ -43,7 +43,7 @@ double min_eig_of_difference(const Sym6& x, const Sym6& y) {
 TetPoints random_tet(std::mt19937_64& r) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   TetPoints k;
-  for (auto& p : k) p = Point(u(r), u(r), u(r));
+  for (auto& p : k) p = test::draw_point(u, r);
   if (orient3d_fast(k[0], k[1], k[2], k[3]) < 0) std::swap(k[2], k[3]);
   return k;
 }
@@ -221,13 +221,13 @@ TEST_SUITE("property") {
     for (int i = 0; i < 2000; ++i) {
       const TetPoints k = random_tet(r);
       // Half the trials: a point on the circumsphere up to 2^-45.
-      Point p(u(r), u(r), u(r));
+      Point p = test::draw_point(u, r);
       if (i % 2) {
         const Matrix3 rows = (Matrix3() << 2 * (k[1] - k[0]).transpose(), 2 * (k[2] - k[0]).transpose(),
                               2 * (k[3] - k[0]).transpose()).finished();
         const Eigen::Vector3d rhs((k[1] - k[0]).squaredNorm(), (k[2] - k[0]).squaredNorm(), (k[3] - k[0]).squaredNorm());
         const Point o = k[0] + rows.inverse() * rhs;
-        p = o + (k[0] - o).norm() * Point(u(r), u(r), u(r)).normalized();
+        p = o + (k[0] - o).norm() * test::draw_point(u, r).normalized();
       }
       const bool in = P::insphere(k[0], k[1], k[2], k[3], p) > 0;
       CHECK(metric_delaunay_violated<P>(k, p, ids, id) == in);
@@ -244,7 +244,7 @@ TEST_SUITE("property") {
       const Sym6 m = random_metric(r, 1e3);
       const Matrix3 l = metric_factor(m);
       const TetPoints k = random_tet(r);
-      const Point p(u(r), u(r), u(r));
+      const Point p = test::draw_point(u, r);
       const std::array<Sym6, 4> mk{m, m, m, m};
       const TetPoints mk_points = mapped(l, k);
       const Sym6 id = isotropic_metric(1.0);

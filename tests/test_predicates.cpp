@@ -51,11 +51,11 @@ std::array<Point, 5> draw(std::mt19937_64& r, Input kind, bool perturb) {
   std::array<Point, 5> x;
   switch (kind) {
     case Input::random:
-      for (auto& p : x) p = Point(u(r), u(r), u(r));
+      for (auto& p : x) p = test::draw_point(u, r);
       break;
     case Input::coplanar:
       for (auto& p : x) p = Point(std::round(8 * u(r)), std::round(8 * u(r)), 1.0);
-      x[4] = Point(u(r), u(r), u(r));  // insphere's fifth point off the plane
+      x[4] = test::draw_point(u, r);  // insphere's fifth point off the plane
       break;
     case Input::cospherical: {
       std::array<int, 12> idx;
@@ -66,7 +66,7 @@ std::array<Point, 5> draw(std::mt19937_64& r, Input kind, bool perturb) {
     }
   }
   if (perturb)
-    for (auto& p : x) p += kTiny * Point(coin(r), coin(r), coin(r));
+    for (auto& p : x) p += kTiny * test::draw_point(coin, r);
   return x;
 }
 

@@ -33,6 +33,16 @@ inline std::uint64_t seed() {
 
 inline std::mt19937_64 rng(std::uint64_t stream = 0) { return std::mt19937_64(seed() + stream * 0x9e3779b97f4a7c15ull); }
 
+// A point of three draws in a fixed order, last coordinate first: the order
+// in which GCC evaluated the argument list Point(d(r), d(r), d(r)) (which
+// is unspecified; clang takes the other), so that every compiler builds the
+// same seeded cases.
+template <class Dist>
+Point draw_point(Dist& d, std::mt19937_64& r) {
+  const double z = d(r), y = d(r), x = d(r);
+  return Point(x, y, z);
+}
+
 // Lists each tet's vertices so that it is positively oriented.
 inline void orient_positively(io::MeshData& d) {
   for (auto& t : d.tets)
@@ -43,7 +53,8 @@ inline void orient_positively(io::MeshData& d) {
 // random scale in [1e-4, 1e4], in random principal axes.
 inline Sym6 random_metric(std::mt19937_64& r, double ratio) {
   std::uniform_real_distribution<double> u(-1.0, 1.0), e(0.0, 1.0);
-  const Eigen::Quaterniond q(Eigen::Vector4d(u(r), u(r), u(r), u(r)).normalized());
+  const double q3 = u(r), q2 = u(r), q1 = u(r), q0 = u(r);  // draw_point's order
+  const Eigen::Quaterniond q(Eigen::Vector4d(q0, q1, q2, q3).normalized());
   const Eigen::Vector3d l(1.0, std::pow(ratio, e(r)), ratio);
   return to_sym6(q.toRotationMatrix() * (l * std::pow(10.0, 4 * u(r))).asDiagonal() *
                  q.toRotationMatrix().transpose());

@@ -72,7 +72,7 @@ TEST_SUITE("property") {
       const auto m = random_metric(r, 1e6);
       const Matrix3 l = metric_factor(m);
       CHECK((l.transpose() * l - to_matrix(m)).norm() / to_matrix(m).norm() < 1e-13);
-      const Eigen::Vector3d v(u(r), u(r), u(r));
+      const Eigen::Vector3d v = test::draw_point(u, r);
       CHECK((l * v).squaredNorm() == doctest::Approx(metric_norm2(m, v)).epsilon(1e-10));
       CHECK(metric_norm2(m, v) == doctest::Approx(v.dot(to_matrix(m) * v)).epsilon(1e-12));
     }

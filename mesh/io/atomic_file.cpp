@@ -14,12 +14,6 @@ namespace metrica::io {
 
 namespace {
 
-std::string folder_of(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  return slash == 0 ? "/" : path.substr(0, slash);
-}
-
 mode_t new_file_mode() {
   static const mode_t mode = [] {
     const mode_t mask = ::umask(0);

@@ -27,6 +27,7 @@ void log_missing_end(const std::string& file) {
   log::warn("{}: no End keyword; the file may be truncated", file);
 }
 
+
 // Values of one record kind, to bound counts against the file size.
 struct BinarySource {
   ByteReader& in;
@@ -284,6 +285,8 @@ int walk_text(TextReader& in, const std::string& file, Visit&& visit) {
   while (true) {
     in.set_context("");
     const auto tok = in.token();
+    // Some writers leave End out of ASCII files (the UGAWG .sol files):
+    // a warning, not an error.
     if (tok.empty()) {
       log_missing_end(file);
       break;

@@ -55,11 +55,6 @@ void install_handlers() {
 OutputSet* open_set = nullptr;
 std::mutex set_mutex;
 
-std::string folder_of(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  return slash == 0 ? "/" : path.substr(0, slash);
-}
 
 }  // namespace
 
@@ -103,6 +98,12 @@ void unregister_temporary(const std::string& path) {
       n->live.store(false, std::memory_order_release);
       return;
     }
+}
+
+std::string folder_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
 }
 
 std::string writable_target(const std::string& path) {

@@ -52,4 +52,7 @@ class OutputSet {
 int create_temporary(const std::string& folder, std::string& path);
 void unregister_temporary(const std::string& path);
 
+// The folder of a file path ("." for a bare name).
+std::string folder_of(const std::string& path);
+
 }  // namespace metrica::io

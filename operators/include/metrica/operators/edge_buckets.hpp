@@ -125,7 +125,7 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
         *end++ = *x;
       }
       // A handful of edges per vertex: insertion sort by the higher end.
-      if (sorted)
+      if (sorted && end - first > 1)
         for (Entry* i = first + 1; i < end; ++i)
           for (Entry* j = i; j > first && upper_of(*j) < upper_of(*(j - 1)); --j) std::swap(*j, *(j - 1));
       kept[a] = static_cast<std::uint32_t>(end - first);

@@ -28,6 +28,9 @@ struct PolicyChoice {
 
 // InputError naming the choices when a name is not in its list.
 void check_policy_choice(const PolicyChoice& choice);
+// False for a space whose pipeline this build leaves out
+// (METRICA_ADAPT_FIRST_SPACE_ONLY, the sanitizer builds).
+bool space_compiled(std::string_view space);
 
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& policies = {});
 
