@@ -82,6 +82,14 @@ double Options::positive(const char* name, double hi) const {
   return x;
 }
 
+MetricBounds Options::size_bounds() const {
+  MetricBounds b;
+  if (has("hmin")) b.hmin = positive("hmin");
+  if (has("hmax")) b.hmax = positive("hmax");
+  if (b.hmin > b.hmax) throw UsageError(command_ + ": --hmin is larger than --hmax");
+  return b;
+}
+
 void Options::throw_out_of_range(const char* name, const std::string& domain, const std::string& value) const {
   throw UsageError(fmt::format("{}: --{} must be {} (got {})", command_, name, domain, value));
 }

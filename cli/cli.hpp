@@ -2,10 +2,12 @@
 // options, exit codes, and aligned output for people.
 #pragma once
 
+#include <metrica/error.hpp>
 #include <metrica/geometry/cad_model.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/mesh_data.hpp>
 #include <metrica/mesh.hpp>
+#include <metrica/metrics/metric_bounds.hpp>
 
 #include <boost/program_options.hpp>
 
@@ -14,6 +16,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -88,6 +91,25 @@ class Options {
   }
   // A real option that must be finite and > 0 (and at most hi).
   double positive(const char* name, double hi = 1e300) const;
+  // f() (which reads option values: a name, a choice of policies) with its
+  // InputError turned into a usage error naming the command.
+  template <class F>
+  auto as_usage(F&& f) const -> decltype(f()) {
+    try {
+      return f();
+    } catch (const InputError& e) {
+      throw UsageError(command_ + ": " + e.what());
+    }
+  }
+  // An optional option whose value is a name, parsed by `from_name`
+  // (analytic_metric_from_name, ...): an unknown name is a usage error.
+  template <class From>
+  auto named(const char* name, From&& from_name) const -> std::optional<decltype(from_name(std::string()))> {
+    if (!has(name)) return std::nullopt;
+    return as_usage([&] { return from_name(get<std::string>(name)); });
+  }
+  // --hmin / --hmax as bounds on a metric's sizes (usage-checked).
+  MetricBounds size_bounds() const;
   [[noreturn]] void throw_out_of_range(const char* name, const std::string& domain, const std::string& value) const;
   const std::string& command() const { return command_; }
 

@@ -133,20 +133,12 @@ int run_adapt(const std::vector<std::string>& args) {
     throw UsageError("adapt: --iterations needs --analytic (a metric file holds values at the input's vertices only)");
   const PolicyChoice policies{o.get<std::string>("space"), o.get<std::string>("precision"),
                               o.get<std::string>("concurrency")};
-  try {
-    check_policy_choice(policies);
-  } catch (const InputError& e) {
-    throw UsageError(fmt::format("adapt: {}", e.what()));
-  }
+  o.as_usage([&] { check_policy_choice(policies); });
   const bool serial = policies.concurrency == Serial::name;
 
   AdaptOptions ao;
   ao.max_cycles = o.in_range("cycles", 0, 1000);
-  try {
-    ao.points = point_rule_from_name(o.get<std::string>("points"));
-  } catch (const InputError& e) {
-    throw UsageError(fmt::format("adapt: {}", e.what()));
-  }
+  ao.points = *o.named("points", point_rule_from_name);
   ao.quality_passes = o.in_range("quality-passes", 0, 1000);
   ao.repair_rounds = o.in_range("repair-rounds", 0, 1000);
   ao.repair_below = o.in_range("repair-below", 0.0, 1.0);
@@ -158,18 +150,8 @@ int run_adapt(const std::vector<std::string>& args) {
   if (!(ao.refine.max_length > ao.collapse.min_length))
     throw UsageError(fmt::format("adapt: need --min-length < --max-length (got {} and {})", ao.collapse.min_length,
                                  ao.refine.max_length));
-  MetricBounds bounds;
-  if (o.has("hmin")) bounds.hmin = o.positive("hmin");
-  if (o.has("hmax")) bounds.hmax = o.positive("hmax");
-  if (bounds.hmin > bounds.hmax) throw UsageError("adapt: --hmin is larger than --hmax");
-  std::optional<AnalyticMetric> analytic;
-  if (o.has("analytic")) {
-    try {
-      analytic = analytic_metric_from_name(o.get<std::string>("analytic"));
-    } catch (const InputError& e) {
-      throw UsageError(fmt::format("adapt: {}", e.what()));
-    }
-  }
+  const MetricBounds bounds = o.size_bounds();
+  const auto analytic = o.named("analytic", analytic_metric_from_name);
 
   Stopwatch clock;
   auto loaded = load_mesh(input);

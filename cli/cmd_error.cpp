@@ -53,14 +53,7 @@ int run_error(const std::vector<std::string>& args) {
       "truth-field", po::value<std::string>()->value_name("FILE"), "the field at the truth mesh's vertices");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the mesh (-i)");
-  std::optional<AnalyticField> analytic;
-  if (o.has("analytic")) {
-    try {
-      analytic = analytic_field_from_name(o.get<std::string>("analytic"));
-    } catch (const InputError& e) {
-      throw UsageError(fmt::format("error: {}", e.what()));
-    }
-  }
+  const auto analytic = o.named("analytic", analytic_field_from_name);
   if (!analytic && !o.has("field")) throw UsageError("metrica error: give --analytic NAME or --field F.solb");
   if (!o.has("truth") && !analytic)
     throw UsageError("metrica error: without --truth the reference is an analytic field: give --analytic NAME");

@@ -56,12 +56,7 @@ int run_loop(const std::vector<std::string>& args) {
   max_tets_option(o);
   if (!o.parse(args)) return kOk;
   if (!o.has("field")) throw UsageError("loop: give --field NAME (sinfun3, tanh3, sinatan3)");
-  AnalyticField field;
-  try {
-    field = analytic_field_from_name(o.get<std::string>("field"));
-  } catch (const InputError& e) {
-    throw UsageError(fmt::format("loop: {}", e.what()));
-  }
+  const AnalyticField field = *o.named("field", analytic_field_from_name);
   LoopOptions lo;
   lo.field = [field](const Point& p) { return evaluate(field, p); };
   lo.complexity = o.positive("complexity");

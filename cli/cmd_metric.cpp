@@ -56,21 +56,12 @@ int run_metric(const std::vector<std::string>& args) {
   if (sources != 1)
     throw UsageError("metric: give exactly one source: --analytic, --field, --field-file or -m");
 
-  MetricBounds bounds;
-  if (o.has("hmin")) bounds.hmin = o.positive("hmin");
-  if (o.has("hmax")) bounds.hmax = o.positive("hmax");
+  MetricBounds bounds = o.size_bounds();
   if (o.has("max-anisotropy")) bounds.max_anisotropy = o.in_range("max-anisotropy", 1.0, 1e300);
   GradationOptions grading;
-  std::optional<AnalyticField> analytic_field;
-  std::optional<AnalyticMetric> analytic_metric;
-  try {
-    check_bounds(bounds);
-    grading.space = gradation_space_from_name(o.get<std::string>("gradation-space"));
-    if (o.has("field")) analytic_field = analytic_field_from_name(o.get<std::string>("field"));
-    if (o.has("analytic")) analytic_metric = analytic_metric_from_name(o.get<std::string>("analytic"));
-  } catch (const InputError& e) {
-    throw UsageError(fmt::format("metric: {}", e.what()));
-  }
+  grading.space = *o.named("gradation-space", gradation_space_from_name);
+  const auto analytic_field = o.named("field", analytic_field_from_name);
+  const auto analytic_metric = o.named("analytic", analytic_metric_from_name);
   if (o.has("gradation")) grading.beta = o.in_range("gradation", 1.0, 1e6);
   const double norm = o.in_range("norm", 1.0, 1e6);
   if (o.has("complexity")) o.positive("complexity");

@@ -39,18 +39,8 @@ int run_quality(const std::vector<std::string>& args) {
   if (o.has("metric") == o.has("analytic")) throw UsageError("quality: give one of -m METRIC or --analytic NAME");
   const auto space = o.get<std::string>("space");
   if (!Spaces::contains(space)) throw UsageError(fmt::format("quality: unknown space '{}' ({})", space, Spaces::names()));
-  MetricBounds bounds;
-  if (o.has("hmin")) bounds.hmin = o.positive("hmin");
-  if (o.has("hmax")) bounds.hmax = o.positive("hmax");
-  if (bounds.hmin > bounds.hmax) throw UsageError("quality: --hmin is larger than --hmax");
-  std::optional<AnalyticMetric> analytic;
-  if (o.has("analytic")) {
-    try {
-      analytic = analytic_metric_from_name(o.get<std::string>("analytic"));
-    } catch (const InputError& e) {
-      throw UsageError(fmt::format("quality: {}", e.what()));
-    }
-  }
+  const MetricBounds bounds = o.size_bounds();
+  const auto analytic = o.named("analytic", analytic_metric_from_name);
 
   auto loaded = load_mesh(input);
   const std::size_t n = loaded.data.vertices.size();
