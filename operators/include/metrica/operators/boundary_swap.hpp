@@ -40,12 +40,7 @@ struct BoundarySwap {
   G geometry{};
 
   PassRoom room() const { return {.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 0.05}; }
-  Found seed(const Mesh&, const Item& e, Scratch&, VertexList& hold) const {
-    const auto [a, b] = edge_from_key(e.key);
-    hold.push_back(a);
-    hold.push_back(b);
-    return Found::cavity;
-  }
+  Found seed(const Mesh&, const Item& e, Scratch&, VertexList& hold) const { return hold_edge_ends(e, hold); }
   Found find(const Mesh& mesh, const Item& e, Scratch& s, VertexList& hold) const {
     const auto [a, b] = edge_from_key(e.key);
     vertex_ball(mesh, a, s.ball);

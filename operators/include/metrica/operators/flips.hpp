@@ -363,6 +363,15 @@ FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptio
   return FlipResult::applied;
 }
 
+// The seed of an operation on an edge: its two ends, held before the
+// shell is walked (the edge removal, the boundary swap).
+inline Found hold_edge_ends(const EdgeSeed& e, VertexList& hold) {
+  const auto [a, b] = edge_from_key(e.key);
+  hold.push_back(a);
+  hold.push_back(b);
+  return Found::cavity;
+}
+
 // The edge removal as an operation: items are edges with a tet that held
 // them when the work list was made (the shell walk starts there when the
 // tet still holds the edge, else from a's ball).
@@ -378,12 +387,7 @@ struct EdgeRemoval {
   // An edge removal of n tets makes 2n - 4, but few tries are applied
   // (1-5%): room for a net 0.05 tets per item, more between rounds.
   PassRoom room() const { return {.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 0.05}; }
-  Found seed(const Mesh&, const Item& e, Scratch&, VertexList& hold) const {
-    const auto [a, b] = edge_from_key(e.key);
-    hold.push_back(a);
-    hold.push_back(b);
-    return Found::cavity;
-  }
+  Found seed(const Mesh&, const Item& e, Scratch&, VertexList& hold) const { return hold_edge_ends(e, hold); }
   Found find(const Mesh& mesh, const Item& e, Scratch& s, VertexList& hold) const {
     const auto [a, b] = edge_from_key(e.key);
     // Holding a, a tet that shows a and b holds them for good (a writer
