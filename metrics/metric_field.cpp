@@ -8,7 +8,12 @@
 
 namespace metrica {
 
-void check_metric_entries(const std::vector<Sym6>& metrics, const std::string& source) {
+namespace {
+
+// Each tensor's eigenvalues (ascending), once every tensor is known to be
+// finite and positive definite: the first bad one is an InputError.
+std::vector<Eigen::Vector3d> checked_eigenvalues(const std::vector<Sym6>& metrics, const std::string& source) {
+  std::vector<Eigen::Vector3d> values(metrics.size());
   for (std::size_t v = 0; v < metrics.size(); ++v) {
     const auto& m = metrics[v];
     for (double x : m)
@@ -18,19 +23,27 @@ void check_metric_entries(const std::vector<Sym6>& metrics, const std::string& s
     if (!(e.values[0] > 0.0))
       throw InputError(fmt::format("{}: metric at vertex {} is not positive definite (eigenvalues {:.3g} {:.3g} {:.3g})",
                                    source, v + 1, e.values[0], e.values[1], e.values[2]));
+    values[v] = e.values;
   }
+  return values;
+}
+
+}  // namespace
+
+void check_metric_entries(const std::vector<Sym6>& metrics, const std::string& source) {
+  static_cast<void>(checked_eigenvalues(metrics, source));
 }
 
 void check_metric_field(const std::vector<Sym6>& metrics, const std::string& source) {
-  check_metric_entries(metrics, source);
+  const auto values = checked_eigenvalues(metrics, source);
   const double lo = 1.0 / (kLargestSize * kLargestSize), hi = 1.0 / (kSmallestSize * kSmallestSize);
   for (std::size_t v = 0; v < metrics.size(); ++v) {
-    const auto e = eigen_decomposition(metrics[v]);
-    if (!(e.values[0] >= lo && e.values[2] <= hi))
+    const auto& l = values[v];
+    if (!(l[0] >= lo && l[2] <= hi))
       throw InputError(fmt::format("{}: metric at vertex {} asks for sizes {:.3g} to {:.3g}, outside [{:g}, {:g}] "
                                    "(bound them with --hmin/--hmax)",
-                                   source, v + 1, 1.0 / std::sqrt(e.values[2]), 1.0 / std::sqrt(e.values[0]),
-                                   kSmallestSize, kLargestSize));
+                                   source, v + 1, 1.0 / std::sqrt(l[2]), 1.0 / std::sqrt(l[0]), kSmallestSize,
+                                   kLargestSize));
   }
 }
 

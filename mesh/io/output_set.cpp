@@ -55,15 +55,11 @@ void install_handlers() {
 OutputSet* open_set = nullptr;
 std::mutex set_mutex;
 
-
-}  // namespace
-
-namespace {
 void register_temporary(const std::string& path) {
   if (path.size() >= PATH_MAX) return;
   std::lock_guard lock(temp_mutex);
   for (TempNode* n = temp_head.load(); n; n = n->next)
-    if (!n->live.load() ) {  // reuse a dead entry: write the name, then mark live
+    if (!n->live.load()) {  // reuse a dead entry: write the name, then mark live
       std::memcpy(n->path, path.c_str(), path.size() + 1);
       n->live.store(true, std::memory_order_release);
       return;
