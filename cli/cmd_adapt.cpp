@@ -35,18 +35,22 @@ std::string stats_text(const char* name, const OperatorStats& s) {
 // replays and the items left to one thread, per operator.
 void print_parallel_stats(const AdaptReport& r) {
   for (const auto& [name, s] : r.ops)
-    fmt::print("  {:<8} tried {:>10} applied {:>10} conflicts {:>8} ({:.2f}%) replays {:>8} one-thread tail {:>6} | {:.2f} s\n",
-               name, count_text(s.tried), count_text(s.applied), count_text(s.conflicts),
-               s.tried > 0 ? 100.0 * double(s.conflicts) / double(s.tried + s.conflicts) : 0.0, count_text(s.replays),
-               count_text(s.serial_tail), s.seconds);
+    fmt::print(
+        "  {:<8} tried {:>10} applied {:>10} conflicts {:>8} ({:.2f}%) replays {:>8} one-thread tail {:>6} | {:.2f} "
+        "s\n",
+        name, count_text(s.tried), count_text(s.applied), count_text(s.conflicts),
+        s.tried > 0 ? 100.0 * double(s.conflicts) / double(s.tried + s.conflicts) : 0.0, count_text(s.replays),
+        count_text(s.serial_tail), s.seconds);
 }
 
 void print_cycle(const CycleReport& c) {
   std::string ops;
   for (const auto& [name, s] : c.ops) ops += " | " + stats_text(name.c_str(), s);
   fmt::print("  {} {:>2}: {:>9} vertices {:>10} tets{} | in range {:5.1f}% min Q {:.3f} | {:.2f} s\n",
-             c.repair ? "repair" : c.quality_phase ? "polish" : "cycle ", c.cycle, count_text(c.vertices), count_text(c.tets),
-             ops, 100.0 * c.conformity, c.min_quality, c.seconds);
+             c.repair          ? "repair"
+             : c.quality_phase ? "polish"
+                               : "cycle ",
+             c.cycle, count_text(c.vertices), count_text(c.tets), ops, 100.0 * c.conformity, c.min_quality, c.seconds);
   std::fflush(stdout);
 }
 
@@ -162,6 +166,11 @@ int run_adapt(const std::vector<std::string>& args) {
     model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data);
     ao.geometry = model.get();
   }
+  // The input's arrays are in the mesh now: only its vertex count and
+  // version are read again.
+  const std::size_t input_vertices = loaded.data.vertices.size();
+  const int input_version = loaded.data.version;
+  loaded.data = io::MeshData{};
   MetricFunction exact;
   if (analytic) {
     if (bounds.active())
@@ -181,10 +190,11 @@ int run_adapt(const std::vector<std::string>& args) {
       field = analytic_metric_field(*analytic, points);
     } else {
       const auto path = o.get<std::string>("metric");
-      field = metric_field_from_sol(io::read_sol(path), loaded.data.vertices.size(), path);
+      field = metric_field_from_sol(io::read_sol(path), input_vertices, path);
     }
     clamp_metrics(field, bounds);
-    const std::string source = analytic ? fmt::format("metric '{}'", to_string(*analytic)) : o.get<std::string>("metric");
+    const std::string source =
+        analytic ? fmt::format("metric '{}'", to_string(*analytic)) : o.get<std::string>("metric");
     check_metric_field(field, source);
     if (it == 0) {
       // The size is predicted once, before any work. An analytic metric is
@@ -204,8 +214,7 @@ int run_adapt(const std::vector<std::string>& args) {
       fmt::print("{}adapting {} vertices, {} tets ({} space, {} predicates, {} points, {})\n",
                  iterations > 1 ? fmt::format("iteration {}: ", it + 1) : "", count_text(mesh.num_vertices()),
                  count_text(mesh.num_tets()), policies.space, policies.precision, to_string(ao.points),
-                 serial ? std::string("serial")
-                                                        : fmt::format("speculative, {} threads", thread_count()));
+                 serial ? std::string("serial") : fmt::format("speculative, {} threads", thread_count()));
     const auto report = adapt(mesh, ao, policies);
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
@@ -228,12 +237,12 @@ int run_adapt(const std::vector<std::string>& args) {
   log::info("volume {:.17g}, relative change {:.3g}", mesh.volume(), std::abs(mesh.volume() - volume) / volume);
   if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
   auto data = extract_mesh_data(mesh);
-  data.version = loaded.data.version;
+  data.version = input_version;
   if (model) complete_geometry_records(data, *model);
   io::write_mesh_file(output, data, o.format_version());
   if (o.has("metric-out")) {
     auto sol = metric_field_to_sol(live_metrics(mesh));
-    sol.version = loaded.data.version;
+    sol.version = input_version;
     io::write_sol(o.get<std::string>("metric-out"), sol, o.format_version());
   }
   if (o.has("vtu")) io::write_mesh_file(o.get<std::string>("vtu"), data);

@@ -11,10 +11,14 @@ namespace metrica {
 
 const char* to_string(VertexClass c) {
   switch (c) {
-    case VertexClass::interior: return "interior";
-    case VertexClass::surface: return "surface";
-    case VertexClass::ridge: return "ridge";
-    case VertexClass::corner: return "corner";
+    case VertexClass::interior:
+      return "interior";
+    case VertexClass::surface:
+      return "surface";
+    case VertexClass::ridge:
+      return "ridge";
+    case VertexClass::corner:
+      return "corner";
   }
   return "?";
 }
@@ -53,12 +57,17 @@ void Mesh::init_vertex(VertexId v, const Point& p, int ref) {
   vertex_class_[v] = VertexClass::interior;
   vertex_flags_[v] = kAlive;
   vertex_stamp_[v] = epoch_;
+  if (has_metric()) {
+    metric_[v] = Sym6{};
+    log_metric_[v] = Sym6{};
+  }
   if (has_geo_params()) geo_[v] = GeoParam{};
 }
 
 VertexId Mesh::add_vertex(const Point& p, int ref) {
   if (AllocationPool* pool = tls_pool) {
-    if (pool->vertices.empty() && !fill_pool(*pool, 1, 0)) throw std::length_error("Mesh: parallel vertex reserve exhausted");
+    if (pool->vertices.empty() && !fill_pool(*pool, 1, 0))
+      throw std::length_error("Mesh: parallel vertex reserve exhausted");
     const VertexId v = pool->vertices.back();
     pool->vertices.pop_back();
     ++pool->vertex_delta;
@@ -173,7 +182,8 @@ bool Mesh::Reserve::take(std::vector<std::uint32_t>& out, std::size_t want) {
   const std::size_t first = cursor.fetch_add(n, std::memory_order_relaxed);
   if (first >= ids.size()) return false;
   const std::size_t last = std::min(first + n, ids.size());
-  out.insert(out.end(), ids.begin() + static_cast<std::ptrdiff_t>(first), ids.begin() + static_cast<std::ptrdiff_t>(last));
+  out.insert(out.end(), ids.begin() + static_cast<std::ptrdiff_t>(first),
+             ids.begin() + static_cast<std::ptrdiff_t>(last));
   return last - first >= want;
 }
 
@@ -190,25 +200,30 @@ void Mesh::append_dead(std::size_t vertex_room, std::size_t tet_room, const Part
   // mostly handed back, and doubling every array would double the peak.
   const std::size_t v_size = nv + vertex_room, t_size = nt + tet_room;
   const std::size_t v_cap = v_size + nv / 8, t_cap = t_size + nt / 8;
-  grow_array(points_, v_size, Point(Point::Zero()), v_cap, run);
-  grow_array(vertex_ref_, v_size, 0, v_cap, run);
+  // Only what tells a dead entity is written (its vertices, its flags,
+  // its hint, its model association); add_vertex and add_tet write the
+  // rest. Room that no operation takes is then never resident: a split
+  // pass reserves 3.5 tets per candidate edge and takes about one.
+  extend_array(points_, v_size, v_cap, run);
+  extend_array(vertex_ref_, v_size, v_cap, run);
   grow_array(vert2tet_, v_size, kNoId, v_cap, run);
-  grow_array(vertex_class_, v_size, VertexClass::interior, v_cap, run);
+  extend_array(vertex_class_, v_size, v_cap, run);
   grow_array(vertex_flags_, v_size, std::uint8_t{0}, v_cap, run);
-  grow_array(vertex_stamp_, v_size, Epoch{0}, v_cap, run);
+  extend_array(vertex_stamp_, v_size, v_cap, run);
   if (has_metric()) {
-    grow_array(metric_, v_size, Sym6{}, v_cap, run);
-    grow_array(log_metric_, v_size, Sym6{}, v_cap, run);
+    extend_array(metric_, v_size, v_cap, run);
+    extend_array(log_metric_, v_size, v_cap, run);
   }
   if (has_geo_params()) grow_array(geo_, v_size, GeoParam{}, v_cap, run);
   grow_array(tets_, t_size, TetVertices{kNoId, kNoId, kNoId, kNoId}, t_cap, run);
-  grow_array(tet2tets_, t_size, std::array<FaceRef, 4>{}, t_cap, run);
-  grow_array(face_surface_, t_size, std::array<SurfaceId, 4>{0, 0, 0, 0}, t_cap, run);
-  grow_array(tet_ref_, t_size, 0, t_cap, run);
-  grow_array(tet_stamp_, t_size, Epoch{0}, t_cap, run);
-  grow_array(tet_quality_, t_size, kUnknownQuality, t_cap, run);
+  extend_array(tet2tets_, t_size, t_cap, run);
+  extend_array(face_surface_, t_size, t_cap, run);
+  extend_array(tet_ref_, t_size, t_cap, run);
+  extend_array(tet_stamp_, t_size, t_cap, run);
+  extend_array(tet_quality_, t_size, t_cap, run);
   // Unused reserve first, then the new ids.
-  for (auto [reserve, first, room] : {std::tuple{&vertex_reserve_, nv, vertex_room}, std::tuple{&tet_reserve_, nt, tet_room}}) {
+  for (auto [reserve, first, room] :
+       {std::tuple{&vertex_reserve_, nv, vertex_room}, std::tuple{&tet_reserve_, nt, tet_room}}) {
     MeshArray<std::uint32_t> ids;
     reserve->drain_into(ids);
     const std::size_t kept = ids.size();
@@ -287,7 +302,8 @@ void Mesh::merge_edge_tags(VertexId from, VertexId to, std::span<const VertexId>
 }
 
 BoundingBox bounding_box(const Mesh& mesh) {
-  BoundingBox b{Point::Constant(std::numeric_limits<double>::max()), Point::Constant(-std::numeric_limits<double>::max())};
+  BoundingBox b{Point::Constant(std::numeric_limits<double>::max()),
+                Point::Constant(-std::numeric_limits<double>::max())};
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
     if (!mesh.vertex_alive(v)) continue;
     b.lo = b.lo.cwiseMin(mesh.point(v));

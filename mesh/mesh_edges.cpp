@@ -5,9 +5,7 @@
 
 namespace metrica {
 
-namespace {
-// The higher ends of the edges, bucketed by lower end (with repeats): a
-// counting pass then a filling pass over the tets.
+// A counting pass then a filling pass over the tets.
 void edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& start, std::vector<VertexId>& upper) {
   const std::size_t nv = mesh.vertex_capacity();
   start.assign(nv + 1, 0);
@@ -28,25 +26,15 @@ void edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& start, 
     }
   }
 }
-}  // namespace
 
 // A bucket sort by the lower vertex (one counting pass, one filling pass),
 // then each vertex's short list of higher neighbours sorted and made
 // unique: the same order as sorting the edge keys, about four times
 // faster than std::sort on 6 keys per tet (it ran in every operator pass).
 std::vector<EdgeVertices> unique_edges(const Mesh& mesh) {
-  const std::size_t nv = mesh.vertex_capacity();
-  std::vector<std::uint32_t> start;
-  std::vector<VertexId> upper;
-  edges_by_lower_vertex(mesh, start, upper);
   std::vector<EdgeVertices> edges;
-  edges.reserve(upper.size() / 4);
-  for (VertexId a = 0; a < nv; ++a) {
-    const auto first = upper.begin() + start[a], last = upper.begin() + start[a + 1];
-    std::sort(first, last);
-    for (auto it = first; it != last; ++it)
-      if (it == first || *it != *(it - 1)) edges.push_back({a, *it});
-  }
+  edges.reserve(mesh.num_tets() * 6 / 4);
+  for_each_unique_edge(mesh, [&](VertexId a, VertexId b) { edges.push_back({a, b}); });
   return edges;
 }
 

@@ -13,7 +13,6 @@
 
 namespace metrica {
 
-
 namespace {
 
 Histogram make_histogram(std::vector<double> edges) {
@@ -32,8 +31,10 @@ void add(Histogram& h, double x) {
   }
   if (x >= h.edges.back()) {
     // The last bin is closed on the right (Q = 1 belongs to [0.9, 1]).
-    if (x == h.edges.back() && h.edges.back() == 1.0) ++h.counts.back();
-    else ++h.above;
+    if (x == h.edges.back() && h.edges.back() == 1.0)
+      ++h.counts.back();
+    else
+      ++h.above;
     return;
   }
   const auto it = std::upper_bound(h.edges.begin(), h.edges.end(), x);
@@ -72,14 +73,15 @@ QualityReport report_in(const Mesh& mesh) {
 
   Accumulator len, qual;
   std::size_t unit = 0;
-  const auto edges = unique_edges(mesh);
-  r.edges = edges.size();
-  for (const auto& [a, b] : edges) {
+  // Edge by edge, not from a list of them: the report of a large mesh
+  // must not hold more than the adaptation did.
+  for_each_unique_edge(mesh, [&](VertexId a, VertexId b) {
     const double l = S::edge_length(mesh, a, b);
     len.add(l);
     add(r.length_histogram, l);
     unit += kUnitBand.contains(l);
-  }
+    ++r.edges;
+  });
   std::size_t below01 = 0, below03 = 0;
   for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
     if (!mesh.tet_alive(t)) continue;
@@ -92,10 +94,10 @@ QualityReport report_in(const Mesh& mesh) {
   // A NaN or infinite measure says the metric (or a coordinate) is
   // degenerate: no report rather than one that reads "nan".
   if (!std::isfinite(len.sum) || !std::isfinite(qual.sum))
-    throw InputError(fmt::format("quality report: {} is not finite on some {} (a metric with non-finite, huge or "
-                                 "vanishing entries, or non-finite coordinates)",
-                                 !std::isfinite(len.sum) ? "the metric length" : "the mean ratio",
-                                 !std::isfinite(len.sum) ? "edge" : "tet"));
+    throw InputError(fmt::format(
+        "quality report: {} is not finite on some {} (a metric with non-finite, huge or "
+        "vanishing entries, or non-finite coordinates)",
+        !std::isfinite(len.sum) ? "the metric length" : "the mean ratio", !std::isfinite(len.sum) ? "edge" : "tet"));
   r.length = len.done();
   r.quality = qual.done();
   if (r.edges) r.unit_length_share = static_cast<double>(unit) / static_cast<double>(r.edges);
@@ -103,10 +105,11 @@ QualityReport report_in(const Mesh& mesh) {
     r.quality_below_01 = static_cast<double>(below01) / static_cast<double>(r.tets);
     r.quality_below_03 = static_cast<double>(below03) / static_cast<double>(r.tets);
   }
-  std::vector<Sym6> field(mesh.vertex_capacity(), Sym6{});
+  // complexity(mesh, field) without a copy of the field.
+  const std::vector<double> dual = dual_volumes(mesh);
+  r.complexity = 0.0;
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-    if (mesh.vertex_alive(v)) field[v] = mesh.metric(v);
-  r.complexity = complexity(mesh, field);
+    if (dual[v] > 0.0) r.complexity += std::sqrt(determinant(mesh.metric(v))) * dual[v];
   if (r.complexity > 0) r.vertices_per_complexity = static_cast<double>(r.vertices) / r.complexity;
   r.volume = mesh.volume();
   return r;
@@ -137,10 +140,9 @@ std::string format_report(const QualityReport& r) {
   std::string out;
   out += fmt::format("quality in the metric ({} interpolation)\n", r.space);
   out += fmt::format("  vertices {}  edges {}  tets {}\n", r.vertices, r.edges, r.tets);
-  out += fmt::format("  edge length  min {:.4f}  mean {:.4f}  max {:.4f}\n", r.length.min, r.length.mean,
-                     r.length.max);
-  out += fmt::format("  mean ratio   min {:.4f}  mean {:.4f}  max {:.4f}\n", r.quality.min, r.quality.mean,
-                     r.quality.max);
+  out += fmt::format("  edge length  min {:.4f}  mean {:.4f}  max {:.4f}\n", r.length.min, r.length.mean, r.length.max);
+  out +=
+      fmt::format("  mean ratio   min {:.4f}  mean {:.4f}  max {:.4f}\n", r.quality.min, r.quality.mean, r.quality.max);
   out += fmt::format("  edges in [1/sqrt2, sqrt2]  {:.2f}%\n", 100.0 * r.unit_length_share);
   out += fmt::format("  tets with Q < 0.1  {:.3f}%   Q < 0.3  {:.3f}%\n", 100.0 * r.quality_below_01,
                      100.0 * r.quality_below_03);

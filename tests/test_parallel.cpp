@@ -268,7 +268,7 @@ TEST_SUITE("parallel") {
     void* p = allocate_large(kLargeBlock + 1);
     CHECK(reinterpret_cast<std::uintptr_t>(p) % (std::size_t{2} << 20) == 0);
     static_cast<char*>(p)[kLargeBlock] = 1;  // the whole block is ours
-    free_large(p);
+    free_large(p, kLargeBlock + 1);
   }
 
   TEST_CASE("edge buckets on 1, 2, 3 and 8 threads give one thread's buckets, distinct, in order") {

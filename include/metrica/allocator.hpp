@@ -1,12 +1,12 @@
-// The process's allocator, tuned for adaptation: keep freed memory for
-// reuse instead of handing it back to the kernel.
+// The process's allocator, tuned for adaptation: small freed blocks kept
+// for reuse, large ones handed back to the kernel.
 //
-// Every pass builds work lists and scratch arrays of tens of MB (edge
-// buckets, seeds, compaction's maps) and frees them when it ends. glibc
-// serves such blocks by mmap and returns them by munmap, so the next pass
-// faults every page in again, zeroed by the kernel: 7-8% of a 0.94M-tet
-// adaptation. Kept in the heap instead, a freed block serves the next
-// pass's; the peak resident memory grows (figures: docs/benchmarks.md).
+// Every pass builds work lists and scratch arrays and frees them when it
+// ends. Small ones (below 4 MiB) stay in the heap for the next pass
+// (glibc would otherwise trim and fault them in again). Large ones are
+// mapped and unmapped: kept in the heap, the freed blocks of passes and
+// of growing arrays stayed resident between the live ones and set the
+// peak (figures: docs/benchmarks.md, "Memory").
 //
 // Process-wide, so the library never calls it: the metrica command, the
 // examples and the benchmarks do at start-up; an application embedding
@@ -24,18 +24,24 @@ void keep_freed_memory();
 // runs of a benchmark, so that each measures its own peak).
 void release_freed_memory();
 
-// Large blocks (the mesh's arrays, the edge buckets) on transparent huge
-// pages where the kernel offers them for the asking (Linux, THP
-// "madvise" or "always", Debian's default is "madvise"): a block of at
-// least kLargeBlock bytes is aligned to 2 MiB and marked MADV_HUGEPAGE.
-// Why: random reads over 1 GB on this 2-core VM scaled 1.7x on two
-// threads with 4 KiB pages (each miss also walks the page tables, nested
-// under a hypervisor) and 2.0x on huge pages, which also made one thread
-// 20% faster; over 256 MB both scaled 1.9x. The 4.4M-tet adaptation's
-// working set is 1 GB. Elsewhere, or when the environment sets
-// METRICA_NO_HUGE_PAGES (to anything but 0), an ordinary block.
+// Large blocks (the mesh's arrays, the edge buckets) are mapped on their
+// own, outside the heap, starting on a 2 MiB boundary and marked
+// MADV_HUGEPAGE (Linux): transparent huge pages where the kernel offers
+// them for the asking (THP "madvise" or "always", Debian's default is
+// "madvise"). Why huge pages: random reads over 1 GB on this 2-core VM
+// scaled 1.7x on two threads with 4 KiB pages (each miss also walks the
+// page tables, nested under a hypervisor) and 2.0x on huge pages, which
+// also made one thread 20% faster. Why outside the heap: an array that
+// grows leaves its old block behind, and in the heap (kept by
+// keep_freed_memory) those blocks stayed resident between the live ones:
+// at 1M tets the process held 282 MB for 120-160 MB in use; unmapped
+// when freed, 260 MB (a cache of freed blocks for the next pass's work
+// arrays, up to 64 MiB, held 330 MB and saved no time). Untouched pages
+// of a block are not resident: room reserved but never written costs
+// nothing. METRICA_NO_HUGE_PAGES (to anything but 0) leaves out the
+// advice; elsewhere than Linux, malloc.
 inline constexpr std::size_t kLargeBlock = std::size_t{4} << 20;
-void* allocate_large(std::size_t bytes);  // throws std::bad_alloc
-void free_large(void* p) noexcept;
+void* allocate_large(std::size_t bytes);               // throws std::bad_alloc
+void free_large(void* p, std::size_t bytes) noexcept;  // bytes: as allocated
 
 }  // namespace metrica

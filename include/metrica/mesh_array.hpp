@@ -46,7 +46,7 @@ struct DefaultInitAllocator : std::allocator<T> {
     if (n * sizeof(T) < kLargeBlock)
       std::allocator<T>::deallocate(p, n);
     else
-      free_large(p);
+      free_large(p, n * sizeof(T));
   }
 
   // No value: nothing written. Default-initialisation for a class type
@@ -71,12 +71,12 @@ struct DefaultInitAllocator : std::allocator<T> {
 template <class T>
 using MeshArray = std::vector<T, DefaultInitAllocator<T>>;
 
-// Makes `a` `size` long (size >= a.size()), the new elements equal to
-// `fill`, its capacity at least `capacity` when it has to reallocate: the
-// copy into the new block and the fill both cut into run.parts parts.
+// Makes `a` `size` long (size >= a.size()), the new elements left
+// unwritten (not resident, in a large block, until someone writes them),
+// its capacity at least `capacity` when it has to reallocate: the copy
+// into the new block cut into run.parts parts.
 template <class T>
-void grow_array(MeshArray<T>& a, std::size_t size, const std::type_identity_t<T>& fill, std::size_t capacity,
-                const PartRunner& run) {
+void extend_array(MeshArray<T>& a, std::size_t size, std::size_t capacity, const PartRunner& run) {
   const std::size_t old = a.size();
   if (size <= old) return;
   const std::size_t parts = std::max<std::size_t>(run.parts, 1);
@@ -92,6 +92,16 @@ void grow_array(MeshArray<T>& a, std::size_t size, const std::type_identity_t<T>
     a.swap(fresh);
   }
   a.resize(size);
+}
+
+// extend_array, the new elements equal to `fill` (written in parts).
+template <class T>
+void grow_array(MeshArray<T>& a, std::size_t size, const std::type_identity_t<T>& fill, std::size_t capacity,
+                const PartRunner& run) {
+  const std::size_t old = a.size();
+  if (size <= old) return;
+  extend_array(a, size, capacity, run);
+  const std::size_t parts = std::max<std::size_t>(run.parts, 1);
   run(parts, [&](std::size_t p) {
     const auto [first, last] = part_slice(size - old, parts, p);
     std::fill(a.begin() + static_cast<std::ptrdiff_t>(old + first), a.begin() + static_cast<std::ptrdiff_t>(old + last),

@@ -34,7 +34,8 @@ void sync_folder(const std::string& folder) {
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), target_(writable_target(path_)) {
   const int fd = create_temporary(folder_of(target_), tmp_path_);
-  if (fd < 0) throw IoError(fmt::format("{}: cannot create a temporary file beside it: {}", path_, std::strerror(errno)));
+  if (fd < 0)
+    throw IoError(fmt::format("{}: cannot create a temporary file beside it: {}", path_, std::strerror(errno)));
   struct stat st {};
   const mode_t mode = ::stat(target_.c_str(), &st) == 0 ? (st.st_mode & 07777) : new_file_mode();
   ::fchmod(fd, mode);
@@ -60,6 +61,12 @@ void AtomicFile::write(const void* data, std::size_t size) {
   if (size == 0) return;
   if (std::fwrite(data, 1, size, file_) != size)
     throw IoError(fmt::format("{}: write failed: {}", path_, std::strerror(errno)));
+}
+
+void AtomicFile::write_at(std::uint64_t offset, const void* data, std::size_t size) {
+  const bool ok = std::fflush(file_) == 0 && ::fseeko(file_, static_cast<off_t>(offset), SEEK_SET) == 0 &&
+                  std::fwrite(data, 1, size, file_) == size && ::fseeko(file_, 0, SEEK_END) == 0;
+  if (!ok) throw IoError(fmt::format("{}: write failed: {}", path_, std::strerror(errno)));
 }
 
 void AtomicFile::commit() {

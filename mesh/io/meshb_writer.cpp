@@ -16,11 +16,17 @@ namespace {
 
 using namespace meshb;
 
+// Both writers build their output in a buffer; given a file, they hand
+// the buffer to it whenever it passes kFlushBytes (after a whole entity),
+// so that writing a mesh costs a buffer, not a second copy of the file.
+constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
+
 // Appends binary words; keywords are chained by patching each keyword's
-// next-offset field when the following keyword begins.
+// next-offset field when the following keyword begins (in the buffer, or
+// in the file once flushed).
 class BinaryWriter {
  public:
-  explicit BinaryWriter(int version) : w_(version) {
+  explicit BinaryWriter(int version, AtomicFile* file = nullptr) : w_(version), file_(file) {
     put<std::int32_t>(kMagic);
     put<std::int32_t>(version);
     begin(kDimension);
@@ -30,7 +36,7 @@ class BinaryWriter {
   void begin(int code) {
     patch_previous();
     put<std::int32_t>(code);
-    offset_field_ = out_.size();
+    offset_field_ = flushed_ + out_.size();
     if (w_.offset == 4)
       put<std::int32_t>(0);
     else
@@ -56,33 +62,52 @@ class BinaryWriter {
     out_.resize(n + sizeof(T));
     std::memcpy(out_.data() + n, &v, sizeof(T));
   }
+  // After a whole entity: hands a full buffer to the file.
+  void maybe_flush() {
+    if (file_ == nullptr || out_.size() < kFlushBytes) return;
+    file_->write(out_);
+    flushed_ += out_.size();
+    out_.clear();
+  }
+  // The whole output (no file), or the rest written to the file.
   std::string finish() {
     begin(kEnd);  // End's own next-offset stays 0
-    return std::move(out_);
+    if (file_ == nullptr) return std::move(out_);
+    file_->write(out_);
+    return {};
   }
-  void reserve(std::size_t n) { out_.reserve(n); }
+  void reserve(std::size_t n) { out_.reserve(file_ == nullptr ? n : std::min(n, 2 * kFlushBytes)); }
 
  private:
   void patch_previous() {
     if (offset_field_ == 0) return;
-    const auto here = out_.size();
+    const std::uint64_t here = flushed_ + out_.size();
+    char bytes[8];
+    std::size_t width = 4;
     if (w_.offset == 4) {
       const auto v = static_cast<std::int32_t>(here);
-      std::memcpy(out_.data() + offset_field_, &v, 4);
+      std::memcpy(bytes, &v, 4);
     } else {
       const auto v = static_cast<std::int64_t>(here);
-      std::memcpy(out_.data() + offset_field_, &v, 8);
+      std::memcpy(bytes, &v, 8);
+      width = 8;
     }
+    if (offset_field_ >= flushed_)
+      std::memcpy(out_.data() + (offset_field_ - flushed_), bytes, width);
+    else
+      file_->write_at(offset_field_, bytes, width);
   }
 
   Widths w_;
+  AtomicFile* file_;
   std::string out_;
-  std::size_t offset_field_ = 0;
+  std::uint64_t flushed_ = 0;  // bytes already handed to the file
+  std::uint64_t offset_field_ = 0;
 };
 
 class TextWriter {
  public:
-  explicit TextWriter(int version) : version_(version) {
+  explicit TextWriter(int version, AtomicFile* file = nullptr) : version_(version), file_(file) {
     fmt::format_to(it(), "MeshVersionFormatted {}\n\nDimension 3\n", version);
   }
   void begin(int code) { fmt::format_to(it(), "\n{}\n", keyword_name(code)); }
@@ -100,21 +125,30 @@ class TextWriter {
     if (buf_.size() > 0 && buf_[buf_.size() - 1] == ' ') buf_.resize(buf_.size() - 1);
     buf_.push_back('\n');
   }
+  void maybe_flush() {
+    if (file_ == nullptr || buf_.size() < kFlushBytes) return;
+    file_->write(buf_.data(), buf_.size());
+    buf_.clear();
+  }
   std::string finish() {
     fmt::format_to(it(), "\nEnd\n");
-    return fmt::to_string(buf_);
+    if (file_ == nullptr) return fmt::to_string(buf_);
+    file_->write(buf_.data(), buf_.size());
+    return {};
   }
-  void reserve(std::size_t n) { buf_.reserve(n); }
 
  private:
   std::back_insert_iterator<fmt::memory_buffer> it() { return std::back_inserter(buf_); }
   int version_;
+  AtomicFile* file_;
   fmt::memory_buffer buf_;
 };
 
+// Ends an entity: its line (text), and a flush when the buffer is full.
 template <class Writer>
 void end_line(Writer& w) {
   if constexpr (requires { w.end_line(); }) w.end_line();
+  w.maybe_flush();
 }
 
 template <class Writer, class Entities>
@@ -218,37 +252,50 @@ int choose_version(int requested, int data_version, Encoding enc, std::uint64_t 
   return version;
 }
 
-}  // namespace
-
-std::string format_mesh(const MeshData& data, Encoding encoding, int version) {
+// The whole output as a string (file null), or streamed to the file.
+std::string mesh_output(const MeshData& data, Encoding encoding, int version, AtomicFile* file) {
   version = choose_version(version, data.version, encoding, binary_size_estimate(data, 2));
   if (encoding == Encoding::binary) {
-    BinaryWriter w(version);
+    BinaryWriter w(version, file);
     w.reserve(binary_size_estimate(data, version));
     return write_mesh_to(std::move(w), data);
   }
-  return write_mesh_to(TextWriter(version), data);
+  return write_mesh_to(TextWriter(version, file), data);
+}
+
+std::string sol_output(const SolData& data, Encoding encoding, int version, AtomicFile* file) {
+  if (data.values.size() != data.count * std::size_t(data.stride()))
+    throw IoError(
+        fmt::format("solution holds {} values, expected {} x {}", data.values.size(), data.count, data.stride()));
+  version = choose_version(version, data.version, encoding, 64 + data.values.size() * std::uint64_t{8});
+  if (encoding == Encoding::binary) return write_sol_to(BinaryWriter(version, file), data);
+  return write_sol_to(TextWriter(version, file), data);
+}
+
+}  // namespace
+
+std::string format_mesh(const MeshData& data, Encoding encoding, int version) {
+  return mesh_output(data, encoding, version, nullptr);
 }
 
 std::string format_sol(const SolData& data, Encoding encoding, int version) {
-  if (data.values.size() != data.count * std::size_t(data.stride()))
-    throw IoError(fmt::format("solution holds {} values, expected {} x {}", data.values.size(), data.count,
-                              data.stride()));
-  version = choose_version(version, data.version, encoding, 64 + data.values.size() * std::uint64_t{8});
-  if (encoding == Encoding::binary) return write_sol_to(BinaryWriter(version), data);
-  return write_sol_to(TextWriter(version), data);
+  return sol_output(data, encoding, version, nullptr);
 }
 
 void write_meshb(const std::string& path, const MeshData& data, int version) {
   const auto enc = encoding_of(path, ".mesh", ".meshb");
   check_finite(data, path);
-  write_file_atomically(path, format_mesh(data, enc, version));
+  AtomicFile out(path);
+  mesh_output(data, enc, version, &out);
+  out.commit();
 }
 
 void write_sol(const std::string& path, const SolData& data, int version) {
   const auto enc = encoding_of(path, ".sol", ".solb");
   check_finite(data, path);
-  write_file_atomically(path, format_sol(data, enc, version));
+  AtomicFile out(path);
+  sol_output(data, enc, version, &out);
+  out.commit();
 }
 
 }  // namespace metrica::io

@@ -7,6 +7,7 @@
 // set's commit (output_set.hpp).
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -22,6 +23,9 @@ class AtomicFile {
 
   void write(const void* data, std::size_t size);
   void write(std::string_view text) { write(text.data(), text.size()); }
+  // Overwrites bytes already written (a binary keyword's next offset),
+  // then goes on at the end.
+  void write_at(std::uint64_t offset, const void* data, std::size_t size);
   // Flushes, syncs, closes and renames the temporary file onto the target
   // (or stages it in the open OutputSet).
   void commit();
