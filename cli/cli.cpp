@@ -145,7 +145,7 @@ std::size_t default_max_tets() {
 void max_tets_option(Options& o) {
   o.add()("max-tets", po::value<double>()->value_name("N"),
           "refuse a run predicted to make more than N tets (default: what 90% of this machine's memory holds, "
-          "300 bytes per tet)");
+          "160 bytes per tet)");
 }
 
 double check_predicted_size(const Options& o, double complexity, const std::string& what) {

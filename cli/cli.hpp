@@ -138,8 +138,10 @@ enum class Valid { required, not_required };
 LoadedMesh load_mesh(const std::string& path, Valid valid = Valid::required);
 
 // --max-tets: the most tetrahedra a run may be asked to make. Its default
-// is what 90% of the machine's memory holds at kBytesPerTet.
-inline constexpr double kBytesPerTet = 300;
+// is what 90% of the machine's memory holds at kBytesPerTet (the peak of
+// an adaptation measured at 149-155 bytes per output tet at 4.3M tets, one
+// and two threads: docs/benchmarks.md, "Memory").
+inline constexpr double kBytesPerTet = 160;
 // Output tets per unit of complexity: 10-14 measured on the UGAWG cases.
 inline constexpr double kTetsPerComplexity = 10;
 std::size_t default_max_tets();
