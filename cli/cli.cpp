@@ -39,6 +39,14 @@ bool Options::parse(const std::vector<std::string>& args) {
   } catch (const po::error& e) {
     throw UsageError(fmt::format("{}: {}", command_, e.what()));
   }
+  // An option that takes a value takes the next word, even another
+  // option: `--output-dir --dry-run` made a folder named "--dry-run" and
+  // ran the whole loop. No value of ours starts with "--".
+  for (const auto& [name, value] : vm_) {
+    const auto* text = boost::any_cast<std::string>(&value.value());
+    if (text != nullptr && text->starts_with("--"))
+      throw UsageError(fmt::format("{}: --{} needs a value, got the option {}", command_, name, *text));
+  }
   if (vm_.count("help")) {
     std::cout << "usage: metrica " << command_ << " " << usage_ << "\n\n" << description_ << "\n\n" << all << "\n";
     return false;

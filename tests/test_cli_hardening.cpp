@@ -172,7 +172,12 @@ TEST_SUITE("regression") {
           "check " + in + " --max-messages -3", "check " + in + " --model-tolerance -1",
           "loop --field nofield --quick", "loop --field tanh3 --complexity inf", "loop --field tanh3 --gradation 0.5",
           "quality " + in + " --analytic linear --space curved", "error " + in + " --analytic nofield",
-          "convert " + in + " /tmp/out.obj", "interpolate " + in + " --field f.solb --to t.meshb -o out.meshb"}) {
+          "convert " + in + " /tmp/out.obj", "interpolate " + in + " --field f.solb --to t.meshb -o out.meshb",
+          // A value-taking option followed by another option: the fuzzer's
+          // `--ou --dry-run` ran the whole loop into a folder "--dry-run".
+          "loop --field tanh3 -i " + in + " --quick --output-dir --dry-run",
+          "loop --field tanh3 -i " + in + " --quick --ou --dry-run", "adapt " + in + " --analytic linear -o --dry-run",
+          "metric " + in + " --analytic linear -o --quiet"}) {
       CAPTURE(args);
       const auto r = metrica_cli(args);
       CHECK(r.code == 2);
