@@ -7,6 +7,9 @@
 #include <doctest/doctest.h>
 
 #include <cstring>
+#include <fstream>
+#include <iterator>
+#include <random>
 
 using namespace metrica;
 using namespace metrica::io;
@@ -125,6 +128,52 @@ TEST_SUITE("unit") {
     std::size_t files = 0;
     for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
     CHECK(files == 2);
+  }
+
+  TEST_CASE("files beyond the writers' 1 MiB buffer: streamed in pieces - the same bytes as the whole output") {
+    // 60k vertices and tets: several flushes inside each keyword, and the
+    // next-keyword offsets of binary files patched in the file itself.
+    MeshData m;
+    m.version = 2;
+    auto r = test::rng(3);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const std::uint32_t n = 60000;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      m.vertices.push_back(test::draw_point(u, r));
+      m.vertex_refs.push_back(static_cast<int>(i % 7));
+      m.tets.push_back({i, (i + 1) % n, (i + 2) % n, (i + 3) % n});
+      m.tet_refs.push_back(static_cast<int>(i % 3));
+    }
+    for (std::uint32_t i = 0; i < 1000; ++i) {
+      m.triangles.push_back({i, i + 1, i + 2});
+      m.triangle_refs.push_back(1 + static_cast<int>(i % 6));
+    }
+    m.corners = {0, 5, 17};
+    SolData s;
+    s.count = n;
+    s.types = {SolType::sym_matrix};
+    for (std::size_t i = 0; i < n * 6; ++i) s.values.push_back(u(r));
+    test::TempDir dir;
+    auto bytes_of = [](const std::string& path) {
+      std::ifstream in(path, std::ios::binary);
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    for (int version : {2, 3}) {
+      CAPTURE(version);
+      write_meshb(dir / "m.meshb", m, version);
+      write_meshb(dir / "m.mesh", m, version);
+      write_sol(dir / "s.solb", s, version);
+      write_sol(dir / "s.sol", s, version);
+      const std::string binary = bytes_of(dir / "m.meshb");
+      REQUIRE(binary.size() > (std::size_t{2} << 20));
+      CHECK(binary == format_mesh(m, Encoding::binary, version));
+      CHECK(bytes_of(dir / "m.mesh") == format_mesh(m, Encoding::ascii, version));
+      CHECK(bytes_of(dir / "s.solb") == format_sol(s, Encoding::binary, version));
+      CHECK(bytes_of(dir / "s.sol") == format_sol(s, Encoding::ascii, version));
+      auto expected = m;
+      expected.version = version;
+      CHECK(read_meshb(dir / "m.meshb") == expected);
+    }
   }
 
   TEST_CASE("solutions with several fields round-trip in every version and encoding") {
