@@ -37,6 +37,14 @@ bool Options::parse(const std::vector<std::string>& args) {
     po::store(po::command_line_parser(args).options(all).positional(positional_).run(), vm_);
     po::notify(vm_);
   } catch (const po::error& e) {
+    // Boost's message substitutes %value%-style placeholders until none is
+    // left: an argument holding one made what() loop forever (`cube --n
+    // %value%`, found by fuzz_options). Such a command line gets a message
+    // of our own.
+    for (const std::string& a : args)
+      for (const char* p : {"%value%", "%canonical_option%", "%prefix_option%", "%original_token%", "%option%"})
+        if (a.find(p) != std::string::npos)
+          throw UsageError(fmt::format("{}: invalid argument '{}' (bad value, or an option it does not take)", command_, a));
     throw UsageError(fmt::format("{}: {}", command_, e.what()));
   }
   // An option that takes a value takes the next word, even another
