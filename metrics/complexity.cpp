@@ -21,16 +21,30 @@ std::vector<double> dual_volumes(const Mesh& mesh) {
   return v;
 }
 
+namespace {
+// The sum over vertices of sqrt(det M_i) times the dual volume, M_i =
+// metric_of(i).
+template <class MetricOf>
+double complexity_sum(const std::vector<double>& dual_volume, MetricOf&& metric_of) {
+  double c = 0.0;
+  for (std::size_t i = 0; i < dual_volume.size(); ++i)
+    if (dual_volume[i] > 0.0) c += std::sqrt(determinant(metric_of(i))) * dual_volume[i];
+  return c;
+}
+}  // namespace
+
 double complexity(const std::vector<Sym6>& field, const std::vector<double>& dual_volume) {
   if (field.size() != dual_volume.size())
     throw InputError(fmt::format("metric field of {} tensors for {} vertex ids", field.size(), dual_volume.size()));
-  double c = 0.0;
-  for (std::size_t i = 0; i < field.size(); ++i)
-    if (dual_volume[i] > 0.0) c += std::sqrt(determinant(field[i])) * dual_volume[i];
-  return c;
+  return complexity_sum(dual_volume, [&](std::size_t i) -> const Sym6& { return field[i]; });
 }
 
 double complexity(const Mesh& mesh, const std::vector<Sym6>& field) { return complexity(field, dual_volumes(mesh)); }
+
+double complexity(const Mesh& mesh) {
+  return complexity_sum(dual_volumes(mesh),
+                        [&](std::size_t i) -> const Sym6& { return mesh.metric(static_cast<VertexId>(i)); });
+}
 
 double sampled_complexity(const Mesh& mesh, const std::function<Sym6(const Point&)>& metric, double samples) {
   const double tets = std::max<double>(1.0, double(mesh.num_tets()));

@@ -105,11 +105,7 @@ QualityReport report_in(const Mesh& mesh) {
     r.quality_below_01 = static_cast<double>(below01) / static_cast<double>(r.tets);
     r.quality_below_03 = static_cast<double>(below03) / static_cast<double>(r.tets);
   }
-  // complexity(mesh, field) without a copy of the field.
-  const std::vector<double> dual = dual_volumes(mesh);
-  r.complexity = 0.0;
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-    if (dual[v] > 0.0) r.complexity += std::sqrt(determinant(mesh.metric(v))) * dual[v];
+  r.complexity = complexity(mesh);
   if (r.complexity > 0) r.vertices_per_complexity = static_cast<double>(r.vertices) / r.complexity;
   r.volume = mesh.volume();
   return r;

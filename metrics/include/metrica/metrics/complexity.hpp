@@ -17,6 +17,8 @@ std::vector<double> dual_volumes(const Mesh& mesh);
 
 double complexity(const std::vector<Sym6>& field, const std::vector<double>& dual_volume);
 double complexity(const Mesh& mesh, const std::vector<Sym6>& field);
+// The complexity of the mesh's own metric (Mesh::metric), without a copy of it.
+double complexity(const Mesh& mesh);
 
 // The complexity of a metric known everywhere (an analytic metric), the
 // integral of sqrt(det M) sampled on each tet at the points of a
