@@ -52,14 +52,23 @@ AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshDat
         "the mesh's surface ids {} are not surfaces of {} (its surfaces are {}..{}): the model does not match the mesh",
         ids, model.source(), *std::min_element(all.begin(), all.end()), *std::max_element(all.begin(), all.end())));
   }
-  // The input's (u, v) per vertex and surface.
+  // The input's (u, v) per vertex and surface, and its model vertices.
   std::vector<std::vector<const io::GeoRecord*>> on_surface(input != nullptr ? mesh.vertex_capacity() : 0);
-  if (input != nullptr)
+  std::vector<int> on_model_vertex(input != nullptr ? mesh.vertex_capacity() : 0, 0);
+  if (input != nullptr) {
     for (const auto& r : input->on_geometry[2])
       if (r.vertex < on_surface.size()) on_surface[r.vertex].push_back(&r);
+    for (const auto& r : input->on_geometry[0])
+      if (r.vertex < on_model_vertex.size()) on_model_vertex[r.vertex] = r.entity;
+  }
+  // A vertex at a model vertex is associated with it, not with one of its
+  // curves: new vertices between it and a neighbour on any of those curves
+  // then find the curve they share (CadGeometry::boundary_vertex).
+  const double at_model_vertex = 1e-9 * model.size();
 
   mesh.enable_geo_params();
   AssociationReport report;
+  bool reclassify = false;
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
     if (!mesh.vertex_alive(v) || surfaces[v].empty()) continue;
     const Point p = mesh.point(v);
@@ -85,16 +94,26 @@ AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshDat
       for (int s : around)
         for (int c : model.curves_of_surface(s))
           if (std::find(curves.begin(), curves.end(), c) == curves.end()) curves.push_back(c);
-      if (cls == VertexClass::corner) {
+      if (!on_model_vertex.empty() && on_model_vertex[v] != 0 && model.has(0, on_model_vertex[v])) {
+        const GeoParam g{on_model_vertex[v], 0, 0.0, 0.0};
+        const double d = (model.value(g) - p).norm();
+        if (d < tolerance) {
+          best = {g, d};
+          ++report.from_file;
+        }
+      }
+      if (!best.param.valid()) {
         std::vector<int> corners;
         for (int c : curves)
           for (int m : model.vertices_of_curve(c))
             if (std::find(corners.begin(), corners.end(), m) == corners.end()) corners.push_back(m);
+        Candidate nearest;
         for (int m : corners) {
           const GeoParam g{m, 0, 0.0, 0.0};
           const double d = (model.value(g) - p).norm();
-          if (d < best.distance) best = {g, d};
+          if (d < nearest.distance) nearest = {g, d};
         }
+        if (cls == VertexClass::corner || nearest.distance <= at_model_vertex) best = nearest;
       }
       if (best.distance > tolerance)
         for (int c : curves) {
@@ -110,9 +129,11 @@ AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshDat
           "the model does not match the mesh",
           v + 1, p.x(), p.y(), p.z(), best.distance, model.source(), tolerance));
     mesh.set_geo_param(v, best.param);
+    reclassify |= best.param.dim == 0 && mesh.vertex_class(v) != VertexClass::corner;
     report.max_distance = std::max(report.max_distance, best.distance);
     ++report.vertices;
   }
+  if (reclassify) mesh.classify();
   return report;
 }
 

@@ -1,3 +1,4 @@
+#include <metrica/error.hpp>
 #include <metrica/geometry/cad_geometry.hpp>
 
 #include <boost/container/small_vector.hpp>
@@ -35,9 +36,28 @@ GeoParam CadGeometry::boundary_vertex(const Mesh& mesh, std::span<const VertexId
                                   [&](int c) { return std::find(mine.begin(), mine.end(), c) == mine.end(); }),
                    shared.end());
     }
-    if (shared.empty()) return {};
     Point straight = Point::Zero();
     for (std::size_t i = 0; i < parents.size(); ++i) straight += weights[i] * mesh.point(parents[i]);
+    if (shared.empty()) {
+      // No curve in common by the parents' parameters (a vertex at a model
+      // vertex recorded on one of its curves only): the nearest of their
+      // curves to the straight point, by projection.
+      GeoParam best;
+      double best_distance = std::numeric_limits<double>::infinity();
+      for (VertexId v : parents)
+        for (int c : curves_of(*model, mesh.geo_param(v))) {
+          try {
+            const GeoParam g = model->parametrize(1, c, straight);
+            const double d = (model->value(g) - straight).norm();
+            if (d < best_distance) {
+              best_distance = d;
+              best = g;
+            }
+          } catch (const InputError&) {
+          }
+        }
+      return best;
+    }
     GeoParam best;
     double best_distance = std::numeric_limits<double>::infinity();
     for (int c : shared) {

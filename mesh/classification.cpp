@@ -55,7 +55,10 @@ Classification compute_classification(const Mesh& mesh) {
 
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
     if (!mesh.vertex_alive(v) || c.vertex_class[v] == VertexClass::interior) continue;
-    if (mesh.is_required(v) || degree[v] == 1 || degree[v] >= 3 || pair_changes[v])
+    // A vertex at a model vertex (a CAD model's corner, even where the
+    // mesh sees no ridge: a closed curve's seam point) stays a corner.
+    const bool model_corner = mesh.has_geo_params() && mesh.geo_param(v).valid() && mesh.geo_param(v).dim == 0;
+    if (mesh.is_required(v) || degree[v] == 1 || degree[v] >= 3 || pair_changes[v] || model_corner)
       c.vertex_class[v] = VertexClass::corner;
     else if (degree[v] == 2)
       c.vertex_class[v] = VertexClass::ridge;

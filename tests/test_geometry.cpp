@@ -28,6 +28,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 const std::string kCylinderModel = std::string(METRICA_TEST_DATA_DIR) + "/cylinder.geo";
+const std::string kChannelModel = std::string(METRICA_TEST_DATA_DIR) + "/channel.geo";
 
 // The UGAWG cube-cylinder mesh associated with its STEP model.
 struct CubeCylinder {
@@ -392,6 +393,41 @@ TEST_SUITE("regression") {
     // One adaptation from the 418-triangle faceting (relative error 1.2e-3).
     const double exact = 1.0 - kPi / 16;
     CHECK(std::abs(c.mesh.volume() - exact) / exact < 2e-4);
+  }
+
+  TEST_CASE("a vertex at a model vertex is that model vertex - a corner - and the vertices made along its closed curves stay on the model") {
+    // The channel of Schäfer-Turek 3D-1Z: the cylinder's circles are closed
+    // curves whose one model vertex is also the end of the seam. Recorded on
+    // the seam only, that vertex shared no curve with its neighbours on the
+    // circle, and the circle's splits next to it left vertices off the model.
+    CadModel model(kChannelModel);
+    const io::MeshData data = bootstrap_mesh(model, {.size = 0.1});
+    Mesh mesh = build_mesh(data);
+    associate(mesh, model, &data);
+    int at_model_vertices = 0;
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+      if (!mesh.vertex_alive(v) || !mesh.geo_param(v).valid()) continue;
+      for (int m : model.entities(0))
+        if ((model.value({m, 0, 0.0, 0.0}) - mesh.point(v)).norm() < 1e-12) {
+          ++at_model_vertices;
+          CHECK(mesh.geo_param(v).dim == 0);
+          CHECK(mesh.vertex_class(v) == VertexClass::corner);
+        }
+    }
+    CHECK(at_model_vertices == static_cast<int>(model.entities(0).size()));
+    REQUIRE(mesh.validate().ok());
+    const MetricFunction metric = [](const Point&) { return isotropic_metric(0.03); };
+    test::set_metric_function(mesh, metric);
+    AdaptOptions o;
+    o.metric = &metric;
+    o.geometry = &model;
+    adapt<LogEuclidean, Filtered, Serial, CadGeometry>(mesh, o, CadGeometry{&model});
+    const auto report = mesh.validate();
+    INFO(report.to_string());
+    REQUIRE(report.ok());
+    const ModelDistance d = model_distance(mesh, model);
+    CHECK(d.unassociated == 0);
+    CHECK(d.max < 1e-8);
   }
 }
 
