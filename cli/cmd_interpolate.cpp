@@ -13,16 +13,19 @@ namespace metrica::cli {
 
 int run_interpolate(const std::vector<std::string>& args) {
   Options o("interpolate", "[-i] FROM_MESH --field FIELD.solb --to TO_MESH [-o] OUTPUT.solb",
-            "Transfers a scalar vertex field from one mesh to another (a solver restarting on an adapted\n"
+            "Transfers a vertex solution from one mesh to another (a solver restarting on an adapted\n"
             "mesh from its previous solution): each vertex of the target mesh is located in the source\n"
             "mesh by walking from the tet of the previous vertex, and takes the P1 (barycentric)\n"
             "interpolant there. Target vertices outside the source mesh (a curved boundary discretised\n"
-            "differently) take the value at the closest point of the closest tet found; they are counted.\n\n"
+            "differently) take the value at the closest point of the closest tet found; they are counted.\n"
+            "Every field of the file moves, component by component, and the output keeps its fields\n"
+            "(e.g. a velocity vector and a pressure scalar). Tensor fields are refused: a metric is\n"
+            "transferred by adapt --metric-out, in its own space.\n\n"
             "Example:\n"
             "  metrica interpolate old.meshb --field old.solb --to adapted.meshb -o restart.solb");
   o.input("source mesh (.mesh, .meshb)");
   o.output("interpolated field (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
-  o.add()("field", po::value<std::string>()->value_name("FILE"), "scalar field at the source's vertices (.sol, .solb)")(
+  o.add()("field", po::value<std::string>()->value_name("FILE"), "scalar and vector fields at the source's vertices (.sol, .solb)")(
       "to", po::value<std::string>()->value_name("MESH"), "target mesh (.mesh, .meshb)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the source mesh (-i)");
@@ -31,20 +34,22 @@ int run_interpolate(const std::vector<std::string>& args) {
   const auto to_path = o.required("to", "the target mesh (--to)");
   Stopwatch clock;
   const auto from = load_mesh(input);
-  const auto values = scalar_field_from_sol(io::read_sol(field_path), from.data.vertices.size(), field_path);
+  const auto field = io::read_sol(field_path);
+  const auto values = solution_values_from_sol(field, from.data.vertices.size(), field_path);
   const auto to = load_mesh(to_path);
   if (o.dry_run()) return kOk;
   std::size_t outside = 0;
-  const auto out = interpolate_vertex_field(from.mesh, values, to.mesh, &outside);
+  const int width = field.stride();
+  const auto out = interpolate_vertex_values(from.mesh, values, width, to.mesh, &outside);
   io::SolData sol;
   sol.version = to.data.version;
   sol.count = to.data.vertices.size();
-  sol.types = {io::SolType::scalar};
-  sol.values.assign(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(sol.count));
+  sol.types = field.types;
+  sol.values.assign(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(sol.count * static_cast<std::size_t>(width)));
   io::write_sol(output, sol);
   if (log::level() >= log::Level::normal)
-    fmt::print("wrote {}: {} values ({} outside the source mesh, clamped) in {:.2f} s\n", output, count_text(sol.count),
-               count_text(outside), clock.seconds());
+    fmt::print("wrote {}: {} vertices x {} values ({} outside the source mesh, clamped) in {:.2f} s\n", output,
+               count_text(sol.count), width, count_text(outside), clock.seconds());
   return kOk;
 }
 

@@ -53,6 +53,7 @@ int run_loop(const std::vector<std::string>& args) {
       "geometry", po::value<std::string>()->value_name("MODEL"),
       "CAD model the start mesh's boundary lies on: new boundary vertices go on it (needs -i)");
   o.output_option("csv", "write one row per iteration", {});
+  o.format_version("libMeshb version of the meshes and metrics --output-dir gets, 1-4 (default 2)");
   max_tets_option(o);
   if (!o.parse(args)) return kOk;
   if (!o.has("field")) throw UsageError("loop: give --field NAME (sinfun3, tanh3, sinatan3)");
@@ -125,11 +126,11 @@ int run_loop(const std::vector<std::string>& args) {
       const std::string stem = fmt::format("{}/loop-{:02d}", dir, r.iteration);
       auto data = extract_mesh_data(m);
       if (model) complete_geometry_records(data, *model);
-      io::write_mesh_file(stem + ".meshb", data);
+      io::write_mesh_file(stem + ".meshb", data, o.format_version());
       std::vector<Sym6> metrics;
       for (VertexId v = 0; v < m.vertex_capacity(); ++v)
         if (m.vertex_alive(v)) metrics.push_back(m.metric(v));
-      io::write_sol(stem + ".solb", metric_field_to_sol(metrics));
+      io::write_sol(stem + ".solb", metric_field_to_sol(metrics), o.format_version());
     }
   };
   const auto rows = adaptive_loop(mesh, lo);

@@ -21,7 +21,8 @@ int run_metric(const std::vector<std::string>& args) {
             "Writes a metric field (one symmetric tensor per vertex, SolAtVertices) for a mesh, from one of:\n"
             "  --analytic NAME    a UGAWG analytic metric: linear, polar-1, polar-2;\n"
             "  --field NAME       the multiscale metric of an analytic field: sinfun3, tanh3, sinatan3;\n"
-            "  --field-file F     the multiscale metric of the first scalar field of a .sol/.solb;\n"
+            "  --field-file F     the multiscale metric of a solution (.sol/.solb): its first scalar field,\n"
+            "                     or the fields --fields chooses, each scaled to the complexity, intersected;\n"
             "  -m M               an existing metric (to scale, bound, grade or intersect).\n"
             "The multiscale metric (Loseille & Alauzet) controls the L^p norm of the P1 interpolation error\n"
             "for a target complexity (--complexity, default 1000); its Hessian comes from L2-projection\n"
@@ -31,14 +32,18 @@ int run_metric(const std::vector<std::string>& args) {
             "The output is .solb or .sol (libMeshb version of the mesh unless --format-version).\n\n"
             "Examples:\n"
             "  metrica metric cube-linear-00.meshb --analytic linear -o linear.solb\n"
-            "  metrica metric cube.meshb --field sinfun3 --complexity 8000 --gradation 3 -o m.solb");
+            "  metrica metric cube.meshb --field sinfun3 --complexity 8000 --gradation 3 -o m.solb\n"
+            "  metrica metric flow.meshb --field-file flow.sol --fields 1,2 --complexity 20000 -o m.solb");
   o.input("mesh (.mesh, .meshb)");
   o.output("metric (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
   max_tets_option(o);
   o.format_version("libMeshb version to write (default: the mesh's)");
   o.add()("analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
       "field", po::value<std::string>()->value_name("NAME"), "analytic field for a multiscale metric")(
-      "field-file", po::value<std::string>()->value_name("FILE"), "scalar field (.sol/.solb) for a multiscale metric")(
+      "field-file", po::value<std::string>()->value_name("FILE"), "solution (.sol/.solb) for a multiscale metric")(
+      "fields", po::value<std::string>()->value_name("LIST"),
+      "fields of --field-file, intersected: K (field K, 1-based; a vector: all its components), "
+      "K.x K.y K.z (one component), all; comma-separated (default: the first scalar field)")(
       "metric,m", po::value<std::string>()->value_name("FILE"), "an existing metric to post-process")(
       "complexity", po::value<double>()->value_name("C"), "target complexity (multiscale default 1000)")(
       "norm", po::value<double>()->default_value(2.0)->value_name("P"), "L^p norm of the multiscale metric (p >= 1)")(
@@ -55,6 +60,7 @@ int run_metric(const std::vector<std::string>& args) {
   const int sources = static_cast<int>(o.has("analytic") + o.has("field") + o.has("field-file") + o.has("metric"));
   if (sources != 1)
     throw UsageError("metric: give exactly one source: --analytic, --field, --field-file or -m");
+  if (o.has("fields") && !o.has("field-file")) throw UsageError("metric: --fields chooses among --field-file's fields");
 
   MetricBounds bounds = o.size_bounds();
   if (o.has("max-anisotropy")) bounds.max_anisotropy = o.in_range("max-anisotropy", 1.0, 1e300);
@@ -75,15 +81,21 @@ int run_metric(const std::vector<std::string>& args) {
   std::vector<Sym6> field;
   std::string what;
   if (o.has("field") || o.has("field-file")) {
-    std::vector<double> values;
+    std::vector<std::vector<double>> values;
     if (analytic_field) {
       const auto f = *analytic_field;
-      values = analytic_field_values(f, loaded.data.vertices);
+      values.push_back(analytic_field_values(f, loaded.data.vertices));
       what = fmt::format("multiscale metric of {}", to_string(f));
     } else {
       const auto path = o.get<std::string>("field-file");
-      values = scalar_field_from_sol(io::read_sol(path), n, path);
-      what = fmt::format("multiscale metric of {}", path);
+      auto chosen = select_fields(io::read_sol(path), n, o.has("fields") ? o.get<std::string>("fields") : "", path);
+      std::string names;
+      for (auto& f : chosen) {
+        names += (names.empty() ? "" : ", ") + f.name;
+        values.push_back(std::move(f.values));
+      }
+      what = o.has("fields") ? fmt::format("multiscale metric of {} (fields {}, intersected)", path, names)
+                             : fmt::format("multiscale metric of {}", path);
     }
     if (o.dry_run()) return kOk;
     MultiscaleOptions ms;
@@ -93,7 +105,7 @@ int run_metric(const std::vector<std::string>& args) {
     ms.gradation = o.has("gradation");
     ms.gradation_options = grading;
     MultiscaleReport rep;
-    field = multiscale_metric(mesh, values, ms, &rep);
+    field = values.size() == 1 ? multiscale_metric(mesh, values.front(), ms, &rep) : multiscale_metric(mesh, values, ms, &rep);
     log::info("multiscale: Hessian {:.3f} s, gradation {:.3f} s, {} relaxations, total {:.3f} s", rep.hessian_seconds,
               rep.gradation_seconds, rep.relaxations, rep.total_seconds);
   } else {

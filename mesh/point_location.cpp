@@ -86,11 +86,14 @@ Location locate(const Mesh& mesh, const Point& p, TetId start) {
   return out;
 }
 
-std::vector<double> interpolate_vertex_field(const Mesh& from, const std::vector<double>& values, const Mesh& to,
-                                             std::size_t* outside) {
-  if (values.size() != from.vertex_capacity())
-    throw InputError(fmt::format("interpolate: {} values for a mesh of {} vertex ids", values.size(), from.vertex_capacity()));
-  std::vector<double> out(to.vertex_capacity(), 0.0);
+std::vector<double> interpolate_vertex_values(const Mesh& from, const std::vector<double>& values, int width,
+                                              const Mesh& to, std::size_t* outside) {
+  if (width < 1) throw InputError(fmt::format("interpolate: {} values per vertex", width));
+  const auto w = static_cast<std::size_t>(width);
+  if (values.size() != from.vertex_capacity() * w)
+    throw InputError(fmt::format("interpolate: {} values for a mesh of {} vertex ids ({} per vertex)", values.size(),
+                                 from.vertex_capacity(), width));
+  std::vector<double> out(to.vertex_capacity() * w, 0.0);
   std::size_t n_outside = 0;
   TetId hint = kNoId;
   for (VertexId v = 0; v < to.vertex_capacity(); ++v) {
@@ -99,12 +102,19 @@ std::vector<double> interpolate_vertex_field(const Mesh& from, const std::vector
     hint = loc.tet;
     n_outside += !loc.inside;
     const auto& tv = from.tet(loc.tet);
-    double x = 0;
-    for (int k = 0; k < 4; ++k) x += loc.bary[k] * values[tv[k]];
-    out[v] = x;
+    for (std::size_t c = 0; c < w; ++c) {
+      double x = 0;
+      for (int k = 0; k < 4; ++k) x += loc.bary[k] * values[tv[k] * w + c];
+      out[v * w + c] = x;
+    }
   }
   if (outside != nullptr) *outside = n_outside;
   return out;
+}
+
+std::vector<double> interpolate_vertex_field(const Mesh& from, const std::vector<double>& values, const Mesh& to,
+                                             std::size_t* outside) {
+  return interpolate_vertex_values(from, values, 1, to, outside);
 }
 
 }  // namespace metrica

@@ -89,6 +89,96 @@ std::vector<double> scalar_field_from_sol(const io::SolData& sol, std::size_t ve
   throw InputError(fmt::format("{}: no scalar field in the file", source));
 }
 
+namespace {
+
+void check_count(const io::SolData& sol, std::size_t vertices, const std::string& source) {
+  if (sol.count != vertices)
+    throw InputError(fmt::format("{}: the field has {} entries but the mesh has {} vertices", source, sol.count,
+                                 vertices));
+}
+
+void check_finite_values(const std::vector<double>& values, int width, const std::string& source) {
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      throw InputError(fmt::format("{}: value at vertex {} is not finite ({})", source, i / static_cast<std::size_t>(width) + 1,
+                                   values[i]));
+}
+
+// Component c of field k, contiguous.
+std::vector<double> component(const io::SolData& sol, std::size_t k, int c) {
+  const auto stride = static_cast<std::size_t>(sol.stride());
+  const auto at = static_cast<std::size_t>(sol.offset(k) + c);
+  std::vector<double> out(sol.count);
+  for (std::size_t v = 0; v < sol.count; ++v) out[v] = sol.values[v * stride + at];
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> solution_values_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source) {
+  check_count(sol, vertices, source);
+  for (std::size_t k = 0; k < sol.types.size(); ++k)
+    if (sol.types[k] != io::SolType::scalar && sol.types[k] != io::SolType::vector)
+      throw InputError(fmt::format("{}: field {} is a {} (only scalar and vector fields are solutions to transfer)",
+                                   source, k + 1, io::to_string(sol.types[k])));
+  check_finite_values(sol.values, sol.stride(), source);
+  return sol.values;
+}
+
+std::vector<SelectedField> select_fields(const io::SolData& sol, std::size_t vertices, const std::string& selection,
+                                         const std::string& source) {
+  if (selection.empty()) return {{"first scalar", scalar_field_from_sol(sol, vertices, source)}};
+  check_count(sol, vertices, source);
+  std::vector<SelectedField> out;
+  auto add = [&](std::size_t k, int c) {
+    const bool vector = sol.types[k] == io::SolType::vector;
+    out.push_back({vector ? fmt::format("{}.{}", k + 1, "xyz"[c]) : fmt::format("{}", k + 1), component(sol, k, c)});
+    check_finite_values(out.back().values, 1, fmt::format("{} (field {})", source, out.back().name));
+  };
+  auto add_field = [&](std::size_t k) {
+    if (sol.types[k] == io::SolType::scalar) add(k, 0);
+    else
+      for (int c = 0; c < 3; ++c) add(k, c);
+  };
+  std::size_t from = 0;
+  while (from <= selection.size()) {
+    const auto to = std::min(selection.find(',', from), selection.size());
+    const std::string item = selection.substr(from, to - from);
+    from = to + 1;
+    if (item == "all") {
+      for (std::size_t k = 0; k < sol.types.size(); ++k)
+        if (sol.types[k] == io::SolType::scalar || sol.types[k] == io::SolType::vector) add_field(k);
+      if (out.empty()) throw InputError(fmt::format("{}: no scalar or vector field in the file", source));
+      continue;
+    }
+    const auto dot = item.find('.');
+    const std::string number = item.substr(0, dot);
+    const bool digits = !number.empty() && number.size() <= 6 &&
+                        number.find_first_not_of("0123456789") == std::string::npos;
+    if (!digits)
+      throw InputError(fmt::format("field selection '{}': '{}' is not K, K.x, K.y, K.z or all", selection, item));
+    const auto k = static_cast<std::size_t>(std::stoul(number));
+    if (k < 1 || k > sol.types.size())
+      throw InputError(fmt::format("field selection '{}': {} holds fields 1 to {}, not {}", selection, source,
+                                   sol.types.size(), k));
+    const auto type = sol.types[k - 1];
+    if (type != io::SolType::scalar && type != io::SolType::vector)
+      throw InputError(fmt::format("field selection '{}': field {} of {} is a {}, not a scalar or a vector",
+                                   selection, k, source, io::to_string(type)));
+    if (dot == std::string::npos) {
+      add_field(k - 1);
+      continue;
+    }
+    const std::string c = item.substr(dot + 1);
+    const int index = c == "x" || c == "1" ? 0 : c == "y" || c == "2" ? 1 : c == "z" || c == "3" ? 2 : -1;
+    if (index < 0 || type != io::SolType::vector)
+      throw InputError(fmt::format("field selection '{}': '{}' names no component (K.x, K.y, K.z of a vector field)",
+                                   selection, item));
+    add(k - 1, index);
+  }
+  return out;
+}
+
 io::SolData scalar_field_to_sol(const std::vector<double>& values) {
   io::SolData s;
   s.count = values.size();

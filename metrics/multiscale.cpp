@@ -1,5 +1,7 @@
 #include <metrica/error.hpp>
+#include <metrica/log.hpp>
 #include <metrica/metrics/complexity.hpp>
+#include <metrica/metrics/intersection.hpp>
 #include <metrica/metrics/multiscale.hpp>
 #include <metrica/metrics/recovery.hpp>
 #include <metrica/metrics/sym_tensor.hpp>
@@ -9,6 +11,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace metrica {
 
@@ -28,14 +31,8 @@ void check_options(const MultiscaleOptions& o) {
     throw InputError(fmt::format("the gradation must be >= 1 (got {})", o.gradation_options.beta));
 }
 
-}  // namespace
-
-std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<Sym6> hessian,
-                                                 const MultiscaleOptions& o, MultiscaleReport* report) {
-  check_options(o);
-  Stopwatch clock;
-  if (hessian.size() != mesh.vertex_capacity())
-    throw InputError(fmt::format("Hessian field of {} tensors for {} vertex ids", hessian.size(), mesh.vertex_capacity()));
+// M_i = det|H_i|^(-1/(2p+3)) |H_i| (before the constant D_N).
+std::vector<Sym6> unscaled_metric(const Mesh& mesh, const std::vector<Sym6>& hessian, double norm) {
   std::vector<Eigen3> eig(hessian.size());
   double largest = 0.0;
   for (std::size_t v = 0; v < hessian.size(); ++v) {
@@ -47,7 +44,7 @@ std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<S
   if (!(largest > 0.0) || !std::isfinite(largest))
     throw InputError("the field's Hessian is zero everywhere (a linear field): no multiscale metric to make");
   const double floor = kRelativeEigenFloor * largest;
-  const double exponent = -1.0 / (2.0 * o.norm + 3.0);
+  const double exponent = -1.0 / (2.0 * norm + 3.0);
   std::vector<Sym6> metric(hessian.size(), isotropic_metric(1.0));
   for (std::size_t v = 0; v < hessian.size(); ++v) {
     if (!mesh.vertex_alive(static_cast<VertexId>(v))) continue;
@@ -55,7 +52,32 @@ std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<S
     l *= std::pow(l.prod(), exponent);
     metric[v] = to_sym6(eig[v].vectors * l.asDiagonal() * eig[v].vectors.transpose());
   }
+  return metric;
+}
 
+// The recovered Hessian of a vertex field, or nothing when it is at
+// round-off level of the gradient's scale (the field is linear and asks for
+// no particular size).
+std::optional<std::vector<Sym6>> field_hessian(const Mesh& mesh, const std::vector<double>& values,
+                                               const MultiscaleOptions& o) {
+  const auto gradient = recover_gradient(mesh, values);
+  auto hessian = recover_hessian(mesh, gradient);
+  if (o.extrapolate_boundary) extrapolate_hessian_to_boundary(mesh, hessian);
+  double gmax = 0.0, hmax = 0.0;
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    if (!mesh.vertex_alive(v)) continue;
+    gmax = std::max(gmax, gradient[v].norm());
+    hmax = std::max(hmax, to_matrix(hessian[v]).norm());
+  }
+  const auto box = bounding_box(mesh);
+  if (!(hmax > 1e-9 * gmax / (box.hi - box.lo).norm())) return std::nullopt;
+  return hessian;
+}
+
+// Scale to N, then bounds and gradation with rescaling until the
+// complexity is back at N (at most max_relaxations rounds).
+void relax_to_complexity(const Mesh& mesh, std::vector<Sym6>& metric, const MultiscaleOptions& o,
+                         MultiscaleReport& r) {
   // Sizes beyond the domain mean nothing a mesh could follow; bounding them
   // by its largest extent (unless the user set h_max) also spares the
   // gradation from walking down sizes of 1e6 in flat regions.
@@ -65,7 +87,6 @@ std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<S
     bounds.hmax = std::max((box.hi - box.lo).maxCoeff(), bounds.hmin);
   }
   const auto dual = dual_volumes(mesh);
-  MultiscaleReport r;
   scale_to_complexity(metric, dual, o.complexity);
   const bool relax = bounds.active() || o.gradation;
   for (r.relaxations = 0; relax && r.relaxations < o.max_relaxations;) {
@@ -81,6 +102,19 @@ std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<S
     scale_to_complexity(metric, dual, o.complexity);
   }
   r.complexity = complexity(metric, dual);
+}
+
+}  // namespace
+
+std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<Sym6> hessian,
+                                                 const MultiscaleOptions& o, MultiscaleReport* report) {
+  check_options(o);
+  Stopwatch clock;
+  if (hessian.size() != mesh.vertex_capacity())
+    throw InputError(fmt::format("Hessian field of {} tensors for {} vertex ids", hessian.size(), mesh.vertex_capacity()));
+  auto metric = unscaled_metric(mesh, hessian, o.norm);
+  MultiscaleReport r;
+  relax_to_complexity(mesh, metric, o, r);
   r.total_seconds = clock.seconds();
   if (report) *report = r;
   return metric;
@@ -90,25 +124,46 @@ std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<double>&
                                     MultiscaleReport* report) {
   check_options(o);
   Stopwatch clock;
-  const auto gradient = recover_gradient(mesh, values);
-  auto hessian = recover_hessian(mesh, gradient);
-  if (o.extrapolate_boundary) extrapolate_hessian_to_boundary(mesh, hessian);
-  // A Hessian at round-off level of the gradient's scale is zero: the
-  // field is linear and asks for no particular size.
-  double gmax = 0.0, hmax = 0.0;
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
-    if (!mesh.vertex_alive(v)) continue;
-    gmax = std::max(gmax, gradient[v].norm());
-    hmax = std::max(hmax, to_matrix(hessian[v]).norm());
-  }
-  const auto box = bounding_box(mesh);
-  if (hmax <= 1e-9 * gmax / (box.hi - box.lo).norm())
-    throw InputError("the field's Hessian is zero everywhere (a linear field): no multiscale metric to make");
+  auto hessian = field_hessian(mesh, values, o);
+  if (!hessian) throw InputError("the field's Hessian is zero everywhere (a linear field): no multiscale metric to make");
   const double hessian_seconds = clock.seconds();
   MultiscaleReport r;
-  auto metric = multiscale_metric_from_hessian(mesh, std::move(hessian), o, &r);
+  auto metric = multiscale_metric_from_hessian(mesh, std::move(*hessian), o, &r);
   r.hessian_seconds = hessian_seconds;
   r.total_seconds += hessian_seconds;
+  if (report) *report = r;
+  return metric;
+}
+
+std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<std::vector<double>>& fields,
+                                    const MultiscaleOptions& o, MultiscaleReport* report) {
+  check_options(o);
+  if (fields.empty()) throw InputError("no field to make a multiscale metric of");
+  Stopwatch clock;
+  const auto dual = dual_volumes(mesh);
+  std::vector<Sym6> metric;
+  std::size_t used = 0;
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    const auto hessian = field_hessian(mesh, fields[k], o);
+    if (!hessian) {
+      log::warn("multiscale: field {} of {} has a zero Hessian (linear or constant): left out", k + 1, fields.size());
+      continue;
+    }
+    auto mk = unscaled_metric(mesh, *hessian, o.norm);
+    scale_to_complexity(mk, dual, o.complexity);
+    if (used++ == 0) {
+      metric = std::move(mk);
+    } else {
+      for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+        if (mesh.vertex_alive(v)) metric[v] = intersect(metric[v], mk[v]);
+    }
+  }
+  if (used == 0)
+    throw InputError("every field's Hessian is zero everywhere (linear fields): no multiscale metric to make");
+  MultiscaleReport r;
+  r.hessian_seconds = clock.seconds();
+  relax_to_complexity(mesh, metric, o, r);
+  r.total_seconds = clock.seconds();
   if (report) *report = r;
   return metric;
 }

@@ -166,7 +166,7 @@ TEST_SUITE("regression") {
   TEST_CASE("loop writes one CSV row per iteration and each mesh - interpolate transfers a field") {
     test::TempDir dir;
     const auto r = metrica_cli("loop --field tanh3 --iterations 2 --complexity 500 --csv " + (dir / "l.csv") +
-                               " --output-dir " + (dir / "run") + " --interpolate --threads 2");
+                               " --output-dir " + (dir / "run") + " --interpolate --threads 2 --format-version 3");
     INFO(r.output);
     REQUIRE(r.code == 0);
     CHECK(has(r, "L2 error"));
@@ -183,6 +183,8 @@ TEST_SUITE("regression") {
     }
     CHECK(rows == 2);
     CHECK(metrica_cli("check " + (dir / "run/loop-02.meshb")).code == 0);
+    CHECK(io::read_meshb(dir / "run/loop-02.meshb").version == 3);  // --format-version
+    CHECK(io::read_sol(dir / "run/loop-02.solb").version == 3);
     // `error` measures what the loop reported, and against a truth mesh:
     // zero against itself, positive against another.
     auto error_of = [](const Run& run) {
@@ -232,6 +234,61 @@ TEST_SUITE("regression") {
     double worst = 0;
     for (std::size_t i = 0; i < f2.count; ++i) worst = std::max(worst, std::abs(f2.values[i] - linear(m2.vertices[i])));
     CHECK(worst < 1e-9);
+    // A solution of a vector and a scalar (a flow: velocity, pressure)
+    // moves field by field, its types kept; linear fields exactly.
+    io::SolData flow;
+    flow.count = m1.vertices.size();
+    flow.types = {io::SolType::vector, io::SolType::scalar};
+    auto flow_at = [&](const Point& p) {
+      return std::array<double, 4>{linear(p), 2.0 * p.x(), -p.z() + 0.5, 3.0 * p.y() - p.x()};
+    };
+    for (const auto& p : m1.vertices)
+      for (double x : flow_at(p)) flow.values.push_back(x);
+    io::write_sol(dir / "flow1.sol", flow);
+    const auto moved = metrica_cli("interpolate " + (dir / "run/loop-01.meshb") + " --field " + (dir / "flow1.sol") +
+                                   " --to " + (dir / "run/loop-02.meshb") + " -o " + (dir / "flow2.sol"));
+    INFO(moved.output);
+    REQUIRE(moved.code == 0);
+    auto flow2 = io::read_sol(dir / "flow2.sol");
+    REQUIRE(flow2.count == m2.vertices.size());
+    CHECK(flow2.types == flow.types);
+    worst = 0;
+    for (std::size_t i = 0; i < flow2.count; ++i)
+      for (int c = 0; c < 4; ++c)
+        worst = std::max(worst, std::abs(flow2.values[4 * i + c] - flow_at(m2.vertices[i])[c]));
+    CHECK(worst < 1e-9);
+    // The multiscale metric of chosen fields, intersected; linear fields are
+    // left out with a warning, and when all are linear it is an error.
+    const auto fields = metrica_cli("metric " + (dir / "run/loop-02.meshb") + " --field-file " + (dir / "flow2.sol") +
+                                    " --fields 1,2 --complexity 500 -o " + (dir / "fm.solb"));
+    CHECK(fields.code == 1);
+    CHECK(has(fields, "linear"));
+    // A quadratic pressure: its metric, and the same with the linear
+    // velocity beside it.
+    for (std::size_t i = 0; i < flow2.count; ++i) {
+      const Point& p = m2.vertices[i];
+      flow2.values[4 * i + 3] = p.x() * p.x() + 0.5 * p.y() * p.z();
+    }
+    io::write_sol(dir / "flow2q.solb", flow2);
+    const auto q2 = metrica_cli("metric " + (dir / "run/loop-02.meshb") + " --field-file " + (dir / "flow2q.solb") +
+                                " --fields 2 --complexity 500 -o " + (dir / "q2.solb"));
+    INFO(q2.output);
+    REQUIRE(q2.code == 0);
+    const auto q12 = metrica_cli("metric " + (dir / "run/loop-02.meshb") + " --field-file " + (dir / "flow2q.solb") +
+                                 " --fields 1,2 --complexity 500 -o " + (dir / "q12.solb"));
+    INFO(q12.output);
+    REQUIRE(q12.code == 0);
+    CHECK(has(q12, "fields 1.x, 1.y, 1.z, 2, intersected"));
+    CHECK(has(q12, "zero Hessian"));
+    const auto a = io::read_sol(dir / "q12.solb").values, b = io::read_sol(dir / "q2.solb").values;
+    REQUIRE(a.size() == b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) CHECK(a[i] == doctest::Approx(b[i]).epsilon(1e-9).scale(1.0));
+    CHECK(metrica_cli("metric " + (dir / "run/loop-02.meshb") + " --field-file " + (dir / "flow2q.solb") +
+                      " --fields 3 -o " + (dir / "x.solb"))
+              .code == 1);
+    CHECK(metrica_cli("metric " + (dir / "run/loop-02.meshb") + " --field tanh3 --fields 1 -o " + (dir / "x.solb"))
+              .code == 2);
+    CHECK_FALSE(std::filesystem::exists(dir / "x.solb"));
   }
 
   TEST_CASE("adapt on bad input: exit 1 with the reason - nothing written") {

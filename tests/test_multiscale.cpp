@@ -204,6 +204,109 @@ TEST_SUITE("property") {
     for (int c = 0; c < 6; ++c) CHECK((*first)[c] == doctest::Approx(s * abs_h[c]).epsilon(1e-9).scale(s));
   }
 
+  TEST_CASE("several fields: each scaled on its own then intersected - a linear one left out - the target kept") {
+    const BoxSpec spec{.nx = 6, .ny = 6, .nz = 6};
+    const Mesh mesh = make_box(spec);
+    const auto pts = points_of(mesh);
+    std::vector<double> u(pts.size()), w(pts.size()), w_big(pts.size()), linear(pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      u[i] = quadratic(pts[i]);
+      w[i] = pts[i].x() * pts[i].x() - 3.0 * pts[i].y() * pts[i].z();
+      w_big[i] = 1e4 * w[i];
+      linear[i] = 2.0 * pts[i].x() - pts[i].z();
+    }
+    MultiscaleOptions o;
+    o.complexity = 2000.0;
+    o.gradation = false;
+    MultiscaleReport report;
+    const auto both = multiscale_metric(mesh, std::vector<std::vector<double>>{u, w}, o, &report);
+    CHECK(report.complexity == doctest::Approx(2000.0).epsilon(0.01));
+    CHECK(complexity(mesh, both) == doctest::Approx(report.complexity).epsilon(1e-12));
+    CHECK_NOTHROW(check_metric_field(both, "intersected"));
+    // A field's magnitude does not weigh: each is scaled to the complexity first.
+    const auto scaled = multiscale_metric(mesh, std::vector<std::vector<double>>{u, w_big}, o);
+    // The order does not matter either.
+    const auto swapped = multiscale_metric(mesh, std::vector<std::vector<double>>{w, u}, o);
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+      for (int c = 0; c < 6; ++c) {
+        const double scale = std::abs(both[v][0]) + std::abs(both[v][2]) + std::abs(both[v][5]);
+        CHECK(scaled[v][c] == doctest::Approx(both[v][c]).epsilon(1e-9).scale(scale));
+        CHECK(swapped[v][c] == doctest::Approx(both[v][c]).epsilon(1e-9).scale(scale));
+      }
+    // The intersection asks for at least what each field asks (both scaled to
+    // the same complexity, the intersection then scaled down to it): at the
+    // deep vertices, along each field's own eigenvectors, the result is
+    // above the field's metric times the common factor (C_both / C_sum)^(2/3).
+    const auto alone_u = multiscale_metric(mesh, u, o);
+    const auto deep = deep_interior(mesh, spec);
+    int compared = 0;
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+      if (!deep[v]) continue;
+      ++compared;
+      const Eigen::Matrix3d mb = to_matrix(both[v]), mu = to_matrix(alone_u[v]);
+      const auto e = eigen_decomposition(alone_u[v]);
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d d = e.vectors.col(k);
+        CHECK(d.dot(mb * d) >= 0.2 * d.dot(mu * d));
+      }
+    }
+    CHECK(compared > 0);
+    // A linear field asks for nothing: the result is the other field's alone.
+    const auto with_linear = multiscale_metric(mesh, std::vector<std::vector<double>>{u, linear}, o);
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+      for (int c = 0; c < 6; ++c)
+        CHECK(with_linear[v][c] == doctest::Approx(alone_u[v][c]).epsilon(1e-9).scale(std::abs(alone_u[v][0])));
+    CHECK_THROWS_WITH_AS(multiscale_metric(mesh, std::vector<std::vector<double>>{linear, linear}, o),
+                         doctest::Contains("linear"), InputError);
+    CHECK_THROWS_AS(multiscale_metric(mesh, std::vector<std::vector<double>>{}, o), InputError);
+  }
+
+  TEST_CASE("fields chosen from a solution: K - K.x - all - the first scalar by default - errors named") {
+    io::SolData sol;
+    sol.count = 3;
+    sol.types = {io::SolType::vector, io::SolType::scalar, io::SolType::sym_matrix};
+    for (std::size_t v = 0; v < sol.count; ++v) {
+      const double b = 100.0 * static_cast<double>(v);
+      for (double x : {b + 1, b + 2, b + 3, b + 4, b + 5, b + 6, b + 7, b + 8, b + 9, b + 10}) sol.values.push_back(x);
+    }
+    auto names = [](const std::vector<SelectedField>& f) {
+      std::string out;
+      for (const auto& x : f) out += (out.empty() ? "" : " ") + x.name;
+      return out;
+    };
+    const auto all = select_fields(sol, 3, "1,2", "s.sol");
+    CHECK(names(all) == "1.x 1.y 1.z 2");
+    REQUIRE(all.size() == 4);
+    CHECK(all[1].values == std::vector<double>{2, 102, 202});
+    CHECK(all[3].values == std::vector<double>{4, 104, 204});
+    CHECK(names(select_fields(sol, 3, "all", "s.sol")) == "1.x 1.y 1.z 2");
+    const auto y = select_fields(sol, 3, "1.y,1.3", "s.sol");
+    CHECK(names(y) == "1.y 1.z");
+    CHECK(y[1].values == std::vector<double>{3, 103, 203});
+    const auto first = select_fields(sol, 3, "", "s.sol");
+    REQUIRE(first.size() == 1);
+    CHECK(first[0].values == std::vector<double>{4, 104, 204});
+    CHECK_THROWS_WITH_AS(select_fields(sol, 3, "3", "s.sol"), doctest::Contains("symmetric"), InputError);
+    CHECK_THROWS_WITH_AS(select_fields(sol, 3, "4", "s.sol"), doctest::Contains("fields 1 to 3"), InputError);
+    CHECK_THROWS_AS(select_fields(sol, 3, "0", "s.sol"), InputError);
+    CHECK_THROWS_WITH_AS(select_fields(sol, 3, "2.x", "s.sol"), doctest::Contains("names no component"), InputError);
+    CHECK_THROWS_AS(select_fields(sol, 3, "1.w", "s.sol"), InputError);
+    CHECK_THROWS_AS(select_fields(sol, 3, "1,", "s.sol"), InputError);
+    CHECK_THROWS_AS(select_fields(sol, 3, "x", "s.sol"), InputError);
+    CHECK_THROWS_AS(select_fields(sol, 3, "99999999999", "s.sol"), InputError);
+    CHECK_THROWS_WITH_AS(select_fields(sol, 4, "1", "s.sol"), doctest::Contains("4 vertices"), InputError);
+    auto bad = sol;
+    bad.values[11] = std::nan("");  // vertex 2, field 1.y
+    CHECK_THROWS_WITH_AS(select_fields(bad, 3, "1", "s.sol"), doctest::Contains("vertex 2"), InputError);
+    CHECK_NOTHROW(select_fields(bad, 3, "2", "s.sol"));
+    // A solution to transfer: scalars and vectors only.
+    CHECK_THROWS_WITH_AS(solution_values_from_sol(sol, 3, "s.sol"), doctest::Contains("field 3"), InputError);
+    sol.types.pop_back();
+    sol.values.clear();
+    for (int i = 0; i < 12; ++i) sol.values.push_back(i);
+    CHECK(solution_values_from_sol(sol, 3, "s.sol").size() == 12);
+  }
+
   TEST_CASE("gradation bounds the size growth along every edge") {
     const Mesh mesh = make_box({.nx = 10, .ny = 10, .nz = 10});
     // Isotropic sizes: tiny at one corner, large elsewhere.

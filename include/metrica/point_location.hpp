@@ -36,4 +36,10 @@ Location locate(const Mesh& mesh, const Point& p, TetId start = kNoId);
 std::vector<double> interpolate_vertex_field(const Mesh& from, const std::vector<double>& values, const Mesh& to,
                                              std::size_t* outside = nullptr);
 
+// The same for `width` values per vertex (vertex-major: the values of vertex
+// v at [v * width, (v + 1) * width)), each interpolated on its own: every
+// field of a solution file (velocity components, pressure) in one walk.
+std::vector<double> interpolate_vertex_values(const Mesh& from, const std::vector<double>& values, int width,
+                                              const Mesh& to, std::size_t* outside = nullptr);
+
 }  // namespace metrica

@@ -22,6 +22,26 @@ std::vector<Sym6> metric_field_from_sol(const io::SolData& sol, std::size_t vert
 std::vector<double> scalar_field_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source);
 io::SolData scalar_field_to_sol(const std::vector<double>& values);
 
+// Every value of a solution of scalar and vector fields, vertex-major as
+// stored (SolData::values), checked: count, finite values. InputError for a
+// tensor field (a metric is not a solution to interpolate linearly).
+std::vector<double> solution_values_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source);
+
+// Scalar fields chosen from a solution by a comma-separated selection, for a
+// multiscale metric of several variables:
+//   K       field K (1-based): a scalar, or every component of a vector;
+//   K.x     one component of vector field K (x, y, z or 1, 2, 3);
+//   all     every scalar field and every vector component.
+// An empty selection is the first scalar field. InputError for a malformed
+// selection, a field that does not exist or is a tensor, and the checks of
+// scalar_field_from_sol.
+struct SelectedField {
+  std::string name;  // "2", "1.x": for messages
+  std::vector<double> values;
+};
+std::vector<SelectedField> select_fields(const io::SolData& sol, std::size_t vertices, const std::string& selection,
+                                         const std::string& source);
+
 io::SolData metric_field_to_sol(const std::vector<Sym6>& metrics);
 
 std::vector<Sym6> analytic_metric_field(AnalyticMetric m, const std::vector<Point>& points);

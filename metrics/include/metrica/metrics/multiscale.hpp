@@ -41,6 +41,16 @@ struct MultiscaleReport {
 std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<double>& values,
                                     const MultiscaleOptions& options, MultiscaleReport* report = nullptr);
 
+// Several fields of one solution (velocity components and pressure): each
+// field's metric is scaled to the complexity N on its own, so that every
+// field asks for sizes at the same cost whatever its magnitude; the metrics
+// are intersected vertex by vertex (intersection.hpp), then bounded, graded
+// and scaled back to N. A field whose Hessian vanishes (a component that is
+// linear or constant) asks for nothing and is left out with a warning;
+// InputError when every field does.
+std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<std::vector<double>>& fields,
+                                    const MultiscaleOptions& options, MultiscaleReport* report = nullptr);
+
 // The same from a Hessian field (for users who recover it themselves).
 std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<Sym6> hessian,
                                                  const MultiscaleOptions& options,
