@@ -236,6 +236,7 @@ int run_adapt(const std::vector<std::string>& args) {
     throw InputError(fmt::format("adapt: the adapted mesh is invalid; nothing written\n{}", check.to_string()));
   log::info("volume {:.17g}, relative change {:.3g}", mesh.volume(), std::abs(mesh.volume() - volume) / volume);
   if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
+  if (model) require_on_model(mesh, *model, "adapt");
   auto data = extract_mesh_data(mesh);
   data.version = input_version;
   if (model) complete_geometry_records(data, *model);

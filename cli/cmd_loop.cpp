@@ -124,6 +124,7 @@ int run_loop(const std::vector<std::string>& args) {
     }
     if (!dir.empty()) {
       const std::string stem = fmt::format("{}/loop-{:02d}", dir, r.iteration);
+      if (model) require_on_model(m, *model, fmt::format("loop: iteration {}", r.iteration));
       auto data = extract_mesh_data(m);
       if (model) complete_geometry_records(data, *model);
       io::write_mesh_file(stem + ".meshb", data, o.format_version());

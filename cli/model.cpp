@@ -1,5 +1,6 @@
 #include "cli.hpp"
 
+#include <metrica/error.hpp>
 #include <metrica/geometry/association.hpp>
 #include <metrica/log.hpp>
 #include <metrica/timer.hpp>
@@ -26,6 +27,16 @@ std::string model_distance_text(const Mesh& mesh, const CadModel& model) {
   if (d.beyond > 0) text += fmt::format(" ({} beyond 1e-8)", count_text(d.beyond));
   if (d.unassociated > 0) text += fmt::format(", {} without an entity", count_text(d.unassociated));
   return text;
+}
+
+void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what) {
+  constexpr double kTolerance = 1e-8;
+  const ModelDistance d = model_distance(mesh, model, kTolerance);
+  if (d.unassociated == 0 && d.max <= kTolerance) return;
+  throw InputError(fmt::format("{}: the boundary is not on {} ({} vertices without an entity, {} farther than {:.0e}, "
+                               "largest distance {:.3g}); nothing written",
+                               what, model.source(), count_text(d.unassociated), count_text(d.beyond), kTolerance,
+                               d.max));
 }
 
 }  // namespace metrica::cli
