@@ -1,6 +1,7 @@
 #include "cli.hpp"
 
 #include <metrica/error.hpp>
+#include <metrica/geometry/curvature_metric.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/log.hpp>
 #include <metrica/metrics/analytic_field.hpp>
@@ -12,6 +13,7 @@
 
 #include <fmt/core.h>
 
+#include <numbers>
 #include <optional>
 
 namespace metrica::cli {
@@ -29,11 +31,16 @@ int run_metric(const std::vector<std::string>& args) {
             "recovery, replaced at boundary vertices by the mean of their interior neighbours'. For the other sources --complexity scales the field to that complexity.\n"
             "Then, in order: bounds (--hmin, --hmax, --max-anisotropy), gradation (--gradation, mixed space\n"
             "by default) with rescaling to the complexity, and intersection with --intersect.\n"
+            "With --geometry MODEL the curved boundaries of the CAD model bound the sizes last, whatever\n"
+            "the complexity: along each principal direction of curvature k of the surfaces around a\n"
+            "boundary vertex, h <= --curvature-angle / |k| (the facets turn by at most that angle), graded\n"
+            "into the volume by --gradation when given.\n"
             "The output is .solb or .sol (libMeshb version of the mesh unless --format-version).\n\n"
             "Examples:\n"
             "  metrica metric cube-linear-00.meshb --analytic linear -o linear.solb\n"
             "  metrica metric cube.meshb --field sinfun3 --complexity 8000 --gradation 3 -o m.solb\n"
-            "  metrica metric flow.meshb --field-file flow.sol --fields 1,2 --complexity 20000 -o m.solb");
+            "  metrica metric flow.meshb --field-file flow.sol --fields 1,2 --complexity 20000 -o m.solb\n"
+            "  metrica metric flow.meshb --field-file flow.sol --fields 1,2 --geometry channel.geo -o m.solb");
   o.input("mesh (.mesh, .meshb)");
   o.output("metric (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
   max_tets_option(o);
@@ -53,7 +60,11 @@ int run_metric(const std::vector<std::string>& args) {
       "hmin", po::value<double>()->value_name("H"), "smallest size")("hmax", po::value<double>()->value_name("H"),
                                                                        "largest size")(
       "max-anisotropy", po::value<double>()->value_name("R"), "largest ratio of sizes of one tensor")(
-      "intersect", po::value<std::string>()->value_name("FILE"), "intersect with this metric (.sol/.solb)");
+      "intersect", po::value<std::string>()->value_name("FILE"), "intersect with this metric (.sol/.solb)")(
+      "geometry", po::value<std::string>()->value_name("MODEL"),
+      "CAD model of the mesh's boundary: its curvatures bound the sizes (.step .iges .brep .geo)")(
+      "curvature-angle", po::value<double>()->default_value(8.0)->value_name("DEG"),
+      "with --geometry: the largest turn of the facets between neighbouring vertices, in degrees");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   const auto output = o.required("output", "the output metric (-o)");
@@ -71,10 +82,15 @@ int run_metric(const std::vector<std::string>& args) {
   if (o.has("gradation")) grading.beta = o.in_range("gradation", 1.0, 1e6);
   const double norm = o.in_range("norm", 1.0, 1e6);
   if (o.has("complexity")) o.positive("complexity");
+  const double curvature_angle = o.in_range("curvature-angle", 0.1, 90.0) * std::numbers::pi / 180.0;
+  if (!o.vm()["curvature-angle"].defaulted() && !o.has("geometry"))
+    throw UsageError("metric: --curvature-angle bounds the sizes on a CAD model's curved boundary: give --geometry");
 
   Stopwatch clock;
-  const auto loaded = load_mesh(input);
-  const Mesh& mesh = loaded.mesh;
+  auto loaded = load_mesh(input);
+  Mesh& mesh = loaded.mesh;
+  std::unique_ptr<CadModel> model;
+  if (o.has("geometry")) model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data);
   const std::size_t n = loaded.data.vertices.size();
   if (o.has("complexity")) check_predicted_size(o, o.get<double>("complexity"), "the target (--complexity)");
 
@@ -126,6 +142,13 @@ int run_metric(const std::vector<std::string>& args) {
       limit_gradation(mesh, field, grading);
       if (o.has("complexity")) scale_to_complexity(field, dual, o.get<double>("complexity"));
     }
+  }
+  if (model) {
+    const auto bound = curvature_metric(mesh, *model, curvature_angle);
+    for (std::size_t v = 0; v < n; ++v) field[v] = intersect(field[v], bound[v]);
+    if (o.has("gradation")) limit_gradation(mesh, field, grading);
+    what += fmt::format(", curved boundaries of {} at {:g} degrees", o.get<std::string>("geometry"),
+                        o.get<double>("curvature-angle"));
   }
   if (o.has("intersect")) {
     const auto path = o.get<std::string>("intersect");

@@ -271,6 +271,25 @@ Eigen::Vector3d CadModel::normal(int surface, double u, double v) const {
   return Eigen::Vector3d(out[0], out[1], out[2]);
 }
 
+CadModel::Curvatures CadModel::principal_curvatures(int surface, double u, double v) const {
+  thread_local std::vector<double> in(2), kmax, kmin, dmax, dmin;
+  in.assign({u, v});
+  {
+    std::lock_guard lock(lock_);
+    gmsh_call("getPrincipalCurvatures",
+              [&] { gmsh::model::getPrincipalCurvatures(surface, in, kmax, kmin, dmax, dmin); });
+  }
+  Curvatures c;
+  if (kmax.empty() || kmin.empty() || dmax.size() < 3 || dmin.size() < 3) return c;
+  c.max = kmax[0];
+  c.min = kmin[0];
+  c.max_direction = Eigen::Vector3d(dmax[0], dmax[1], dmax[2]);
+  c.min_direction = Eigen::Vector3d(dmin[0], dmin[1], dmin[2]);
+  for (auto* d : {&c.max_direction, &c.min_direction})
+    if (d->norm() > 0) d->normalize();
+  return c;
+}
+
 GeoParam CadModel::parametrize(int dim, int tag, const Point& p) const {
   GeoParam g;
   g.dim = static_cast<std::int8_t>(dim);

@@ -408,6 +408,35 @@ TEST_SUITE("regression") {
     CHECK(has(missing, "no such model file"));
   }
 
+  TEST_CASE("metric --geometry: the curved walls of the model bound the sizes - the complexity grows") {
+    test::TempDir dir;
+    const std::string model = std::string(METRICA_TEST_DATA_DIR) + "/channel.geo";
+    REQUIRE(metrica_cli("bootstrap " + model + " -o " + (dir / "c.meshb") + " --size 0.1 --threads 1").code == 0);
+    auto complexity_of = [](const Run& r) {
+      const auto at = r.output.find("complexity ");
+      REQUIRE(at != std::string::npos);
+      return std::stod(r.output.substr(at + 11));
+    };
+    const auto plain = metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --complexity 2000 -o " +
+                                   (dir / "plain.solb"));
+    REQUIRE(plain.code == 0);
+    const auto bounded = metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --complexity 2000 --geometry " +
+                                     model + " --curvature-angle 5 --gradation 1.5 -o " + (dir / "bounded.solb"));
+    INFO(bounded.output);
+    REQUIRE(bounded.code == 0);
+    CHECK(has(bounded, "curved boundaries"));
+    CHECK(complexity_of(bounded) > complexity_of(plain) * 1.05);
+    CHECK(metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --curvature-angle 5 -o " + (dir / "x.solb"))
+              .code == 2);
+    CHECK(metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --geometry " + model +
+                      " --curvature-angle 0 -o " + (dir / "x.solb"))
+              .code == 2);
+    CHECK(metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --geometry " +
+                      test::ugawg("cube-cylinder.step") + " -o " + (dir / "x.solb"))
+              .code == 1);  // another model's mesh
+    CHECK_FALSE(std::filesystem::exists(dir / "x.solb"));
+  }
+
   TEST_CASE("usage errors exit 2 - --help exits 0 for every command") {
     CHECK(metrica_cli("").code == 2);
     CHECK(metrica_cli("frobnicate").code == 2);

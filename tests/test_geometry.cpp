@@ -8,6 +8,7 @@
 #include <metrica/geometry/association.hpp>
 #include <metrica/geometry/bootstrap.hpp>
 #include <metrica/geometry/cad_geometry.hpp>
+#include <metrica/geometry/curvature_metric.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/operators/boundary_swap.hpp>
@@ -428,6 +429,38 @@ TEST_SUITE("regression") {
     const ModelDistance d = model_distance(mesh, model);
     CHECK(d.unassociated == 0);
     CHECK(d.max < 1e-8);
+  }
+
+  TEST_CASE("the curvature metric: around the cylinder h = angle r, nothing along its axis or on flat walls") {
+    CadModel model(kChannelModel);
+    const io::MeshData data = bootstrap_mesh(model, {.size = 0.1});
+    Mesh mesh = build_mesh(data);
+    associate(mesh, model, &data);
+    const double angle = 0.1, radius = 0.05;
+    const auto m = curvature_metric(mesh, model, angle);
+    const double floor = 1.0 / (model.size() * model.size());
+    int on_cylinder = 0, on_walls = 0;
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+      if (!mesh.vertex_alive(v) || !mesh.geo_param(v).valid() || mesh.geo_param(v).dim != 2) continue;
+      const Eigen::Matrix3d M = to_matrix(m[v]);
+      const Point p = mesh.point(v);
+      if (mesh.geo_param(v).tag == 7) {
+        ++on_cylinder;
+        const Eigen::Vector3d radial = Eigen::Vector3d(p.x() - 0.5, p.y() - 0.2, 0.0).normalized();
+        const Eigen::Vector3d around = Eigen::Vector3d::UnitZ().cross(radial);
+        const double expected = 1.0 / (angle * radius * angle * radius);
+        CHECK(around.dot(M * around) == doctest::Approx(expected + floor).epsilon(1e-6));
+        CHECK(Eigen::Vector3d::UnitZ().dot(M * Eigen::Vector3d::UnitZ()) == doctest::Approx(floor).epsilon(1e-6));
+        CHECK(radial.dot(M * radial) == doctest::Approx(floor).epsilon(1e-6));
+      } else {
+        ++on_walls;
+        CHECK((M - floor * Eigen::Matrix3d::Identity()).norm() < 1e-9 * floor);
+      }
+    }
+    CHECK(on_cylinder > 0);
+    CHECK(on_walls > 0);
+    CHECK_THROWS_AS(curvature_metric(mesh, model, 0.0), InputError);
+    CHECK_THROWS_AS(curvature_metric(mesh, model, 2.0), InputError);
   }
 }
 

@@ -57,6 +57,13 @@ class CadModel {
   std::array<Eigen::Vector3d, 2> derivatives(int surface, double u, double v) const;
   // The unit normal of a surface at (u, v) (gmsh's orientation).
   Eigen::Vector3d normal(int surface, double u, double v) const;
+  // The principal curvatures of a surface at (u, v) (1/length; signs as
+  // gmsh gives them) and their unit directions, tangent to the surface.
+  struct Curvatures {
+    double max = 0, min = 0;
+    Eigen::Vector3d max_direction = Eigen::Vector3d::Zero(), min_direction = Eigen::Vector3d::Zero();
+  };
+  Curvatures principal_curvatures(int surface, double u, double v) const;
   // The parameters of point p on entity (dim, tag) by projection (a
   // search: costly on B-spline surfaces; used to associate a mesh once).
   GeoParam parametrize(int dim, int tag, const Point& p) const;
