@@ -62,10 +62,17 @@ def main():
     table("Uniform (gmsh)", uniform)
     print()
     for key, bound, label in (("cd_error", CD_TARGET, "|cD error| <= 0.3%"), ("cl_error", CL_TARGET, "|cL error| <= 0.0005")):
+        cells = []
+        for name, rows in (("adapted", adapted), ("uniform", uniform)):
+            within = [r for r in rows if r[key] <= bound]
+            stays = first_within(rows, key, bound)
+            first = f"first at {min(r['vertices'] for r in within):,} vertices" if within else "never"
+            last = f"within from {stays['vertices']:,} on" if stays else \
+                f"not within at the largest ({max(r['vertices'] for r in rows):,} vertices)"
+            cells.append(f"{name} {first}, {last}")
         ra, ru = first_within(adapted, key, bound), first_within(uniform, key, bound)
-        fa = f"{ra['vertices']:,} vertices" if ra else "not reached"
-        fu = f"{ru['vertices']:,} vertices" if ru else f"not reached (largest: {max(r['vertices'] for r in uniform):,})"
-        print(f"- {label}: adapted {fa}, uniform {fu}" + (f" (ratio {ru['vertices'] / ra['vertices']:.2f})" if ra and ru else ""))
+        ratio = f" (uniform / adapted vertices: {ru['vertices'] / ra['vertices']:.2f})" if ra and ru else ""
+        print(f"- {label}: " + "; ".join(cells) + ratio)
 
     try:
         import matplotlib
