@@ -288,6 +288,10 @@ TEST_SUITE("regression") {
               .code == 1);
     CHECK(metrica_cli("metric " + (dir / "run/loop-02.meshb") + " --field tanh3 --fields 1 -o " + (dir / "x.solb"))
               .code == 2);
+    for (const char* selection : {"x", "1,", "1.w", ",2", "1..x", "-1"})
+      CHECK(metrica_cli("metric " + (dir / "run/loop-02.meshb") + " --field-file " + (dir / "flow2q.solb") +
+                        " --fields=" + selection + " -o " + (dir / "x.solb"))
+                .code == 2);
     CHECK_FALSE(std::filesystem::exists(dir / "x.solb"));
   }
 
