@@ -86,6 +86,86 @@ Location locate(const Mesh& mesh, const Point& p, TetId start) {
   return out;
 }
 
+PointLocator::PointLocator(const Mesh& mesh) : mesh_(mesh) {
+  const BoundingBox box = bounding_box(mesh);
+  const Eigen::Vector3d extent = (box.hi - box.lo).cwiseMax(1e-300);
+  round_off_ = 1e-9 * extent.norm();
+  // About two tets per cell, cells as cubic as the box allows.
+  const double cells = std::max(1.0, static_cast<double>(mesh.num_tets()) / 2.0);
+  const double side = std::cbrt(extent.prod() / cells);
+  for (int k = 0; k < 3; ++k) n_[k] = std::clamp(static_cast<int>(std::ceil(extent[k] / side)), 1, 1024);
+  lo_ = box.lo;
+  for (int k = 0; k < 3; ++k) cell_[k] = extent[k] / n_[k];
+  cells_.assign(static_cast<std::size_t>(n_[0]) * n_[1] * n_[2], kNoId);
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const auto& v = mesh.tet(t);
+    const Point c = 0.25 * (mesh.point(v[0]) + mesh.point(v[1]) + mesh.point(v[2]) + mesh.point(v[3]));
+    std::array<int, 3> i{};
+    for (int k = 0; k < 3; ++k) i[k] = std::clamp(static_cast<int>((c[k] - lo_[k]) / cell_[k]), 0, n_[k] - 1);
+    cells_[(static_cast<std::size_t>(i[2]) * n_[1] + i[1]) * n_[0] + i[0]] = t;
+  }
+}
+
+TetId PointLocator::grid_tet(const Point& p) const {
+  std::array<int, 3> c{};
+  for (int k = 0; k < 3; ++k) c[k] = std::clamp(static_cast<int>((p[k] - lo_[k]) / cell_[k]), 0, n_[k] - 1);
+  // The cell of p, else the nearest filled cell in growing shells.
+  const int most = std::max({n_[0], n_[1], n_[2]});
+  for (int r = 0; r < most; ++r)
+    for (int z = std::max(0, c[2] - r); z <= std::min(n_[2] - 1, c[2] + r); ++z)
+      for (int y = std::max(0, c[1] - r); y <= std::min(n_[1] - 1, c[1] + r); ++y)
+        for (int x = std::max(0, c[0] - r); x <= std::min(n_[0] - 1, c[0] + r); ++x) {
+          if (std::max({std::abs(x - c[0]), std::abs(y - c[1]), std::abs(z - c[2])}) != r) continue;
+          const TetId t = cells_[(static_cast<std::size_t>(z) * n_[1] + y) * n_[0] + x];
+          if (t != kNoId) return t;
+        }
+  return kNoId;
+}
+
+Location PointLocator::locate(const Point& p, TetId hint) const {
+  auto miss = [&](const Location& l) {
+    if (l.inside) return 0.0;
+    const auto& v = mesh_.tet(l.tet);
+    Point q = Point::Zero();
+    for (int k = 0; k < 4; ++k) q += l.bary[k] * mesh_.point(v[k]);
+    return (q - p).norm();
+  };
+  Location best = metrica::locate(mesh_, p, hint);
+  double best_miss = miss(best);
+  if (best_miss <= round_off_) return best;
+  const Location again = metrica::locate(mesh_, p, grid_tet(p));
+  if (const double m = miss(again); m < best_miss) {
+    best = again;
+    best_miss = m;
+  }
+  // A walk from a tet a cell away that stops within a cell of p: p lies
+  // outside, beyond a boundary near it (a curved wall faceted differently).
+  if (best_miss <= std::max(round_off_, cell_.norm())) return best;
+  // Last, for the rare walk blocked on its way: every tet, the one holding
+  // p or the nearest to it.
+  for (TetId t = 0; t < mesh_.tet_capacity(); ++t) {
+    if (!mesh_.tet_alive(t)) continue;
+    const auto l = barycentric(mesh_, t, p);
+    if (*std::min_element(l.begin(), l.end()) < -1e-12) {
+      Location c;
+      c.tet = t;
+      c.bary = clamped(l);
+      if (const double m = miss(c); m < best_miss) {
+        best = c;
+        best_miss = m;
+      }
+      continue;
+    }
+    Location in;
+    in.tet = t;
+    in.bary = clamped(l);
+    in.inside = true;
+    return in;
+  }
+  return best;
+}
+
 std::vector<double> interpolate_vertex_values(const Mesh& from, const std::vector<double>& values, int width,
                                               const Mesh& to, std::size_t* outside) {
   if (width < 1) throw InputError(fmt::format("interpolate: {} values per vertex", width));
@@ -94,11 +174,12 @@ std::vector<double> interpolate_vertex_values(const Mesh& from, const std::vecto
     throw InputError(fmt::format("interpolate: {} values for a mesh of {} vertex ids ({} per vertex)", values.size(),
                                  from.vertex_capacity(), width));
   std::vector<double> out(to.vertex_capacity() * w, 0.0);
+  const PointLocator locator(from);
   std::size_t n_outside = 0;
   TetId hint = kNoId;
   for (VertexId v = 0; v < to.vertex_capacity(); ++v) {
     if (!to.vertex_alive(v)) continue;
-    const Location loc = locate(from, to.point(v), hint);
+    const Location loc = locator.locate(to.point(v), hint);
     hint = loc.tet;
     n_outside += !loc.inside;
     const auto& tv = from.tet(loc.tet);

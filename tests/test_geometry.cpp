@@ -12,6 +12,7 @@
 #include <metrica/io/meshb.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/operators/boundary_swap.hpp>
+#include <metrica/point_location.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/project.hpp>
 #include <metrica/operators/reconnect.hpp>
@@ -461,6 +462,41 @@ TEST_SUITE("regression") {
     CHECK(on_walls > 0);
     CHECK_THROWS_AS(curvature_metric(mesh, model, 0.0), InputError);
     CHECK_THROWS_AS(curvature_metric(mesh, model, 2.0), InputError);
+  }
+
+  TEST_CASE("point location around a hole: the walk stops at the cylinder - the locator finds the tet - fields move exactly") {
+    CadModel model(kChannelModel);
+    const io::MeshData a = bootstrap_mesh(model, {.size = 0.1});
+    const io::MeshData b = bootstrap_mesh(model, {.size = 0.07});
+    const Mesh from = build_mesh(a), to = build_mesh(b);
+    // From a tet in front of the cylinder to a point right behind it: the
+    // straight walk meets the cylinder's wall.
+    const Point behind(0.58, 0.2, 0.2);
+    TetId front = kNoId;
+    for (TetId t = 0; t < from.tet_capacity() && front == kNoId; ++t) {
+      const auto& v = from.tet(t);
+      const Point c = 0.25 * (from.point(v[0]) + from.point(v[1]) + from.point(v[2]) + from.point(v[3]));
+      if (c.x() < 0.42 && std::abs(c.y() - 0.2) < 0.03 && std::abs(c.z() - 0.2) < 0.05) front = t;
+    }
+    REQUIRE(front != kNoId);
+    CHECK_FALSE(locate(from, behind, front).inside);
+    const PointLocator locator(from);
+    const Location found = locator.locate(behind, front);
+    CHECK(found.inside);
+    // Every vertex of another mesh of the channel is found (its cylinder
+    // vertices lie on the circle, inside the coarser mesh's chords), and a
+    // linear field moves exactly.
+    auto linear = [](const Point& p) { return std::array<double, 2>{1.0 + p.x() - 2.0 * p.y(), 3.0 * p.z() - p.x()}; };
+    std::vector<double> values;
+    for (VertexId v = 0; v < from.vertex_capacity(); ++v)
+      for (double x : linear(from.point(v))) values.push_back(x);
+    std::size_t outside = 0;
+    const auto moved = interpolate_vertex_values(from, values, 2, to, &outside);
+    CHECK(outside == 0);
+    double worst = 0;
+    for (VertexId v = 0; v < to.vertex_capacity(); ++v)
+      for (int c = 0; c < 2; ++c) worst = std::max(worst, std::abs(moved[2 * v + c] - linear(to.point(v))[c]));
+    CHECK(worst < 1e-9);
   }
 }
 

@@ -10,6 +10,7 @@
 // face, and the closest tet seen is used with its coordinates clamped to
 // the tet. After Mesh::compact the points of the target mesh come in space
 // order, so each walk starts from the tet where the previous one ended.
+// Around holes and re-entrant corners PointLocator takes over.
 #pragma once
 
 #include <metrica/mesh.hpp>
@@ -28,6 +29,28 @@ struct Location {
 
 // The tet holding p, walking from `start` (any live tet; kNoId: the first).
 Location locate(const Mesh& mesh, const Point& p, TetId start = kNoId);
+
+// Point location in a domain of any shape. A walk cannot go around a hole
+// (the body in a flow) or a re-entrant corner: it stops at the boundary
+// face in the way. The locator then walks again from the tet nearest the
+// point in a grid of tet centroids (about two tets per cell), and when
+// that also stops farther than a cell from the point, scans every tet. A
+// point outside the mesh keeps the best tet found, coordinates clamped
+// (inside = false).
+class PointLocator {
+ public:
+  explicit PointLocator(const Mesh& mesh);
+  Location locate(const Point& p, TetId hint = kNoId) const;
+
+ private:
+  TetId grid_tet(const Point& p) const;
+  const Mesh& mesh_;
+  Point lo_ = Point::Zero();
+  Eigen::Vector3d cell_ = Eigen::Vector3d::Ones();
+  std::array<int, 3> n_{1, 1, 1};
+  std::vector<TetId> cells_;  // one tet whose centroid lies in the cell, or kNoId
+  double round_off_ = 0.0;    // distance below which a clamped point is the point
+};
 
 // The P1 interpolant of `values` (by vertex id of `from`) at every vertex of
 // `to`; the result is indexed by vertex id of `to`. InputError when sizes
