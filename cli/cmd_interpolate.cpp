@@ -15,7 +15,8 @@ int run_interpolate(const std::vector<std::string>& args) {
   Options o("interpolate", "[-i] FROM_MESH --field FIELD.solb --to TO_MESH [-o] OUTPUT.solb",
             "Transfers a vertex solution from one mesh to another (a solver restarting on an adapted\n"
             "mesh from its previous solution): each vertex of the target mesh is located in the source\n"
-            "mesh by walking from the tet of the previous vertex, and takes the P1 (barycentric)\n"
+            "mesh by walking from the tet of the previous vertex (around holes, again from a grid of the\n"
+            "source's tets), and takes the P1 (barycentric)\n"
             "interpolant there. Target vertices outside the source mesh (a curved boundary discretised\n"
             "differently) take the value at the closest point of the closest tet found; they are counted.\n"
             "Every field of the file moves, component by component, and the output keeps its fields\n"
