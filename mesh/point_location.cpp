@@ -110,8 +110,9 @@ PointLocator::PointLocator(const Mesh& mesh) : mesh_(mesh) {
 TetId PointLocator::grid_tet(const Point& p) const {
   std::array<int, 3> c{};
   for (int k = 0; k < 3; ++k) c[k] = std::clamp(static_cast<int>((p[k] - lo_[k]) / cell_[k]), 0, n_[k] - 1);
-  // The cell of p, else the nearest filled cell in growing shells.
-  const int most = std::max({n_[0], n_[1], n_[2]});
+  // The cell of p, else the nearest filled cell in growing shells (a few:
+  // beyond, the walk from the first tet and the scan take over).
+  const int most = std::min(std::max({n_[0], n_[1], n_[2]}), 16);
   for (int r = 0; r < most; ++r)
     for (int z = std::max(0, c[2] - r); z <= std::min(n_[2] - 1, c[2] + r); ++z)
       for (int y = std::max(0, c[1] - r); y <= std::min(n_[1] - 1, c[1] + r); ++y)
