@@ -26,7 +26,8 @@ int run_interpolate(const std::vector<std::string>& args) {
             "  metrica interpolate old.meshb --field old.solb --to adapted.meshb -o restart.solb");
   o.input("source mesh (.mesh, .meshb)");
   o.output("interpolated field (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
-  o.add()("field", po::value<std::string>()->value_name("FILE"), "scalar and vector fields at the source's vertices (.sol, .solb)")(
+  o.add()("field", po::value<std::string>()->value_name("FILE"),
+          "scalar and vector fields at the source's vertices (.sol, .solb)")(
       "to", po::value<std::string>()->value_name("MESH"), "target mesh (.mesh, .meshb)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the source mesh (-i)");
@@ -46,7 +47,8 @@ int run_interpolate(const std::vector<std::string>& args) {
   sol.version = to.data.version;
   sol.count = to.data.vertices.size();
   sol.types = field.types;
-  sol.values.assign(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(sol.count * static_cast<std::size_t>(width)));
+  sol.values.assign(out.begin(),
+                    out.begin() + static_cast<std::ptrdiff_t>(sol.count * static_cast<std::size_t>(width)));
   io::write_sol(output, sol);
   if (log::level() >= log::Level::normal)
     fmt::print("wrote {}: {} vertices x {} values ({} outside the source mesh, clamped) in {:.2f} s\n", output,

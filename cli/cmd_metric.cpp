@@ -28,7 +28,8 @@ int run_metric(const std::vector<std::string>& args) {
             "  -m M               an existing metric (to scale, bound, grade or intersect).\n"
             "The multiscale metric (Loseille & Alauzet) controls the L^p norm of the P1 interpolation error\n"
             "for a target complexity (--complexity, default 1000); its Hessian comes from L2-projection\n"
-            "recovery, replaced at boundary vertices by the mean of their interior neighbours'. For the other sources --complexity scales the field to that complexity.\n"
+            "recovery, replaced at boundary vertices by the mean of their interior neighbours'. For the other sources "
+            "--complexity scales the field to that complexity.\n"
             "Then, in order: bounds (--hmin, --hmax, --max-anisotropy), gradation (--gradation, mixed space\n"
             "by default) with rescaling to the complexity, and intersection with --intersect.\n"
             "With --geometry MODEL the curved boundaries of the CAD model bound the sizes last, whatever\n"
@@ -58,7 +59,7 @@ int run_metric(const std::vector<std::string>& args) {
       "gradation-space", po::value<std::string>()->default_value("mixed")->value_name("S"),
       "gradation space: mixed (Alauzet 2010, t = 1/8) or metric")(
       "hmin", po::value<double>()->value_name("H"), "smallest size")("hmax", po::value<double>()->value_name("H"),
-                                                                       "largest size")(
+                                                                     "largest size")(
       "max-anisotropy", po::value<double>()->value_name("R"), "largest ratio of sizes of one tensor")(
       "intersect", po::value<std::string>()->value_name("FILE"), "intersect with this metric (.sol/.solb)")(
       "geometry", po::value<std::string>()->value_name("MODEL"),
@@ -84,8 +85,8 @@ int run_metric(const std::vector<std::string>& args) {
       const auto dot = item.find('.');
       const std::string k = item.substr(0, dot), c = dot == std::string::npos ? "" : item.substr(dot + 1);
       const bool number = !k.empty() && k.size() <= 6 && k.find_first_not_of("0123456789") == std::string::npos;
-      const bool component = dot == std::string::npos || c == "x" || c == "y" || c == "z" || c == "1" || c == "2" ||
-                             c == "3";
+      const bool component =
+          dot == std::string::npos || c == "x" || c == "y" || c == "z" || c == "1" || c == "2" || c == "3";
       if (item != "all" && !(number && component))
         throw UsageError(fmt::format("metric: --fields '{}': '{}' is not K, K.x, K.y, K.z or all", list, item));
     }
@@ -139,7 +140,8 @@ int run_metric(const std::vector<std::string>& args) {
     ms.gradation = o.has("gradation");
     ms.gradation_options = grading;
     MultiscaleReport rep;
-    field = values.size() == 1 ? multiscale_metric(mesh, values.front(), ms, &rep) : multiscale_metric(mesh, values, ms, &rep);
+    field = values.size() == 1 ? multiscale_metric(mesh, values.front(), ms, &rep)
+                               : multiscale_metric(mesh, values, ms, &rep);
     log::info("multiscale: Hessian {:.3f} s, gradation {:.3f} s, {} relaxations, total {:.3f} s", rep.hessian_seconds,
               rep.gradation_seconds, rep.relaxations, rep.total_seconds);
   } else {

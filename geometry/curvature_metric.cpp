@@ -1,9 +1,8 @@
 #include <metrica/error.hpp>
 #include <metrica/geometry/curvature_metric.hpp>
 
-#include <fmt/core.h>
-
 #include <Eigen/Dense>
+#include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>

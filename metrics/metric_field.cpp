@@ -93,15 +93,15 @@ namespace {
 
 void check_count(const io::SolData& sol, std::size_t vertices, const std::string& source) {
   if (sol.count != vertices)
-    throw InputError(fmt::format("{}: the field has {} entries but the mesh has {} vertices", source, sol.count,
-                                 vertices));
+    throw InputError(
+        fmt::format("{}: the field has {} entries but the mesh has {} vertices", source, sol.count, vertices));
 }
 
 void check_finite_values(const std::vector<double>& values, int width, const std::string& source) {
   for (std::size_t i = 0; i < values.size(); ++i)
     if (!std::isfinite(values[i]))
-      throw InputError(fmt::format("{}: value at vertex {} is not finite ({})", source, i / static_cast<std::size_t>(width) + 1,
-                                   values[i]));
+      throw InputError(fmt::format("{}: value at vertex {} is not finite ({})", source,
+                                   i / static_cast<std::size_t>(width) + 1, values[i]));
 }
 
 // Component c of field k, contiguous.
@@ -136,7 +136,8 @@ std::vector<SelectedField> select_fields(const io::SolData& sol, std::size_t ver
     check_finite_values(out.back().values, 1, fmt::format("{} (field {})", source, out.back().name));
   };
   auto add_field = [&](std::size_t k) {
-    if (sol.types[k] == io::SolType::scalar) add(k, 0);
+    if (sol.types[k] == io::SolType::scalar)
+      add(k, 0);
     else
       for (int c = 0; c < 3; ++c) add(k, c);
   };
@@ -153,18 +154,18 @@ std::vector<SelectedField> select_fields(const io::SolData& sol, std::size_t ver
     }
     const auto dot = item.find('.');
     const std::string number = item.substr(0, dot);
-    const bool digits = !number.empty() && number.size() <= 6 &&
-                        number.find_first_not_of("0123456789") == std::string::npos;
+    const bool digits =
+        !number.empty() && number.size() <= 6 && number.find_first_not_of("0123456789") == std::string::npos;
     if (!digits)
       throw InputError(fmt::format("field selection '{}': '{}' is not K, K.x, K.y, K.z or all", selection, item));
     const auto k = static_cast<std::size_t>(std::stoul(number));
     if (k < 1 || k > sol.types.size())
-      throw InputError(fmt::format("field selection '{}': {} holds fields 1 to {}, not {}", selection, source,
-                                   sol.types.size(), k));
+      throw InputError(
+          fmt::format("field selection '{}': {} holds fields 1 to {}, not {}", selection, source, sol.types.size(), k));
     const auto type = sol.types[k - 1];
     if (type != io::SolType::scalar && type != io::SolType::vector)
-      throw InputError(fmt::format("field selection '{}': field {} of {} is a {}, not a scalar or a vector",
-                                   selection, k, source, io::to_string(type)));
+      throw InputError(fmt::format("field selection '{}': field {} of {} is a {}, not a scalar or a vector", selection,
+                                   k, source, io::to_string(type)));
     if (dot == std::string::npos) {
       add_field(k - 1);
       continue;

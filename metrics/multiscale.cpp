@@ -76,8 +76,7 @@ std::optional<std::vector<Sym6>> field_hessian(const Mesh& mesh, const std::vect
 
 // Scale to N, then bounds and gradation with rescaling until the
 // complexity is back at N (at most max_relaxations rounds).
-void relax_to_complexity(const Mesh& mesh, std::vector<Sym6>& metric, const MultiscaleOptions& o,
-                         MultiscaleReport& r) {
+void relax_to_complexity(const Mesh& mesh, std::vector<Sym6>& metric, const MultiscaleOptions& o, MultiscaleReport& r) {
   // Sizes beyond the domain mean nothing a mesh could follow; bounding them
   // by its largest extent (unless the user set h_max) also spares the
   // gradation from walking down sizes of 1e6 in flat regions.
@@ -111,7 +110,8 @@ std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<S
   check_options(o);
   Stopwatch clock;
   if (hessian.size() != mesh.vertex_capacity())
-    throw InputError(fmt::format("Hessian field of {} tensors for {} vertex ids", hessian.size(), mesh.vertex_capacity()));
+    throw InputError(
+        fmt::format("Hessian field of {} tensors for {} vertex ids", hessian.size(), mesh.vertex_capacity()));
   auto metric = unscaled_metric(mesh, hessian, o.norm);
   MultiscaleReport r;
   relax_to_complexity(mesh, metric, o, r);
@@ -125,7 +125,8 @@ std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<double>&
   check_options(o);
   Stopwatch clock;
   auto hessian = field_hessian(mesh, values, o);
-  if (!hessian) throw InputError("the field's Hessian is zero everywhere (a linear field): no multiscale metric to make");
+  if (!hessian)
+    throw InputError("the field's Hessian is zero everywhere (a linear field): no multiscale metric to make");
   const double hessian_seconds = clock.seconds();
   MultiscaleReport r;
   auto metric = multiscale_metric_from_hessian(mesh, std::move(*hessian), o, &r);

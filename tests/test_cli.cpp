@@ -421,11 +421,12 @@ TEST_SUITE("regression") {
       REQUIRE(at != std::string::npos);
       return std::stod(r.output.substr(at + 11));
     };
-    const auto plain = metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --complexity 2000 -o " +
-                                   (dir / "plain.solb"));
+    const auto plain =
+        metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --complexity 2000 -o " + (dir / "plain.solb"));
     REQUIRE(plain.code == 0);
-    const auto bounded = metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --complexity 2000 --geometry " +
-                                     model + " --curvature-angle 5 --gradation 1.5 -o " + (dir / "bounded.solb"));
+    const auto bounded =
+        metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --complexity 2000 --geometry " + model +
+                    " --curvature-angle 5 --gradation 1.5 -o " + (dir / "bounded.solb"));
     INFO(bounded.output);
     REQUIRE(bounded.code == 0);
     CHECK(has(bounded, "curved boundaries"));

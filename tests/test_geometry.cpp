@@ -12,7 +12,6 @@
 #include <metrica/io/meshb.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/operators/boundary_swap.hpp>
-#include <metrica/point_location.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/project.hpp>
 #include <metrica/operators/reconnect.hpp>
@@ -20,6 +19,7 @@
 #include <metrica/operators/refine_edges.hpp>
 #include <metrica/operators/smooth.hpp>
 #include <metrica/pipeline/adapt.hpp>
+#include <metrica/point_location.hpp>
 
 #include <cmath>
 #include <fstream>
@@ -397,7 +397,9 @@ TEST_SUITE("regression") {
     CHECK(std::abs(c.mesh.volume() - exact) / exact < 2e-4);
   }
 
-  TEST_CASE("a vertex at a model vertex is that model vertex - a corner - and the vertices made along its closed curves stay on the model") {
+  TEST_CASE(
+      "a vertex at a model vertex is that model vertex - a corner - and the vertices made along its closed curves stay "
+      "on the model") {
     // The channel of Schäfer-Turek 3D-1Z: the cylinder's circles are closed
     // curves whose one model vertex is also the end of the seam. Recorded on
     // the seam only, that vertex shared no curve with its neighbours on the
@@ -464,7 +466,9 @@ TEST_SUITE("regression") {
     CHECK_THROWS_AS(curvature_metric(mesh, model, 2.0), InputError);
   }
 
-  TEST_CASE("point location around a hole: the walk stops at the cylinder - the locator finds the tet - fields move exactly") {
+  TEST_CASE(
+      "point location around a hole: the walk stops at the cylinder - the locator finds the tet - fields move "
+      "exactly") {
     CadModel model(kChannelModel);
     const io::MeshData a = bootstrap_mesh(model, {.size = 0.1});
     const io::MeshData b = bootstrap_mesh(model, {.size = 0.07});
