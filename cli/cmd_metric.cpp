@@ -73,24 +73,9 @@ int run_metric(const std::vector<std::string>& args) {
   if (sources != 1)
     throw UsageError("metric: give exactly one source: --analytic, --field, --field-file or -m");
   if (o.has("fields") && !o.has("field-file")) throw UsageError("metric: --fields chooses among --field-file's fields");
-  if (o.has("fields")) {
-    // The form of the list before any file is read (which fields exist is
-    // the file's to say).
-    const auto list = o.get<std::string>("fields");
-    std::size_t from = 0;
-    while (from <= list.size()) {
-      const auto to = std::min(list.find(',', from), list.size());
-      const std::string item = list.substr(from, to - from);
-      from = to + 1;
-      const auto dot = item.find('.');
-      const std::string k = item.substr(0, dot), c = dot == std::string::npos ? "" : item.substr(dot + 1);
-      const bool number = !k.empty() && k.size() <= 6 && k.find_first_not_of("0123456789") == std::string::npos;
-      const bool component =
-          dot == std::string::npos || c == "x" || c == "y" || c == "z" || c == "1" || c == "2" || c == "3";
-      if (item != "all" && !(number && component))
-        throw UsageError(fmt::format("metric: --fields '{}': '{}' is not K, K.x, K.y, K.z or all", list, item));
-    }
-  }
+  // The form of the list before any file is read (which fields exist is
+  // the file's to say).
+  if (o.has("fields")) o.as_usage([&] { return parse_field_selection(o.get<std::string>("fields")); });
 
   MetricBounds bounds = o.size_bounds();
   if (o.has("max-anisotropy")) bounds.max_anisotropy = o.in_range("max-anisotropy", 1.0, 1e300);

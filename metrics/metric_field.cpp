@@ -125,6 +125,33 @@ std::vector<double> solution_values_from_sol(const io::SolData& sol, std::size_t
   return sol.values;
 }
 
+std::vector<FieldItem> parse_field_selection(const std::string& selection) {
+  std::vector<FieldItem> out;
+  std::size_t from = 0;
+  while (from <= selection.size()) {
+    const auto to = std::min(selection.find(',', from), selection.size());
+    const std::string item = selection.substr(from, to - from);
+    from = to + 1;
+    if (item == "all") {
+      out.push_back({.all = true});
+      continue;
+    }
+    const auto dot = item.find('.');
+    const std::string number = item.substr(0, dot), c = dot == std::string::npos ? "" : item.substr(dot + 1);
+    const bool digits =
+        !number.empty() && number.size() <= 6 && number.find_first_not_of("0123456789") == std::string::npos;
+    const int component = dot == std::string::npos ? -1
+                          : c == "x" || c == "1"   ? 0
+                          : c == "y" || c == "2"   ? 1
+                          : c == "z" || c == "3"   ? 2
+                                                   : -2;
+    if (!digits || component == -2)
+      throw InputError(fmt::format("field selection '{}': '{}' is not K, K.x, K.y, K.z or all", selection, item));
+    out.push_back({.field = static_cast<std::size_t>(std::stoul(number)), .component = component});
+  }
+  return out;
+}
+
 std::vector<SelectedField> select_fields(const io::SolData& sol, std::size_t vertices, const std::string& selection,
                                          const std::string& source) {
   if (selection.empty()) return {{"first scalar", scalar_field_from_sol(sol, vertices, source)}};
@@ -141,24 +168,14 @@ std::vector<SelectedField> select_fields(const io::SolData& sol, std::size_t ver
     else
       for (int c = 0; c < 3; ++c) add(k, c);
   };
-  std::size_t from = 0;
-  while (from <= selection.size()) {
-    const auto to = std::min(selection.find(',', from), selection.size());
-    const std::string item = selection.substr(from, to - from);
-    from = to + 1;
-    if (item == "all") {
+  for (const FieldItem& item : parse_field_selection(selection)) {
+    if (item.all) {
       for (std::size_t k = 0; k < sol.types.size(); ++k)
         if (sol.types[k] == io::SolType::scalar || sol.types[k] == io::SolType::vector) add_field(k);
       if (out.empty()) throw InputError(fmt::format("{}: no scalar or vector field in the file", source));
       continue;
     }
-    const auto dot = item.find('.');
-    const std::string number = item.substr(0, dot);
-    const bool digits =
-        !number.empty() && number.size() <= 6 && number.find_first_not_of("0123456789") == std::string::npos;
-    if (!digits)
-      throw InputError(fmt::format("field selection '{}': '{}' is not K, K.x, K.y, K.z or all", selection, item));
-    const auto k = static_cast<std::size_t>(std::stoul(number));
+    const std::size_t k = item.field;
     if (k < 1 || k > sol.types.size())
       throw InputError(
           fmt::format("field selection '{}': {} holds fields 1 to {}, not {}", selection, source, sol.types.size(), k));
@@ -166,16 +183,14 @@ std::vector<SelectedField> select_fields(const io::SolData& sol, std::size_t ver
     if (type != io::SolType::scalar && type != io::SolType::vector)
       throw InputError(fmt::format("field selection '{}': field {} of {} is a {}, not a scalar or a vector", selection,
                                    k, source, io::to_string(type)));
-    if (dot == std::string::npos) {
+    if (item.component < 0) {
       add_field(k - 1);
       continue;
     }
-    const std::string c = item.substr(dot + 1);
-    const int index = c == "x" || c == "1" ? 0 : c == "y" || c == "2" ? 1 : c == "z" || c == "3" ? 2 : -1;
-    if (index < 0 || type != io::SolType::vector)
-      throw InputError(fmt::format("field selection '{}': '{}' names no component (K.x, K.y, K.z of a vector field)",
-                                   selection, item));
-    add(k - 1, index);
+    if (type != io::SolType::vector)
+      throw InputError(fmt::format("field selection '{}': '{}.{}' names no component (K.x, K.y, K.z of a vector field)",
+                                   selection, k, "xyz"[item.component]));
+    add(k - 1, item.component);
   }
   return out;
 }

@@ -35,6 +35,16 @@ std::vector<double> solution_values_from_sol(const io::SolData& sol, std::size_t
 // An empty selection is the first scalar field. InputError for a malformed
 // selection, a field that does not exist or is a tensor, and the checks of
 // scalar_field_from_sol.
+// One item of such a selection: `all`, or field K (as written, 1-based)
+// and its component (0-2; -1 for the whole field). InputError naming a
+// malformed item; whether the fields exist is the solution's to say
+// (select_fields).
+struct FieldItem {
+  bool all = false;
+  std::size_t field = 0;
+  int component = -1;
+};
+std::vector<FieldItem> parse_field_selection(const std::string& selection);
 struct SelectedField {
   std::string name;  // "2", "1.x": for messages
   std::vector<double> values;
