@@ -91,4 +91,15 @@ void free_large(void* p, std::size_t bytes) noexcept {
 #endif
 }
 
+void release_large_pages(void* p, std::size_t bytes) noexcept {
+#if defined(__linux__)
+  const auto begin = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t first = (begin + kPage - 1) / kPage * kPage, last = (begin + bytes) / kPage * kPage;
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
+#else
+  (void)p;
+  (void)bytes;
+#endif
+}
+
 }  // namespace metrica

@@ -5,6 +5,7 @@
 // touches nearby memory. Morton rather than Hilbert: one line of bit
 // interleaving, and within a few percent of Hilbert's cache behaviour on
 // tet meshes.
+#include <metrica/allocator.hpp>
 #include <metrica/bucket_cursors.hpp>
 #include <metrica/mesh.hpp>
 #include <metrica/part_runner.hpp>
@@ -31,42 +32,58 @@ std::uint64_t spread_bits(std::uint64_t x) {
   return x;
 }
 
-// a[i] = old a[old_of_new[i]], the gather cut into parts (into an array
-// that resizing did not write: each part writes its own slice first).
+// a[new_of_old[i]] = old a[i] for the i with new_of_old[i] != kNoId, into
+// an array of `size`. A scatter, so the old array is read once, front to
+// back, and each 2 MiB read is handed back to the kernel at once (in a
+// block of allocate_large): the new array fills as the old one empties
+// (the order changes little from one compaction to the next) instead of
+// both being whole at the peak, which compaction was.
 template <class T>
-void permute(MeshArray<T>& a, std::span<const std::uint32_t> old_of_new, const PartRunner& run) {
+void permute_to(MeshArray<T>& a, std::span<const std::uint32_t> new_of_old, std::size_t size, const PartRunner& run) {
   if (a.empty()) return;
   MeshArray<T> out;
-  out.resize(old_of_new.size());
+  // Room for a pass to grow into without moving the array (a copy beside
+  // the old block at the peak): untouched, it is not resident.
+  out.reserve(size + size / 4);
+  out.resize(size);
+  const bool large = a.capacity() * sizeof(T) >= kLargeBlock;
+  constexpr std::size_t kChunk = (std::size_t{2} << 20) / sizeof(T);
   run(run.parts, [&](std::size_t p) {
-    const auto [first, last] = part_slice(old_of_new.size(), run.parts, p);
-    for (std::size_t i = first; i < last; ++i) out[i] = a[old_of_new[i]];
+    const auto [first, last] = part_slice(new_of_old.size(), run.parts, p);
+    for (std::size_t lo = first; lo < last; lo += kChunk) {
+      const std::size_t hi = std::min(last, lo + kChunk);
+      for (std::size_t i = lo; i < hi; ++i)
+        if (new_of_old[i] != kNoId) out[new_of_old[i]] = a[i];
+      if (large) release_large_pages(a.data() + lo, (hi - lo) * sizeof(T));
+    }
   });
   a = std::move(out);
 }
 
-// order = the i with key[i] != kNoId, by key (each below `keys`), ties
-// in order of i: a stable counting sort in run.parts parts
-// (bucket_cursors), the order of one thread for any number of parts. It
-// was one thread's two passes over the tets in each compaction (with the
-// gathers' value-initialisation, 20 of the 110 one-thread samples of a
-// 2-thread adaptation at 0.94M tets).
-void tets_by_key(std::span<const VertexId> key, std::size_t keys, const PartRunner& run,
-                 MeshArray<std::uint32_t>& order) {
+// Turns key[i] (below `keys`, or kNoId) into i's place in the order of
+// the items by key, ties in order of i, in place: a stable counting sort
+// in run.parts parts (bucket_cursors), the order of one thread for any
+// number of parts; returns the number of items with a key. It was one
+// thread's two passes over the tets in each compaction (with the gathers'
+// value-initialisation, 20 of the 110 one-thread samples of a 2-thread
+// adaptation at 0.94M tets). In place, so that no order array stands
+// beside the mesh's arrays at compaction, the passes' peak.
+std::size_t ranks_by_key(std::span<VertexId> key, std::size_t keys, const PartRunner& run) {
   const std::size_t parts = std::max<std::size_t>(run.parts, 1), n = key.size();
   MeshArray<std::uint32_t> cursor, start;  // cursor[p * keys + k]
-  order.resize(bucket_cursors(
+  const std::size_t ranked = bucket_cursors(
       n, keys, parts,
       [&](std::size_t i, auto&& add) {
         if (key[i] != kNoId) add(key[i]);
       },
-      run, cursor, start));
+      run, cursor, start);
   run(parts, [&](std::size_t p) {
     std::uint32_t* next = cursor.data() + p * keys;
     const auto [first, last] = part_slice(n, parts, p);
     for (std::size_t i = first; i < last; ++i)
-      if (key[i] != kNoId) order[next[key[i]]++] = static_cast<std::uint32_t>(i);
+      if (key[i] != kNoId) key[i] = next[key[i]]++;
   });
+  return ranked;
 }
 
 }  // namespace
@@ -131,28 +148,24 @@ void Mesh::compact(const PartRunner& given) {
     }
   });
   sort_in_parts(keyed.begin(), keyed.end(), std::less<>{}, parts, run);
-  MeshArray<std::uint32_t> vertex_order;
-  vertex_order.resize(nv);
   std::vector<VertexId> new_vertex(vcap, kNoId);
   run(parts, [&](std::size_t p) {
     const auto [first, last] = part_slice(nv, parts, p);
-    for (std::size_t i = first; i < last; ++i) {
-      vertex_order[i] = keyed[i].v;
-      new_vertex[keyed[i].v] = static_cast<VertexId>(i);
-    }
+    for (std::size_t i = first; i < last; ++i) new_vertex[keyed[i].v] = static_cast<VertexId>(i);
   });
+  keyed = {};
 
   // Tets by their smallest new vertex id, ties in id order: a counting
   // sort on the key (it is below the vertex count), which keeps the id
-  // order within a key, in parts (tets_by_key).
-  MeshArray<VertexId> tet_key;
-  tet_key.resize(tcap);
+  // order within a key, in parts (ranks_by_key).
+  MeshArray<TetId> new_tet;  // each tet's key, then its new id
+  new_tet.resize(tcap);
   run(parts, [&](std::size_t p) {
     const auto [first, last] = part_slice(tcap, parts, p);
     for (std::size_t t = first; t < last; ++t) {
       VertexId key = kNoId;
       if (!tet_alive(static_cast<TetId>(t))) {
-        tet_key[t] = key;
+        new_tet[t] = key;
         continue;
       }
       for (VertexId v : tets_[t]) {
@@ -160,43 +173,31 @@ void Mesh::compact(const PartRunner& given) {
           throw std::logic_error("Mesh::compact: a live tet has a dead or unknown vertex");
         key = std::min(key, new_vertex[v]);
       }
-      tet_key[t] = key;
+      new_tet[t] = key;
     }
   });
-  MeshArray<std::uint32_t> tet_order;
-  tets_by_key(tet_key, nv, run, tet_order);
-  const std::size_t live = tet_order.size();
-  MeshArray<TetId> new_tet;
-  new_tet.resize(tcap);
-  run(parts, [&](std::size_t p) {
-    const auto [first, last] = part_slice(tcap, parts, p);
-    std::fill(new_tet.begin() + static_cast<std::ptrdiff_t>(first), new_tet.begin() + static_cast<std::ptrdiff_t>(last), kNoId);
-  });
-  run(parts, [&](std::size_t p) {
-    const auto [first, last] = part_slice(live, parts, p);
-    for (std::size_t i = first; i < last; ++i) new_tet[tet_order[i]] = static_cast<TetId>(i);
-  });
+  const std::size_t live = ranks_by_key(new_tet, nv, run);
 
-  permute(points_, vertex_order, run);
-  permute(vertex_ref_, vertex_order, run);
-  permute(vert2tet_, vertex_order, run);
-  permute(vertex_class_, vertex_order, run);
-  permute(vertex_flags_, vertex_order, run);
-  permute(metric_, vertex_order, run);
-  permute(log_metric_, vertex_order, run);
-  permute(vertex_stamp_, vertex_order, run);
-  permute(geo_, vertex_order, run);
+  permute_to(points_, new_vertex, nv, run);
+  permute_to(vertex_ref_, new_vertex, nv, run);
+  permute_to(vert2tet_, new_vertex, nv, run);
+  permute_to(vertex_class_, new_vertex, nv, run);
+  permute_to(vertex_flags_, new_vertex, nv, run);
+  permute_to(metric_, new_vertex, nv, run);
+  permute_to(log_metric_, new_vertex, nv, run);
+  permute_to(vertex_stamp_, new_vertex, nv, run);
+  permute_to(geo_, new_vertex, nv, run);
   run(parts, [&](std::size_t p) {
     const auto [first, last] = part_slice(nv, parts, p);
     for (std::size_t v = first; v < last; ++v) vert2tet_[v] = vert2tet_[v] < tcap ? new_tet[vert2tet_[v]] : kNoId;
   });
 
-  permute(tets_, tet_order, run);
-  permute(tet2tets_, tet_order, run);
-  permute(face_surface_, tet_order, run);
-  permute(tet_ref_, tet_order, run);
-  permute(tet_stamp_, tet_order, run);
-  permute(tet_quality_, tet_order, run);
+  permute_to(tets_, new_tet, live, run);
+  permute_to(tet2tets_, new_tet, live, run);
+  permute_to(face_surface_, new_tet, live, run);
+  permute_to(tet_ref_, new_tet, live, run);
+  permute_to(tet_stamp_, new_tet, live, run);
+  permute_to(tet_quality_, new_tet, live, run);
   run(parts, [&](std::size_t p) {
     const auto [first, last] = part_slice(live, parts, p);
     for (std::size_t t = first; t < last; ++t) {

@@ -165,6 +165,12 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
 
 io::MeshData extract_mesh_data(const Mesh& mesh) {
   io::MeshData d;
+  // Sized once: grown by doubling, the copy of a 4M-tet mesh took twice
+  // its size at the end of a run.
+  d.vertices.reserve(mesh.num_vertices());
+  d.vertex_refs.reserve(mesh.num_vertices());
+  d.tets.reserve(mesh.num_tets());
+  d.tet_refs.reserve(mesh.num_tets());
   std::vector<VertexId> new_id(mesh.vertex_capacity(), kNoId);
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
     if (!mesh.vertex_alive(v)) continue;

@@ -43,5 +43,11 @@ void release_freed_memory();
 inline constexpr std::size_t kLargeBlock = std::size_t{4} << 20;
 void* allocate_large(std::size_t bytes);               // throws std::bad_alloc
 void free_large(void* p, std::size_t bytes) noexcept;  // bytes: as allocated
+// Gives the kernel back the whole pages of [p, p + bytes), inside a block
+// of allocate_large whose content there is no longer needed (they read as
+// zeros afterwards): an array read once from front to back and then
+// dropped need not stay resident behind the reading (compaction's
+// scatter). A no-op elsewhere than Linux.
+void release_large_pages(void* p, std::size_t bytes) noexcept;
 
 }  // namespace metrica

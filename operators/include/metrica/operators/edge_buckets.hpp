@@ -57,13 +57,21 @@ struct NoEdgeCounts {
   void operator()(std::span<const std::size_t>) const {}
 };
 
+// The edges whose lower end is in [lo, hi) only: buckets, counters and
+// entries for that range (a whole mesh's edges listed in vertex ranges,
+// for_each_mesh_edge_bucket, cost a fraction of listing them at once).
+struct LowerRange {
+  std::size_t lo = 0, hi = 0;
+};
+
 template <class C, class Entry, class TetOf, class VerticesOf, class Visit, class Sizes = NoEdgeCounts>
 void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, VerticesOf&& vertices_of,
-                          std::size_t capacity, bool sorted, Visit&& visit, Sizes&& sizes = {}) {
+                          LowerRange range, bool sorted, Visit&& visit, Sizes&& sizes = {}) {
   static_assert(std::is_same_v<Entry, VertexId> || std::is_same_v<Entry, UpperTet>);
   parts = std::max<std::size_t>(parts, 1);
-  const std::size_t cap = capacity;
-  // Per part: counters, then cursors (bucket_cursors), then marks.
+  const std::size_t lo = range.lo, cap = range.hi > range.lo ? range.hi - range.lo : 0;
+  auto in_range = [lo, cap](VertexId a) { return static_cast<std::size_t>(a) - lo < cap; };  // wraps below lo
+  // Per part: counters, then cursors (bucket_cursors).
   MeshArray<std::uint32_t> per_part, start;
   auto items_of = [&](std::size_t p) { return part_slice(n, parts, p); };
   const std::size_t total = bucket_cursors(
@@ -72,7 +80,10 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
         const TetId t = tet_of(i);
         if (t == kNoId) return;
         const TetVertices& v = vertices_of(t);
-        for (const auto& e : kEdgeVertex) add(std::min(v[e[0]], v[e[1]]));
+        for (const auto& e : kEdgeVertex) {
+          const VertexId a = std::min(v[e[0]], v[e[1]]);
+          if (in_range(a)) add(a - lo);
+        }
       },
       [](std::size_t k, auto&& f) { C::parallel_for(k, f); }, per_part, start);
   MeshArray<Entry> entries;
@@ -86,7 +97,9 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
       const TetVertices& v = vertices_of(t);
       for (const auto& e : kEdgeVertex) {
         const VertexId a = v[e[0]], b = v[e[1]];
-        Entry& x = entries[cursor[std::min(a, b)]++];
+        const VertexId lower = std::min(a, b);
+        if (!in_range(lower)) continue;
+        Entry& x = entries[cursor[lower - lo]++];
         if constexpr (std::is_same_v<Entry, UpperTet>)
           x = {std::max(a, b), t};
         else
@@ -94,6 +107,7 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
       }
     }
   });
+  per_part = {};
   // Slices of about total / parts entries, cut at bucket starts.
   std::vector<std::size_t> cut(parts + 1, cap);
   cut[0] = 0;
@@ -107,48 +121,83 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
       return x;
   };
   // kept[a]: how many of bucket a's entries are distinct (at its front).
+  // A bucket holds a few dozen entries (each edge once per tet around
+  // it), so a scan of those kept finds repeats in cache, with no marks
+  // indexed by the higher vertex.
   MeshArray<std::uint32_t> kept;
   kept.resize(cap);
   std::vector<std::size_t> edges_in(parts, 0);
   C::parallel_for(parts, [&](std::size_t p) {
-    // last[b] == a: edge ab already kept (the part's counters, done with).
-    std::uint32_t* last = per_part.data() + p * cap;
-    std::fill(last, last + cap, kNoId);
     std::size_t edges = 0;
-    for (std::size_t a = cut[p]; a < cut[p + 1]; ++a) {
-      Entry* const first = entries.data() + start[a];
+    for (std::size_t k = cut[p]; k < cut[p + 1]; ++k) {
+      Entry* const first = entries.data() + start[k];
       Entry* end = first;
-      for (Entry* x = first; x != entries.data() + start[a + 1]; ++x) {
+      for (Entry* x = first; x != entries.data() + start[k + 1]; ++x) {
         const VertexId b = upper_of(*x);
-        if (last[b] == static_cast<std::uint32_t>(a)) continue;
-        last[b] = static_cast<std::uint32_t>(a);
-        *end++ = *x;
+        bool seen = false;
+        for (const Entry* y = first; y != end && !seen; ++y) seen = upper_of(*y) == b;
+        if (!seen) *end++ = *x;
       }
       // A handful of edges per vertex: insertion sort by the higher end.
       if (sorted && end - first > 1)
         for (Entry* i = first + 1; i < end; ++i)
           for (Entry* j = i; j > first && upper_of(*j) < upper_of(*(j - 1)); --j) std::swap(*j, *(j - 1));
-      kept[a] = static_cast<std::uint32_t>(end - first);
-      edges += kept[a];
+      kept[k] = static_cast<std::uint32_t>(end - first);
+      edges += kept[k];
     }
     edges_in[p] = edges;
   });
   sizes(std::span<const std::size_t>(edges_in));
   C::parallel_for(parts, [&](std::size_t p) {
-    for (std::size_t a = cut[p]; a < cut[p + 1]; ++a)
-      if (kept[a] > 0) visit(p, static_cast<VertexId>(a), std::span<const Entry>(entries.data() + start[a], kept[a]));
+    for (std::size_t k = cut[p]; k < cut[p + 1]; ++k)
+      if (kept[k] > 0)
+        visit(p, static_cast<VertexId>(lo + k), std::span<const Entry>(entries.data() + start[k], kept[k]));
   });
 }
 
+// Every lower end below `capacity`.
+template <class C, class Entry, class TetOf, class VerticesOf, class Visit, class Sizes = NoEdgeCounts>
+void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, VerticesOf&& vertices_of,
+                          std::size_t capacity, bool sorted, Visit&& visit, Sizes&& sizes = {}) {
+  for_each_edge_bucket<C, Entry>(parts, n, tet_of, vertices_of, LowerRange{0, capacity}, sorted, visit, sizes);
+}
+
+// The lower-end ranges a whole mesh's edges are listed in: the entries
+// (4 bytes per tet edge, 24 per tet) of a quarter of the vertices at a
+// time above 32 MiB, at the price of a scan of the tets per range. This
+// listing was the adaptation's peak (collapse and split list every edge).
+inline std::vector<LowerRange> mesh_edge_ranges(const Mesh& mesh) {
+  constexpr std::size_t kEntriesBytes = std::size_t{32} << 20;
+  constexpr std::size_t kMaxRanges = 4;
+  const std::size_t entries = 6 * sizeof(VertexId) * mesh.num_tets();
+  const std::size_t ranges = std::clamp<std::size_t>((entries + kEntriesBytes - 1) / kEntriesBytes, 1, kMaxRanges);
+  std::vector<LowerRange> out;
+  for (std::size_t r = 0; r < ranges; ++r) {
+    const auto [lo, hi] = part_slice(mesh.vertex_capacity(), ranges, r);
+    out.push_back({lo, hi});
+  }
+  return out;
+}
+
+struct NoRangeEnd {
+  void operator()() const {}
+};
+
 // for_each_edge_bucket over the live tets of `mesh` (VertexId entries,
-// unsorted), in `parts` parts (sweep_parts<C> of the tet capacity):
-// visit(part, a, kept).
-template <class C, class Visit, class Sizes = NoEdgeCounts>
-void for_each_mesh_edge_bucket(const Mesh& mesh, std::size_t parts, Visit&& visit, Sizes&& sizes = {}) {
-  for_each_edge_bucket<C, VertexId>(
-      parts, mesh.tet_capacity(),
-      [&](std::size_t i) { return mesh.tet_alive(static_cast<TetId>(i)) ? static_cast<TetId>(i) : kNoId; },
-      [&](TetId t) -> const TetVertices& { return mesh.tet(t); }, mesh.vertex_capacity(), false, visit, sizes);
+// unsorted), in `parts` parts (sweep_parts<C> of the tet capacity), range
+// by range of lower ends (mesh_edge_ranges): for each range, sizes(counts)
+// with its parts' numbers of edges, visit(part, a, kept) for its lower ends
+// a, then range_end(). Lower ends ascend across ranges and parts.
+template <class C, class Visit, class Sizes = NoEdgeCounts, class RangeEnd = NoRangeEnd>
+void for_each_mesh_edge_bucket(const Mesh& mesh, std::size_t parts, Visit&& visit, Sizes&& sizes = {},
+                               RangeEnd&& range_end = {}) {
+  for (const LowerRange& range : mesh_edge_ranges(mesh)) {
+    for_each_edge_bucket<C, VertexId>(
+        parts, mesh.tet_capacity(),
+        [&](std::size_t i) { return mesh.tet_alive(static_cast<TetId>(i)) ? static_cast<TetId>(i) : kNoId; },
+        [&](TetId t) -> const TetVertices& { return mesh.tet(t); }, range, false, visit, sizes);
+    range_end();
+  }
 }
 
 // The distinct edges of the live tets of `mesh` as f(a, b, part) with a <
@@ -160,16 +209,32 @@ template <class C, class T, class F>
 std::vector<T> collect_mesh_edges(const Mesh& mesh, F&& f) {
   const std::size_t parts = sweep_parts<C>(mesh.tet_capacity());
   std::vector<std::vector<T>> out(parts);
+  std::vector<T> all;
   for_each_mesh_edge_bucket<C>(
       mesh, parts,
       [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
         for (VertexId b : kept) f(a, b, out[p]);
       },
       [&](std::span<const std::size_t> edges_in) {
-        for (std::size_t p = 0; p < parts; ++p) out[p].reserve(edges_in[p]);
+        for (std::size_t p = 0; p < parts; ++p) {
+          out[p].clear();
+          out[p].reserve(edges_in[p]);
+        }
+      },
+      [&] {
+        if (all.empty() && parts == 1) {
+          all = std::move(out[0]);
+          out[0] = {};
+          return;
+        }
+        if (parts == 1) {
+          all.insert(all.end(), out[0].begin(), out[0].end());
+          return;
+        }
+        const std::vector<T> joined = join_in_parts(out, [](std::size_t k, auto&& g) { C::parallel_for(k, g); });
+        all.insert(all.end(), joined.begin(), joined.end());
       });
-  if (parts == 1) return std::move(out[0]);
-  return join_in_parts(out, [](std::size_t k, auto&& g) { C::parallel_for(k, g); });
+  return all;
 }
 
 }  // namespace metrica

@@ -34,44 +34,52 @@ struct EdgeSeed {
 // five repeats of each edge) was 4% of an adaptation.
 //
 // The buckets hold only the higher vertex of each edge (4 bytes per tet
-// edge, not 8 with its tet: this list is the adaptation's peak, 24 bytes
-// per seed tet saved); a second sweep over `tets` then gives each edge the
+// edge, not 8 with its tet), and they are made for a range of lower ends
+// at a time (up to 4 ranges, one above 32 MiB of entries), each range's
+// edges appended to `out`, whose capacity is reserved for 6 edges per
+// tet (a mapped block: what is never written is never resident), so it
+// does not move: these buckets were the peak of the first flip pass of
+// the quality phase. A second sweep over `tets` then gives each edge the
 // smallest index in `tets` among those holding it (an atomic minimum, so
 // the same for any order of the parts).
 template <class C = Serial, class VerticesOf, class Out>
 void unique_edge_seeds(std::span<const TetId> tets, VerticesOf&& vertices_of, std::size_t capacity, Out& out) {
+  constexpr std::size_t kEntriesBytes = std::size_t{32} << 20;
+  constexpr std::size_t kMaxRanges = 4;
   const std::size_t parts = sweep_parts<C>(tets.size());
-  // Each part writes its edges straight into `out`, from its offset on,
-  // `out` sized once (no growth, no join); bucket a's edges start at
-  // first[a] (count[a] of them).
+  const std::size_t ranges =
+      std::clamp<std::size_t>((6 * sizeof(VertexId) * tets.size() + kEntriesBytes - 1) / kEntriesBytes, 1, kMaxRanges);
+  // Bucket a's edges start at first[a] in `out` (count[a] of them); every
+  // lower end of an edge of `tets` is written by its range.
+  MeshArray<std::uint32_t> first, count;
+  first.resize(capacity);
+  count.resize(capacity);
+  out.clear();
+  out.reserve(6 * tets.size());
   struct alignas(64) Cursor {
     std::size_t at = 0;
   };
   std::vector<Cursor> cursor(parts);
-  MeshArray<std::uint32_t> first, count;
-  first.resize(capacity);
-  count.resize(capacity);
-  C::parallel_for(parts, [&](std::size_t p) {
-    const auto [lo, hi] = part_slice(capacity, parts, p);
-    std::fill(count.begin() + static_cast<std::ptrdiff_t>(lo), count.begin() + static_cast<std::ptrdiff_t>(hi), 0u);
-  });
-  out.clear();
-  for_each_edge_bucket<C, VertexId>(
-      parts, tets.size(), [&](std::size_t i) { return tets[i]; }, vertices_of, capacity, true,
-      [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
-        std::size_t& at = cursor[p].at;
-        first[a] = static_cast<std::uint32_t>(at);
-        count[a] = static_cast<std::uint32_t>(kept.size());
-        for (VertexId b : kept) out[at++] = EdgeSeed{edge_key(a, b), kNoId};
-      },
-      [&](std::span<const std::size_t> edges_in) {
-        std::size_t total = 0;
-        for (std::size_t p = 0; p < parts; ++p) {
-          cursor[p].at = total;
-          total += edges_in[p];
-        }
-        out.resize(total);
-      });
+  for (std::size_t r = 0; r < ranges; ++r) {
+    const auto [lo, hi] = part_slice(capacity, ranges, r);
+    // Each part writes its edges straight into `out`, from its offset on.
+    for_each_edge_bucket<C, VertexId>(
+        parts, tets.size(), [&](std::size_t i) { return tets[i]; }, vertices_of, LowerRange{lo, hi}, true,
+        [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
+          std::size_t& at = cursor[p].at;
+          first[a] = static_cast<std::uint32_t>(at);
+          count[a] = static_cast<std::uint32_t>(kept.size());
+          for (VertexId b : kept) out[at++] = EdgeSeed{edge_key(a, b), kNoId};
+        },
+        [&](std::span<const std::size_t> edges_in) {
+          std::size_t total = out.size();
+          for (std::size_t p = 0; p < parts; ++p) {
+            cursor[p].at = total;
+            total += edges_in[p];
+          }
+          out.resize(total);
+        });
+  }
   // Each edge's first holder: the smallest index i of `tets`.
   C::parallel_for(parts, [&](std::size_t p) {
     const auto [lo, hi] = part_slice(tets.size(), parts, p);
