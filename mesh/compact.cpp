@@ -194,7 +194,6 @@ void Mesh::compact(const PartRunner& given) {
 
   permute_to(tets_, new_tet, live, run);
   permute_to(tet2tets_, new_tet, live, run);
-  permute_to(face_surface_, new_tet, live, run);
   permute_to(tet_ref_, new_tet, live, run);
   permute_to(tet_stamp_, new_tet, live, run);
   permute_to(tet_quality_, new_tet, live, run);

@@ -1,6 +1,8 @@
 #include <metrica/geometry.hpp>
 #include <metrica/mesh.hpp>
 
+#include <fmt/format.h>
+
 #include <functional>
 #include <limits>
 #include <mutex>
@@ -26,6 +28,11 @@ const char* to_string(VertexClass c) {
 namespace {
 // The pool of the calling thread while a parallel pass runs.
 thread_local Mesh::AllocationPool* tls_pool = nullptr;
+
+// Tet ids and the adjacency words (FaceRef) end at kMaxTets.
+[[noreturn]] void throw_too_many_tets(std::size_t n) {
+  throw std::length_error(fmt::format("Mesh: {} tets asked for, more than the {} a mesh holds", n, kMaxTets));
+}
 }  // namespace
 
 void Mesh::bind_pool(AllocationPool* pool) { tls_pool = pool; }
@@ -44,7 +51,6 @@ void Mesh::reserve(std::size_t vertices, std::size_t tets) {
   if (has_geo_params()) geo_.reserve(vertices);
   tets_.reserve(tets);
   tet2tets_.reserve(tets);
-  face_surface_.reserve(tets);
   tet_ref_.reserve(tets);
   tet_stamp_.reserve(tets);
   tet_quality_.reserve(tets);
@@ -127,7 +133,6 @@ void Mesh::set_metric(VertexId v, const Sym6& m, const Sym6& log_m) {
 void Mesh::init_tet(TetId t, const TetVertices& vertices, int ref) {
   store_tet(t, vertices);
   tet2tets_[t] = {};
-  face_surface_[t] = {0, 0, 0, 0};
   tet_ref_[t] = ref;
   tet_stamp_[t] = epoch_;
   cache_quality(t, kUnknownQuality);
@@ -149,10 +154,10 @@ TetId Mesh::add_tet(const TetVertices& vertices, int ref) {
     init_tet(t, vertices, ref);
     return t;
   }
+  if (tets_.size() >= kMaxTets) throw_too_many_tets(tets_.size() + 1);
   const auto t = static_cast<TetId>(tets_.size());
   tets_.push_back(vertices);
   tet2tets_.push_back({});
-  face_surface_.push_back({0, 0, 0, 0});
   tet_ref_.push_back(ref);
   tet_stamp_.push_back(epoch_);
   tet_quality_.push_back(kUnknownQuality);
@@ -199,6 +204,7 @@ void Mesh::append_dead(std::size_t vertex_room, std::size_t tet_room, const Part
   // Grow by an eighth more than asked, not by doubling: the room is
   // mostly handed back, and doubling every array would double the peak.
   const std::size_t v_size = nv + vertex_room, t_size = nt + tet_room;
+  if (t_size > kMaxTets) throw_too_many_tets(t_size);
   const std::size_t v_cap = v_size + nv / 8, t_cap = t_size + nt / 8;
   // Only what tells a dead entity is written (its vertices, its flags,
   // its hint, its model association); add_vertex and add_tet write the
@@ -217,7 +223,6 @@ void Mesh::append_dead(std::size_t vertex_room, std::size_t tet_room, const Part
   if (has_geo_params()) grow_array(geo_, v_size, GeoParam{}, v_cap, run);
   grow_array(tets_, t_size, TetVertices{kNoId, kNoId, kNoId, kNoId}, t_cap, run);
   extend_array(tet2tets_, t_size, t_cap, run);
-  extend_array(face_surface_, t_size, t_cap, run);
   extend_array(tet_ref_, t_size, t_cap, run);
   extend_array(tet_stamp_, t_size, t_cap, run);
   extend_array(tet_quality_, t_size, t_cap, run);

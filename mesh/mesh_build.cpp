@@ -109,6 +109,10 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
   }
   std::sort(triangles.begin(), triangles.end(),
             [](const FaceKeyed& a, const FaceKeyed& b) { return a.key < b.key || (a.key == b.key && a.index < b.index); });
+  // Up to kMaxSurfaceId - 1, so that the default id (the largest + 1) fits.
+  if (max_id >= kMaxSurfaceId || opt.default_surface_id >= kMaxSurfaceId)
+    throw InputError(fmt::format("{}: surface id {} is beyond the ids a mesh holds (1 to {})", src,
+                                 std::max(max_id, opt.default_surface_id), kMaxSurfaceId - 1));
   const SurfaceId default_id = opt.default_surface_id > 0 ? opt.default_surface_id : max_id + 1;
   std::vector<char> used(d.triangles.size(), 0);
   std::size_t untagged = 0, nonpositive = 0;

@@ -97,7 +97,6 @@ class Checker {
           if (s <= 0) fail("boundary", "tet {} face {}: boundary face with surface id {} (must be > 0)", t, f, s);
           continue;
         }
-        if (s != 0) fail("boundary", "tet {} face {}: interior face carries surface id {}", t, f, s);
         if (n.tet() >= m_.tet_capacity() || !m_.tet_alive(n.tet())) {
           fail("adjacency", "tet {} face {}: neighbour tet {} is dead or out of range", t, f, n.tet());
           continue;

@@ -62,6 +62,31 @@ TEST_SUITE("unit") {
     CHECK(ids[3] == 5);
   }
 
+  TEST_CASE("a face's word holds its neighbour or its surface id, never both") {
+    for (SurfaceId id : {0, 1, 7, 4096, kMaxSurfaceId}) {
+      const FaceRef b = FaceRef::boundary(id);
+      CHECK_FALSE(b.valid());
+      CHECK(b.surface() == id);
+    }
+    CHECK(FaceRef::none() == FaceRef::boundary(0));
+    for (TetId t : {TetId{0}, TetId{5}, static_cast<TetId>(kMaxTets - 1)})
+      for (int f = 0; f < 4; ++f) {
+        const FaceRef n(t, f);
+        CHECK(n.valid());
+        CHECK(n.tet() == t);
+        CHECK(n.face() == f);
+        CHECK(n.surface() == 0);
+      }
+  }
+
+  TEST_CASE("a surface id beyond those a mesh holds is an error naming it") {
+    auto d = two_tets();
+    d.triangles = {{0, 1, 2}};
+    d.triangle_refs = {kMaxSurfaceId + 1};
+    CHECK_THROWS_WITH_AS(build_mesh(d, BuildOptions{.source = "big.mesh"}),
+                         doctest::Contains("big.mesh: surface id 268435456 is beyond the ids a mesh holds"), InputError);
+  }
+
   TEST_CASE("every tet negatively oriented: all are reoriented") {
     test::QuietLog quiet;
     auto d = two_tets();

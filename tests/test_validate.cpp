@@ -48,7 +48,7 @@ TEST_SUITE("invariant") {
     CHECK(mesh.validate().count("adjacency") > 0);
   }
 
-  TEST_CASE("boundary: a boundary face without a surface id - an interior face with one") {
+  TEST_CASE("boundary: a boundary face without a surface id - an interior face given one") {
     auto mesh = make_box({.nx = 1, .ny = 1, .nz = 1});
     for (int f = 0; f < 4; ++f)
       if (!mesh.neighbour(0, f).valid()) {
@@ -57,15 +57,19 @@ TEST_SUITE("invariant") {
       }
     auto r = mesh.validate();
     CHECK(r.count("boundary") == 1);
+    // One word holds a face's neighbour or its surface id: an interior
+    // face given an id has lost its neighbour on that side only.
     auto mesh2 = make_box({.nx = 1, .ny = 1, .nz = 1});
     for (int f = 0; f < 4; ++f)
       if (mesh2.neighbour(0, f).valid()) {
         mesh2.set_surface_id(0, f, 4);
+        CHECK(mesh2.surface_id(0, f) == 4);
+        CHECK_FALSE(mesh2.neighbour(0, f).valid());
         break;
       }
     r = mesh2.validate();
-    CHECK(r.count("boundary") == 1);
-    CHECK(r.problems().front().message.find("interior face") != std::string::npos);
+    CHECK(r.count("adjacency") == 1);
+    CHECK(r.problems().front().message.find("does not point back") != std::string::npos);
   }
 
   TEST_CASE("manifold: two tets touching along an edge only - and at a vertex only") {

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -41,22 +42,41 @@ using TetVertices = std::array<VertexId, 4>;
 using TriangleVertices = std::array<VertexId, 3>;
 using EdgeVertices = std::array<VertexId, 2>;
 
-// A face of a tet: the tet and its local face index (the face opposite that
-// vertex), packed as 4*tet + face in one word so that an adjacency slot is
-// a single atomic-sized value.
+// The largest surface id a mesh holds, and the most tets (both bounded by
+// FaceRef's one word).
+inline constexpr SurfaceId kMaxSurfaceId = (1 << 28) - 1;
+inline constexpr std::size_t kMaxTets = 0x3C000000;  // 1,006,632,960
+
+// A face of a tet seen from the other side: the neighbouring tet and its
+// local face index (the face opposite that vertex), packed as 4*tet + face
+// in one word so that an adjacency slot is a single atomic-sized value;
+// or, where the face has no neighbour, its surface id s (0 for none yet)
+// as kNoId - s. One word for both: interior faces have no surface id
+// and boundary faces no neighbour, so a second array of surface ids per
+// tet face (16 bytes per tet) held zeros on all but a few faces.
 class FaceRef {
  public:
   constexpr FaceRef() = default;
   constexpr FaceRef(TetId tet, int face) : code_(tet * 4u + static_cast<std::uint32_t>(face)) {}
+  // No neighbour: a face without one, of surface `id` (0..kMaxSurfaceId).
   static constexpr FaceRef none() { return FaceRef(); }
+  static constexpr FaceRef boundary(SurfaceId id) {
+    FaceRef f;
+    f.code_ = kNoId - static_cast<std::uint32_t>(id);
+    return f;
+  }
 
   constexpr TetId tet() const { return code_ >> 2; }
   constexpr int face() const { return static_cast<int>(code_ & 3u); }
-  constexpr bool valid() const { return code_ != kNoId; }
+  constexpr bool valid() const { return code_ < kFirstBoundary; }
+  // The surface id of a face without a neighbour; 0 for a neighbour.
+  constexpr SurfaceId surface() const { return valid() ? 0 : static_cast<SurfaceId>(kNoId - code_); }
   constexpr std::uint32_t code() const { return code_; }
   friend constexpr bool operator==(FaceRef, FaceRef) = default;
 
  private:
+  static constexpr std::uint32_t kFirstBoundary = kNoId - static_cast<std::uint32_t>(kMaxSurfaceId);
+  static_assert(4 * kMaxTets <= kFirstBoundary);
   std::uint32_t code_ = kNoId;
 };
 

@@ -3,8 +3,9 @@
 // Vertices carry a position, a metric tensor and its logarithm (6 numbers
 // each, filled by metrics/), a hint to one incident tet, a classification
 // (interior / surface / ridge / corner) and flags. Tets carry 4 vertex ids
-// (positively oriented), the neighbour across each face (tet2tets), the
-// surface id of each face (0 for an interior face) and a domain reference.
+// (positively oriented), across each face the neighbour or, on the
+// boundary, the surface id (tet2tets, one word a face: FaceRef), and a
+// domain reference.
 // Deleted entities are recycled through free lists; compact() renumbers.
 //
 // The invariants of docs/architecture.md are checked by validate() (validate.hpp).
@@ -98,7 +99,9 @@ class Mesh {
     __builtin_prefetch(&tet2tets_[t]);
   }
   FaceRef neighbour(FaceRef f) const { return tet2tets_[f.tet()][f.face()]; }
-  SurfaceId surface_id(TetId t, int face) const { return face_surface_[t][face]; }
+  // The surface id of a face without a neighbour (0: none given yet), 0
+  // for a face with one.
+  SurfaceId surface_id(TetId t, int face) const { return tet2tets_[t][face].surface(); }
   Point tet_point(TetId t, int i) const { return points_[tets_[t][i]]; }
 
   // --- change stamps -----------------------------------------------------
@@ -184,7 +187,9 @@ class Mesh {
     tet2tets_[b.tet()][b.face()] = a;
   }
   void set_neighbour(TetId t, int face, FaceRef n) { tet2tets_[t][face] = n; }
-  void set_surface_id(TetId t, int face, SurfaceId id) { face_surface_[t][face] = id; }
+  // Makes face `face` of t a face without a neighbour, of surface `id`
+  // (0..kMaxSurfaceId; one slot holds the neighbour or the id).
+  void set_surface_id(TetId t, int face, SurfaceId id) { tet2tets_[t][face] = FaceRef::boundary(id); }
   void set_vertex_class(VertexId v, VertexClass c) { vertex_class_[v] = c; }
   void set_ridges(std::unordered_set<std::uint64_t> ridges) { ridges_ = std::move(ridges); }
   // Replaces ridge (and feature) edge ab by am and mb when an operator
@@ -266,7 +271,6 @@ class Mesh {
 
   MeshArray<TetVertices> tets_;
   MeshArray<std::array<FaceRef, 4>> tet2tets_;
-  MeshArray<std::array<SurfaceId, 4>> face_surface_;
   MeshArray<int> tet_ref_;
   MeshArray<Epoch> tet_stamp_;
   // Written through const access (a cache), one writer per tet at a time:

@@ -107,9 +107,7 @@ inline VertexId split_edge(Mesh& mesh, const Shell& shell, VertexId a, VertexId 
       mesh.link(FaceRef(t2, ia), out_a);
     else
       mesh.set_surface_id(t2, ia, sid_a);
-    mesh.set_neighbour(t1, ia, FaceRef(t2, ib));
-    mesh.set_neighbour(t2, ib, FaceRef(t1, ia));
-    mesh.set_surface_id(t1, ia, 0);  // t1 keeps its face opposite b as it was
+    mesh.link(FaceRef(t1, ia), FaceRef(t2, ib));  // t1 keeps its face opposite b as it was
     // The two faces through the edge: neighbours are shell tets, whose
     // children pair up the same way; on the boundary both children keep
     // the surface id.
