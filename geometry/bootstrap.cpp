@@ -2,7 +2,7 @@
 #include <metrica/geometry/bootstrap.hpp>
 
 #include <fmt/core.h>
-#include <gmsh.h>
+#include "gmsh_library.hpp"
 
 #include "keep_threads.hpp"
 
@@ -19,12 +19,12 @@ io::MeshData bootstrap_mesh(const CadModel& model, const BootstrapOptions& optio
   io::MeshData d;
   const detail::KeepThreads keep;
   try {
-    gmsh::model::mesh::clear();
-    gmsh::option::setNumber("Mesh.MeshSizeMax", h);
-    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
-    gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-    gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay
-    gmsh::model::mesh::generate(3);
+    gmsh_api::model::mesh::clear();
+    gmsh_api::option::setNumber("Mesh.MeshSizeMax", h);
+    gmsh_api::option::setNumber("Mesh.MeshSizeMin", 0.0);
+    gmsh_api::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+    gmsh_api::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay
+    gmsh_api::model::mesh::generate(3);
 
     std::unordered_map<std::size_t, VertexId> index;
     // Nodes entity by entity (without their boundary: each node once),
@@ -33,7 +33,7 @@ io::MeshData bootstrap_mesh(const CadModel& model, const BootstrapOptions& optio
       for (int tag : model.entities(dim)) {
         std::vector<std::size_t> nodes;
         std::vector<double> coord, param;
-        gmsh::model::mesh::getNodes(nodes, coord, param, dim, tag, false, true);
+        gmsh_api::model::mesh::getNodes(nodes, coord, param, dim, tag, false, true);
         const bool has_param = dim >= 1 && dim <= 2 && param.size() == nodes.size() * std::size_t(dim);
         for (std::size_t i = 0; i < nodes.size(); ++i) {
           const auto v = static_cast<VertexId>(d.vertices.size());
@@ -53,7 +53,7 @@ io::MeshData bootstrap_mesh(const CadModel& model, const BootstrapOptions& optio
     for (int tag : model.entities(2)) {
       std::vector<std::size_t> tris;
       std::vector<std::size_t> elements;
-      gmsh::model::mesh::getElementsByType(2, elements, tris, tag);
+      gmsh_api::model::mesh::getElementsByType(2, elements, tris, tag);
       for (std::size_t i = 0; i + 2 < tris.size(); i += 3) {
         d.triangles.push_back({id(tris[i]), id(tris[i + 1]), id(tris[i + 2])});
         d.triangle_refs.push_back(tag);
@@ -62,15 +62,15 @@ io::MeshData bootstrap_mesh(const CadModel& model, const BootstrapOptions& optio
     for (int tag : model.entities(3)) {
       std::vector<std::size_t> tets;
       std::vector<std::size_t> elements;
-      gmsh::model::mesh::getElementsByType(4, elements, tets, tag);
+      gmsh_api::model::mesh::getElementsByType(4, elements, tets, tag);
       for (std::size_t i = 0; i + 3 < tets.size(); i += 4) {
         d.tets.push_back({id(tets[i]), id(tets[i + 1]), id(tets[i + 2]), id(tets[i + 3])});
         d.tet_refs.push_back(tag);
       }
     }
-    gmsh::model::mesh::clear();
-  } catch (const std::string& e) {
-    throw InputError(fmt::format("gmsh could not mesh {}: {}", model.source(), e));
+    gmsh_api::model::mesh::clear();
+  } catch (const gmsh_api::GmshError& e) {
+    throw InputError(fmt::format("gmsh could not mesh {}: {}", model.source(), e.what()));
   }
   if (d.tets.empty()) throw InputError(fmt::format("gmsh made no tetrahedron for {}", model.source()));
   return d;

@@ -1,9 +1,10 @@
-// CadModel over gmsh's C++ API (gmsh.h, OpenCASCADE inside).
+// CadModel over gmsh's API (OpenCASCADE inside), loaded on first use
+// (gmsh_library.hpp).
 #include <metrica/error.hpp>
 #include <metrica/geometry/cad_model.hpp>
 
 #include <fmt/core.h>
-#include <gmsh.h>
+#include "gmsh_library.hpp"
 
 #include "keep_threads.hpp"
 
@@ -21,14 +22,12 @@ std::atomic<bool> model_open{false};
 
 const std::vector<int> kNone;
 
-// gmsh throws its errors as std::string (or, in some paths, as a
-// std::exception): both become an InputError naming what was asked.
+// gmsh's errors (GmshError, with its last message) become an InputError
+// naming what was asked.
 template <class F>
 auto gmsh_call(const char* what, F&& f) {
   try {
     return f();
-  } catch (const std::string& e) {
-    throw InputError(fmt::format("gmsh: {}: {}", what, e));
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
@@ -76,20 +75,20 @@ CadModel::CadModel(const std::string& path) : source_(path) {
   const detail::KeepThreads keep;
   try {
     gmsh_call("initialize", [] {
-      gmsh::initialize();
-      gmsh::option::setNumber("General.Terminal", 0);
-      gmsh::option::setNumber("General.Verbosity", 0);
+      gmsh_api::initialize();
+      gmsh_api::option::setNumber("General.Terminal", 0);
+      gmsh_api::option::setNumber("General.Verbosity", 0);
     });
     {
       // OpenCASCADE's IGES reader prints to stdout whatever gmsh's options say.
       const QuietStdout quiet;
-      gmsh_call(path.c_str(), [&] { gmsh::open(path); });
+      gmsh_call(path.c_str(), [&] { gmsh_api::open(path); });
     }
     sew_into_volume();
     read_topology();
   } catch (...) {
     try {
-      gmsh::finalize();
+      gmsh_api::finalize();
     } catch (...) {
     }
     model_open = false;
@@ -99,7 +98,7 @@ CadModel::CadModel(const std::string& path) : source_(path) {
 
 CadModel::~CadModel() {
   try {
-    gmsh::finalize();
+    gmsh_api::finalize();
   } catch (...) {
   }
   model_open = false;
@@ -108,19 +107,19 @@ CadModel::~CadModel() {
 // IGES files (and some STEP files) hold surfaces without the volume they
 // bound: sewn together, a closed set of them becomes one volume.
 void CadModel::sew_into_volume() {
-  gmsh::vectorpair volumes, surfaces;
-  gmsh::model::getEntities(volumes, 3);
-  gmsh::model::getEntities(surfaces, 2);
+  gmsh_api::vectorpair volumes, surfaces;
+  gmsh_api::model::getEntities(volumes, 3);
+  gmsh_api::model::getEntities(surfaces, 2);
   if (!volumes.empty() || surfaces.empty()) return;
   std::vector<int> tags;
   for (auto [d, t] : surfaces) tags.push_back(t);
   try {
-    const int loop = gmsh::model::occ::addSurfaceLoop(tags, -1, true);
-    const int volume = gmsh::model::occ::addVolume({loop});
-    gmsh::model::occ::synchronize();
+    const int loop = gmsh_api::model::occ::addSurfaceLoop(tags, -1, true);
+    const int volume = gmsh_api::model::occ::addVolume({loop});
+    gmsh_api::model::occ::synchronize();
     // Sewing made new surfaces: the old ones go.
-    gmsh::vectorpair bounding, old;
-    gmsh::model::getBoundary({{3, volume}}, bounding, false, false, false);
+    gmsh_api::vectorpair bounding, old;
+    gmsh_api::model::getBoundary({{3, volume}}, bounding, false, false, false);
     for (const auto& s : surfaces) {
       const int tag = s.second;
       if (std::find_if(bounding.begin(), bounding.end(), [tag](const auto& b) { return std::abs(b.second) == tag; }) ==
@@ -128,8 +127,8 @@ void CadModel::sew_into_volume() {
         old.emplace_back(2, tag);
     }
     if (!old.empty()) {
-      gmsh::model::occ::remove(old, true);
-      gmsh::model::occ::synchronize();
+      gmsh_api::model::occ::remove(old, true);
+      gmsh_api::model::occ::synchronize();
     }
   } catch (...) {
     // Not closed, or not an OpenCASCADE model: the surfaces stay as they are.
@@ -138,18 +137,18 @@ void CadModel::sew_into_volume() {
 
 void CadModel::read_topology() {
   for (int dim = 0; dim < 4; ++dim) {
-    gmsh::vectorpair tags;
-    gmsh::model::getEntities(tags, dim);
+    gmsh_api::vectorpair tags;
+    gmsh_api::model::getEntities(tags, dim);
     for (auto [d, t] : tags) entities_[static_cast<std::size_t>(dim)].push_back(t);
   }
   if (entities_[2].empty()) throw InputError(fmt::format("{}: the model has no surface", source_));
   double x0, y0, z0, x1, y1, z1;
-  gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+  gmsh_api::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
   size_ = std::sqrt((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0) + (z1 - z0) * (z1 - z0));
   if (!(size_ > 0.0) || !std::isfinite(size_)) size_ = 1.0;
   for (int s : entities_[2]) {
-    gmsh::vectorpair b;
-    gmsh::model::getBoundary({{2, s}}, b, false, false, false);
+    gmsh_api::vectorpair b;
+    gmsh_api::model::getBoundary({{2, s}}, b, false, false, false);
     for (auto [d, c] : b) {
       if (d != 1) continue;
       const int curve = std::abs(c);
@@ -160,8 +159,8 @@ void CadModel::read_topology() {
     }
   }
   for (int c : entities_[1]) {
-    gmsh::vectorpair b;
-    gmsh::model::getBoundary({{1, c}}, b, false, false, false);
+    gmsh_api::vectorpair b;
+    gmsh_api::model::getBoundary({{1, c}}, b, false, false, false);
     for (auto [d, v] : b) {
       const int vertex = std::abs(v);
       auto& list = vertices_of_curve_[c];
@@ -176,7 +175,7 @@ void CadModel::read_topology() {
   for (int dim = 1; dim <= 2; ++dim)
     for (int tag : entities_[static_cast<std::size_t>(dim)]) {
       std::vector<double> lo, hi;
-      gmsh::model::getParametrizationBounds(dim, tag, lo, hi);
+      gmsh_api::model::getParametrizationBounds(dim, tag, lo, hi);
       Range r;
       for (int k = 0; k < dim; ++k) {
         r.lo[k] = lo[static_cast<std::size_t>(k)];
@@ -184,8 +183,8 @@ void CadModel::read_topology() {
       }
       if (dim == 1) {
         std::vector<double> a, b;
-        gmsh::model::getValue(1, tag, {r.lo[0]}, a);
-        gmsh::model::getValue(1, tag, {r.hi[0]}, b);
+        gmsh_api::model::getValue(1, tag, {r.lo[0]}, a);
+        gmsh_api::model::getValue(1, tag, {r.hi[0]}, b);
         const bool closed = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]) < tol;
         if (closed) r.period[0] = r.hi[0] - r.lo[0];
       } else {
@@ -196,8 +195,8 @@ void CadModel::read_topology() {
             std::vector<double> p0 = k == 0 ? std::vector<double>{r.lo[0], other} : std::vector<double>{other, r.lo[1]};
             std::vector<double> p1 = k == 0 ? std::vector<double>{r.hi[0], other} : std::vector<double>{other, r.hi[1]};
             std::vector<double> a, b;
-            gmsh::model::getValue(2, tag, p0, a);
-            gmsh::model::getValue(2, tag, p1, b);
+            gmsh_api::model::getValue(2, tag, p0, a);
+            gmsh_api::model::getValue(2, tag, p1, b);
             same = same && std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]) < tol;
           }
           if (same) r.period[static_cast<std::size_t>(k)] = r.hi[k] - r.lo[k];
@@ -243,7 +242,7 @@ Point CadModel::value(const GeoParam& g) const {
   if (g.dim == 2) in.push_back(g.v);
   {
     std::lock_guard lock(lock_);
-    gmsh_call("getValue", [&] { gmsh::model::getValue(g.dim, g.tag, in, out); });
+    gmsh_call("getValue", [&] { gmsh_api::model::getValue(g.dim, g.tag, in, out); });
   }
   if (out.size() < 3) throw InputError(fmt::format("gmsh: no value on entity ({}, {})", int(g.dim), g.tag));
   return Point(out[0], out[1], out[2]);
@@ -254,7 +253,7 @@ std::array<Eigen::Vector3d, 2> CadModel::derivatives(int surface, double u, doub
   in.assign({u, v});
   {
     std::lock_guard lock(lock_);
-    gmsh_call("getDerivative", [&] { gmsh::model::getDerivative(2, surface, in, out); });
+    gmsh_call("getDerivative", [&] { gmsh_api::model::getDerivative(2, surface, in, out); });
   }
   if (out.size() < 6) return {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   return {Eigen::Vector3d(out[0], out[1], out[2]), Eigen::Vector3d(out[3], out[4], out[5])};
@@ -265,7 +264,7 @@ Eigen::Vector3d CadModel::normal(int surface, double u, double v) const {
   in.assign({u, v});
   {
     std::lock_guard lock(lock_);
-    gmsh_call("getNormal", [&] { gmsh::model::getNormal(surface, in, out); });
+    gmsh_call("getNormal", [&] { gmsh_api::model::getNormal(surface, in, out); });
   }
   if (out.size() < 3) return Eigen::Vector3d::Zero();
   return Eigen::Vector3d(out[0], out[1], out[2]);
@@ -277,7 +276,7 @@ CadModel::Curvatures CadModel::principal_curvatures(int surface, double u, doubl
   {
     std::lock_guard lock(lock_);
     gmsh_call("getPrincipalCurvatures",
-              [&] { gmsh::model::getPrincipalCurvatures(surface, in, kmax, kmin, dmax, dmin); });
+              [&] { gmsh_api::model::getPrincipalCurvatures(surface, in, kmax, kmin, dmax, dmin); });
   }
   Curvatures c;
   if (kmax.empty() || kmin.empty() || dmax.size() < 3 || dmin.size() < 3) return c;
@@ -299,7 +298,7 @@ GeoParam CadModel::parametrize(int dim, int tag, const Point& p) const {
   {
     std::lock_guard lock(lock_);
     gmsh_call("getParametrization",
-              [&] { gmsh::model::getParametrization(dim, tag, {p.x(), p.y(), p.z()}, out); });
+              [&] { gmsh_api::model::getParametrization(dim, tag, {p.x(), p.y(), p.z()}, out); });
   }
   if (out.size() < static_cast<std::size_t>(dim))
     throw InputError(fmt::format("gmsh: no parameters on entity ({}, {})", dim, tag));
@@ -320,7 +319,7 @@ std::array<double, 2> CadModel::on_surface(const GeoParam& g, int surface, const
     {
       std::lock_guard lock(lock_);
       try {
-        gmsh::model::reparametrizeOnSurface(g.dim, g.tag, in, surface, out, 0);
+        gmsh_api::model::reparametrizeOnSurface(g.dim, g.tag, in, surface, out, 0);
         done = out.size() >= 2;
       } catch (...) {
         done = false;
