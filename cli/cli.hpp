@@ -138,9 +138,11 @@ enum class Valid { required, not_required };
 LoadedMesh load_mesh(const std::string& path, Valid valid = Valid::required);
 
 // --max-tets: the most tetrahedra a run may be asked to make. Its default
-// is what 90% of the machine's memory holds at kBytesPerTet (the peak of
-// an adaptation measured at 149-155 bytes per output tet at 4.3M tets, one
-// and two threads: docs/benchmarks.md, "Memory").
+// is what 90% of the machine's memory holds at kBytesPerTet: the peak of
+// an adaptation was measured at 110-114 bytes per output tet at 4.3M tets
+// and 154-158 at 1M (where the program's fixed part weighs more), one and
+// two threads (docs/benchmarks.md, "Memory"); 160 is kept as the bound
+// until a 100M-tet run confirms the lower figure there.
 inline constexpr double kBytesPerTet = 160;
 // Output tets per unit of complexity: 10-14 measured on the UGAWG cases.
 inline constexpr double kTetsPerComplexity = 10;
