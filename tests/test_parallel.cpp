@@ -318,8 +318,8 @@ TEST_SUITE("parallel") {
       // Range by range of lower ends (the whole mesh's lists are made so):
       // the ranges' buckets one after the other are the same list.
       std::vector<Edge> ranged;
-      for (const LowerRange range : {LowerRange{0, 700}, LowerRange{700, 701}, LowerRange{701, 1500},
-                                     LowerRange{1500, capacity}}) {
+      for (const LowerRange range : {LowerRange{0, 700, capacity}, LowerRange{700, 701, capacity},
+                                     LowerRange{701, 1500, capacity}, LowerRange{1500, capacity, capacity}}) {
         std::vector<std::vector<Edge>> in_range(parts);
         for_each_edge_bucket<P, UpperTet>(parts, n, tet_of, vertices_of, range, sorted,
                                           [&](std::size_t p, VertexId a, std::span<const UpperTet> kept) {

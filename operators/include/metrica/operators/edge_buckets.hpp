@@ -62,6 +62,7 @@ struct NoEdgeCounts {
 // for_each_mesh_edge_bucket, cost a fraction of listing them at once).
 struct LowerRange {
   std::size_t lo = 0, hi = 0;
+  std::size_t end = 0;  // every vertex id is below it (the higher ends too)
 };
 
 template <class C, class Entry, class TetOf, class VerticesOf, class Visit, class Sizes = NoEdgeCounts>
@@ -121,22 +122,26 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
       return x;
   };
   // kept[a]: how many of bucket a's entries are distinct (at its front).
-  // A bucket holds a few dozen entries (each edge once per tet around
-  // it), so a scan of those kept finds repeats in cache, with no marks
-  // indexed by the higher vertex.
-  MeshArray<std::uint32_t> kept;
+  // Per part, marks over the higher ends (which lie in [lo, range.end)):
+  // last[b - lo] == a when edge ab is already kept.
+  MeshArray<std::uint32_t> kept, marks;
   kept.resize(cap);
+  const std::size_t uppers = range.end > lo ? range.end - lo : 0;
+  marks.resize(parts * uppers);
   std::vector<std::size_t> edges_in(parts, 0);
   C::parallel_for(parts, [&](std::size_t p) {
+    std::uint32_t* last = marks.data() + p * uppers;
+    std::fill(last, last + uppers, kNoId);
     std::size_t edges = 0;
     for (std::size_t k = cut[p]; k < cut[p + 1]; ++k) {
+      const auto a = static_cast<std::uint32_t>(lo + k);
       Entry* const first = entries.data() + start[k];
       Entry* end = first;
       for (Entry* x = first; x != entries.data() + start[k + 1]; ++x) {
-        const VertexId b = upper_of(*x);
-        bool seen = false;
-        for (const Entry* y = first; y != end && !seen; ++y) seen = upper_of(*y) == b;
-        if (!seen) *end++ = *x;
+        std::uint32_t& mark = last[upper_of(*x) - lo];
+        if (mark == a) continue;
+        mark = a;
+        *end++ = *x;
       }
       // A handful of edges per vertex: insertion sort by the higher end.
       if (sorted && end - first > 1)
@@ -159,7 +164,8 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
 template <class C, class Entry, class TetOf, class VerticesOf, class Visit, class Sizes = NoEdgeCounts>
 void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, VerticesOf&& vertices_of,
                           std::size_t capacity, bool sorted, Visit&& visit, Sizes&& sizes = {}) {
-  for_each_edge_bucket<C, Entry>(parts, n, tet_of, vertices_of, LowerRange{0, capacity}, sorted, visit, sizes);
+  for_each_edge_bucket<C, Entry>(parts, n, tet_of, vertices_of, LowerRange{0, capacity, capacity}, sorted, visit,
+                                 sizes);
 }
 
 // The lower-end ranges a whole mesh's edges are listed in: the entries
@@ -174,7 +180,7 @@ inline std::vector<LowerRange> mesh_edge_ranges(const Mesh& mesh) {
   std::vector<LowerRange> out;
   for (std::size_t r = 0; r < ranges; ++r) {
     const auto [lo, hi] = part_slice(mesh.vertex_capacity(), ranges, r);
-    out.push_back({lo, hi});
+    out.push_back({lo, hi, mesh.vertex_capacity()});
   }
   return out;
 }

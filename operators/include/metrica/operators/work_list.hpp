@@ -64,7 +64,7 @@ void unique_edge_seeds(std::span<const TetId> tets, VerticesOf&& vertices_of, st
     const auto [lo, hi] = part_slice(capacity, ranges, r);
     // Each part writes its edges straight into `out`, from its offset on.
     for_each_edge_bucket<C, VertexId>(
-        parts, tets.size(), [&](std::size_t i) { return tets[i]; }, vertices_of, LowerRange{lo, hi}, true,
+        parts, tets.size(), [&](std::size_t i) { return tets[i]; }, vertices_of, LowerRange{lo, hi, capacity}, true,
         [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
           std::size_t& at = cursor[p].at;
           first[a] = static_cast<std::uint32_t>(at);
