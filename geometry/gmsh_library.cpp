@@ -146,6 +146,20 @@ std::vector<int> flat(const vectorpair& v) {
   return out;
 }
 
+// A call with one array of doubles out (point -> values): the parameters
+// copied (the C API takes them non-const), the result taken.
+template <class Call>
+std::vector<double> doubles_out(const std::vector<double>& in, const char* what, Call&& call) {
+  int ierr = 0;
+  std::vector<double> args = in;
+  double* p = nullptr;
+  std::size_t n = 0;
+  call(args.data(), args.size(), &p, &n, &ierr);
+  std::vector<double> out = take(p, n);
+  check(ierr, what);
+  return out;
+}
+
 }  // namespace
 
 void load() {
@@ -213,33 +227,21 @@ void model::getParametrizationBounds(int dim, int tag, std::vector<double>& lo, 
 }
 
 void model::getValue(int dim, int tag, const std::vector<double>& param, std::vector<double>& coord) {
-  int ierr = 0;
-  std::vector<double> in = param;
-  double* p = nullptr;
-  std::size_t n = 0;
-  api().get_value(dim, tag, in.data(), in.size(), &p, &n, &ierr);
-  coord = take(p, n);
-  check(ierr, "getValue");
+  coord = doubles_out(param, "getValue", [&](double* in, std::size_t k, double** p, std::size_t* n, int* e) {
+    api().get_value(dim, tag, in, k, p, n, e);
+  });
 }
 
 void model::getDerivative(int dim, int tag, const std::vector<double>& param, std::vector<double>& derivatives) {
-  int ierr = 0;
-  std::vector<double> in = param;
-  double* p = nullptr;
-  std::size_t n = 0;
-  api().get_derivative(dim, tag, in.data(), in.size(), &p, &n, &ierr);
-  derivatives = take(p, n);
-  check(ierr, "getDerivative");
+  derivatives = doubles_out(param, "getDerivative", [&](double* in, std::size_t k, double** p, std::size_t* n, int* e) {
+    api().get_derivative(dim, tag, in, k, p, n, e);
+  });
 }
 
 void model::getNormal(int tag, const std::vector<double>& param, std::vector<double>& normals) {
-  int ierr = 0;
-  std::vector<double> in = param;
-  double* p = nullptr;
-  std::size_t n = 0;
-  api().get_normal(tag, in.data(), in.size(), &p, &n, &ierr);
-  normals = take(p, n);
-  check(ierr, "getNormal");
+  normals = doubles_out(param, "getNormal", [&](double* in, std::size_t k, double** p, std::size_t* n, int* e) {
+    api().get_normal(tag, in, k, p, n, e);
+  });
 }
 
 void model::getPrincipalCurvatures(int tag, const std::vector<double>& param, std::vector<double>& kmax,
@@ -257,24 +259,17 @@ void model::getPrincipalCurvatures(int tag, const std::vector<double>& param, st
 }
 
 void model::getParametrization(int dim, int tag, const std::vector<double>& coord, std::vector<double>& param) {
-  int ierr = 0;
-  std::vector<double> in = coord;
-  double* p = nullptr;
-  std::size_t n = 0;
-  api().get_parametrization(dim, tag, in.data(), in.size(), &p, &n, &ierr);
-  param = take(p, n);
-  check(ierr, "getParametrization");
+  param = doubles_out(coord, "getParametrization", [&](double* in, std::size_t k, double** p, std::size_t* n, int* e) {
+    api().get_parametrization(dim, tag, in, k, p, n, e);
+  });
 }
 
 void model::reparametrizeOnSurface(int dim, int tag, const std::vector<double>& param, int surface,
                                    std::vector<double>& surface_param, int which) {
-  int ierr = 0;
-  std::vector<double> in = param;
-  double* p = nullptr;
-  std::size_t n = 0;
-  api().reparametrize_on_surface(dim, tag, in.data(), in.size(), surface, &p, &n, which, &ierr);
-  surface_param = take(p, n);
-  check(ierr, "reparametrizeOnSurface");
+  surface_param =
+      doubles_out(param, "reparametrizeOnSurface", [&](double* in, std::size_t k, double** p, std::size_t* n, int* e) {
+        api().reparametrize_on_surface(dim, tag, in, k, surface, p, n, which, e);
+      });
 }
 
 int model::occ::addSurfaceLoop(const std::vector<int>& surfaces, int tag, bool sewing) {
