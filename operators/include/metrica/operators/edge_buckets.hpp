@@ -168,10 +168,10 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
                                  sizes);
 }
 
-// The lower-end ranges a whole mesh's edges are listed in: the entries
-// (4 bytes per tet edge, 24 per tet) of a quarter of the vertices at a
-// time above 32 MiB, at the price of a scan of the tets per range. This
-// listing was the adaptation's peak (collapse and split list every edge).
+// The lower-end ranges a whole mesh's edges are listed in: up to 4, one
+// per 32 MiB of entries (4 bytes per tet edge, 24 per tet), at the price
+// of a scan of the tets per range. Listed at once, the edges of collapse
+// and split were among the adaptation's memory peaks.
 inline std::vector<LowerRange> mesh_edge_ranges(const Mesh& mesh) {
   constexpr std::size_t kEntriesBytes = std::size_t{32} << 20;
   constexpr std::size_t kMaxRanges = 4;
