@@ -168,19 +168,20 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
                                  sizes);
 }
 
-// The lower-end ranges a whole mesh's edges are listed in: up to 4, one
-// per 32 MiB of entries (4 bytes per tet edge, 24 per tet), at the price
-// of a scan of the tets per range. Listed at once, the edges of collapse
-// and split were among the adaptation's memory peaks.
-inline std::vector<LowerRange> mesh_edge_ranges(const Mesh& mesh) {
+// The lower-end ranges the edges of `tets` tets over vertex ids below
+// `capacity` are listed in: up to 4, one per 32 MiB of entries (4 bytes
+// per tet edge, 24 per tet), at the price of a scan of the tets per range.
+// Listed at once, the edges of collapse and split and the flips' seed
+// edges were among the adaptation's memory peaks.
+inline std::vector<LowerRange> lower_ranges(std::size_t tets, std::size_t capacity) {
   constexpr std::size_t kEntriesBytes = std::size_t{32} << 20;
   constexpr std::size_t kMaxRanges = 4;
-  const std::size_t entries = 6 * sizeof(VertexId) * mesh.num_tets();
+  const std::size_t entries = 6 * sizeof(VertexId) * tets;
   const std::size_t ranges = std::clamp<std::size_t>((entries + kEntriesBytes - 1) / kEntriesBytes, 1, kMaxRanges);
   std::vector<LowerRange> out;
   for (std::size_t r = 0; r < ranges; ++r) {
-    const auto [lo, hi] = part_slice(mesh.vertex_capacity(), ranges, r);
-    out.push_back({lo, hi, mesh.vertex_capacity()});
+    const auto [lo, hi] = part_slice(capacity, ranges, r);
+    out.push_back({lo, hi, capacity});
   }
   return out;
 }
@@ -191,13 +192,13 @@ struct NoRangeEnd {
 
 // for_each_edge_bucket over the live tets of `mesh` (VertexId entries,
 // unsorted), in `parts` parts (sweep_parts<C> of the tet capacity), range
-// by range of lower ends (mesh_edge_ranges): for each range, sizes(counts)
+// by range of lower ends (lower_ranges): for each range, sizes(counts)
 // with its parts' numbers of edges, visit(part, a, kept) for its lower ends
 // a, then range_end(). Lower ends ascend across ranges and parts.
 template <class C, class Visit, class Sizes = NoEdgeCounts, class RangeEnd = NoRangeEnd>
 void for_each_mesh_edge_bucket(const Mesh& mesh, std::size_t parts, Visit&& visit, Sizes&& sizes = {},
                                RangeEnd&& range_end = {}) {
-  for (const LowerRange& range : mesh_edge_ranges(mesh)) {
+  for (const LowerRange& range : lower_ranges(mesh.num_tets(), mesh.vertex_capacity())) {
     for_each_edge_bucket<C, VertexId>(
         parts, mesh.tet_capacity(),
         [&](std::size_t i) { return mesh.tet_alive(static_cast<TetId>(i)) ? static_cast<TetId>(i) : kNoId; },

@@ -35,7 +35,7 @@ struct EdgeSeed {
 //
 // The buckets hold only the higher vertex of each edge (4 bytes per tet
 // edge, not 8 with its tet), and they are made for a range of lower ends
-// at a time (up to 4 ranges, one above 32 MiB of entries), each range's
+// at a time (lower_ranges), each range's
 // edges appended to `out`, whose capacity is reserved for 6 edges per
 // tet (a mapped block: what is never written is never resident), so it
 // does not move: these buckets were the peak of the first flip pass of
@@ -44,11 +44,7 @@ struct EdgeSeed {
 // the same for any order of the parts).
 template <class C = Serial, class VerticesOf, class Out>
 void unique_edge_seeds(std::span<const TetId> tets, VerticesOf&& vertices_of, std::size_t capacity, Out& out) {
-  constexpr std::size_t kEntriesBytes = std::size_t{32} << 20;
-  constexpr std::size_t kMaxRanges = 4;
   const std::size_t parts = sweep_parts<C>(tets.size());
-  const std::size_t ranges =
-      std::clamp<std::size_t>((6 * sizeof(VertexId) * tets.size() + kEntriesBytes - 1) / kEntriesBytes, 1, kMaxRanges);
   // Bucket a's edges start at first[a] in `out` (count[a] of them); every
   // lower end of an edge of `tets` is written by its range.
   MeshArray<std::uint32_t> first, count;
@@ -60,11 +56,10 @@ void unique_edge_seeds(std::span<const TetId> tets, VerticesOf&& vertices_of, st
     std::size_t at = 0;
   };
   std::vector<Cursor> cursor(parts);
-  for (std::size_t r = 0; r < ranges; ++r) {
-    const auto [lo, hi] = part_slice(capacity, ranges, r);
+  for (const LowerRange& range : lower_ranges(tets.size(), capacity)) {
     // Each part writes its edges straight into `out`, from its offset on.
     for_each_edge_bucket<C, VertexId>(
-        parts, tets.size(), [&](std::size_t i) { return tets[i]; }, vertices_of, LowerRange{lo, hi, capacity}, true,
+        parts, tets.size(), [&](std::size_t i) { return tets[i]; }, vertices_of, range, true,
         [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
           std::size_t& at = cursor[p].at;
           first[a] = static_cast<std::uint32_t>(at);
