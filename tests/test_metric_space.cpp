@@ -105,6 +105,43 @@ TEST_SUITE("property") {
     CHECK(std::isnan(ugawg_length(std::nan(""), 1.0)));
   }
 
+  TEST_CASE("ugawg_length_in decides as the length does - inside, below, above and across the band") {
+    auto r = test::rng(205);
+    std::uniform_real_distribution<double> log_scale(-1.5, 1.5), u(-1.0, 1.0);
+    const UnitBand bands[] = {kUnitBand, {0.0, 1.5}, {0.8, std::numeric_limits<double>::infinity()}};
+    int inside = 0, outside = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const Sym6 ma = random_metric(r, 1e3), mb = random_metric(r, 1e3);
+      // Scaled so that the end lengths fall around the band's ends.
+      const Eigen::Vector3d d = test::draw_point(u, r);
+      const Eigen::Vector3d v = std::exp(log_scale(r)) * d / std::sqrt(metric_norm2(ma, d));
+      for (const UnitBand& band : bands) {
+        const bool expected = band.contains(ugawg_length(v, ma, mb));
+        CHECK(ugawg_length_in(band, v, ma, mb) == expected);
+        (expected ? inside : outside) += 1;
+      }
+    }
+    CHECK(inside > 1000);
+    CHECK(outside > 1000);
+  }
+
+  TEST_CASE_TEMPLATE("edge_length_in agrees with edge_length in every space", S, Isotropic, Anisotropic,
+                     LogEuclidean) {
+    auto r = test::rng(206);
+    Mesh mesh = box_with_metric(r, 1e2);
+    int inside = 0;
+    for (VertexId a = 0; a < mesh.vertex_capacity(); ++a)
+      for (VertexId b = a + 1; b < mesh.vertex_capacity(); b += 7) {
+        const double l = S::edge_length(mesh, a, b);
+        const UnitBand band{0.5 * l, 2.0 * l};
+        CHECK(S::edge_length_in(mesh, a, b, band));
+        CHECK_FALSE(S::edge_length_in(mesh, a, b, {1.01 * l, 3.0 * l}));
+        CHECK_FALSE(S::edge_length_in(mesh, a, b, {0.3 * l, 0.99 * l}));
+        inside += S::edge_length_in(mesh, a, b, kUnitBand) == kUnitBand.contains(l);
+      }
+    CHECK(inside > 0);
+  }
+
   TEST_CASE("mean_ratio_cubed from its parts is the cube of the mean ratio - sign kept") {
     auto r = test::rng(201);
     for (int i = 0; i < 200; ++i) {

@@ -164,6 +164,42 @@ TEST_SUITE("invariant") {
     CHECK(checked > 10);
   }
 
+  TEST_CASE("edge removal under MinQuality skips a shell at or above its ring's good_shell, and only that") {
+    Mesh mesh = jittered_box(3, 0.2, 6);
+    set_uniform_metric(mesh, 0.3);
+    FlipScratch s;
+    int checked = 0;
+    for (const auto& [a, b] : unique_edges(mesh)) {
+      vertex_ball(mesh, a, s.ball);
+      REQUIRE(edge_shell(mesh, a, b, s.ball, s.shell));
+      if (!s.shell.closed || s.shell.tets.size() < 3 || s.shell.tets.size() > 7) continue;
+      double worst = 1.0;
+      for (TetId t : s.shell.tets) worst = std::min(worst, cached_mean_ratio<LogEuclidean>(mesh, t));
+      const std::size_t ring = s.shell.tets.size();
+      const auto before = sorted_tets(mesh);
+      FlipOptions at;  // this ring's entry at the worst tet: skipped
+      at.good_shell[std::min<std::size_t>(ring, 7)] = worst;
+      CHECK(remove_edge<LogEuclidean, Filtered, MinQuality>(mesh, a, b, s, at) == FlipResult::not_applicable);
+      CHECK(sorted_tets(mesh) == before);
+      // Another ring's entry, or this one's above the worst tet: decided
+      // as without the rule (on copies, so the mesh stays for the next
+      // edge).
+      FlipOptions other, above;
+      other.good_shell[ring == 3 ? 4 : 3] = worst;
+      above.good_shell[std::min<std::size_t>(ring, 7)] = std::nextafter(worst, 2.0);
+      Mesh plain = mesh;
+      const FlipResult expected = remove_edge<LogEuclidean, Filtered, MinQuality>(plain, a, b, s, FlipOptions{});
+      CHECK(expected != FlipResult::not_applicable);
+      for (const FlipOptions& o : {other, above}) {
+        Mesh copy = mesh;
+        CHECK(remove_edge<LogEuclidean, Filtered, MinQuality>(copy, a, b, s, o) == expected);
+        CHECK(sorted_tets(copy) == sorted_tets(plain));
+      }
+      ++checked;
+    }
+    CHECK(checked > 10);
+  }
+
   TEST_CASE("MinQuality scores Q cubed: the same order, its bar the cube of the quality bar") {
     Mesh mesh = jittered_box(3, 0.35, 4);
     std::vector<Sym6> f(mesh.vertex_capacity());
@@ -417,6 +453,82 @@ TEST_SUITE("unit") {
     CHECK(open > 0);
     vertex_ball(mesh, 0, ball);
     CHECK_FALSE(edge_shell(mesh, 0, 26, ball, shell));  // opposite corners: no edge
+  }
+
+  TEST_CASE("tet_with_edge finds a tet of every edge from either end, and none for two vertices without an edge") {
+    const Mesh mesh = jittered_box(3, 0.2, 7);
+    TetList walk;
+    std::size_t edges = 0;
+    for (const auto& [a, b] : unique_edges(mesh))
+      for (const auto& [from, to] : {std::pair{a, b}, std::pair{b, a}}) {
+        const TetId t = tet_with_edge(mesh, from, to, walk);
+        REQUIRE(t != kNoId);
+        CHECK(mesh.tet_alive(t));
+        CHECK(local_index(mesh.tet(t), from) >= 0);
+        CHECK(local_index(mesh.tet(t), to) >= 0);
+        ++edges;
+      }
+    CHECK(edges > 100);
+    const VertexId last = static_cast<VertexId>(mesh.vertex_capacity() - 1);
+    TetList ball;
+    vertex_ball(mesh, 0, ball);
+    bool joined = false;
+    for (TetId t : ball) joined = joined || local_index(mesh.tet(t), last) >= 0;
+    REQUIRE_FALSE(joined);
+    CHECK(tet_with_edge(mesh, 0, last, walk) == kNoId);
+  }
+
+  TEST_CASE("smoothing's ball terms give each ball tet's mean ratio at any trial point") {
+    auto r = rng(31);
+    std::uniform_real_distribution<double> u(-0.3, 0.3);
+    Mesh mesh = jittered_box(3, 0.2, 8);
+    std::vector<Sym6> f(mesh.vertex_capacity());
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) f[v] = evaluate(AnalyticMetric::polar1, mesh.point(v));
+    assign_metric(mesh, f);
+    int checked = 0;
+    for (TetId t = 0; t < mesh.tet_capacity(); t += 3) {
+      const TetVertices& tv = mesh.tet(t);
+      const Sym6 m = LogEuclidean::tet_metric(mesh, tv);
+      for (int iv = 0; iv < 4; ++iv) {
+        // As decide_smoothing orders them: the face opposite v, two swapped.
+        const auto fv = face_vertices(tv, iv);
+        const Point x = mesh.point(tv[iv]);
+        const BallTerm b =
+            ball_term(x, mesh.point(fv[0]), mesh.point(fv[2]), mesh.point(fv[1]), m, determinant(m));
+        for (int k = 0; k < 3; ++k) {
+          const Eigen::Vector3d d = k == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(u(r), u(r), u(r));
+          TetPoints p = detail::tet_points(mesh, tv);
+          p[iv] = x + d;
+          const auto [num, den] = b.quality3_parts(m, d);
+          const double expected = mean_ratio_cubed(p, m);
+          CHECK(num / den == doctest::Approx(expected).epsilon(1e-10));
+          CHECK((num > 0.0) == (expected > 0.0));
+          ++checked;
+        }
+      }
+    }
+    CHECK(checked > 100);
+  }
+
+  TEST_CASE("the ideal apex on a face equilateral in the metric makes the regular tet, on the normal's side") {
+    auto r = rng(32);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 200; ++i) {
+      const Sym6 m = random_metric(r, 1e4);
+      // An equilateral triangle in the metric's space, mapped back.
+      const Matrix3 l = metric_factor(m);
+      const Point c = draw_point(u, r);
+      const Eigen::Vector3d e1 = draw_point(u, r).normalized();
+      const Eigen::Vector3d e2 = e1.cross(draw_point(u, r)).normalized();
+      const double side = 0.5 + u(r) * u(r);
+      auto back = [&](const Eigen::Vector3d& y) { return Point(l.triangularView<Eigen::Upper>().solve(y)); };
+      const Point p = back(l * c + side * e1), q = back(l * c + side * (-0.5 * e1 + std::sqrt(0.75) * e2)),
+                  s = back(l * c + side * (-0.5 * e1 - std::sqrt(0.75) * e2));
+      const Eigen::Vector3d n = (q - p).cross(s - p);
+      const Point apex = detail::ideal_apex(p, q, s, n, m, determinant(m));
+      CHECK(std::abs(mean_ratio({p, q, s, apex}, m)) == doctest::Approx(1.0).epsilon(1e-9));
+      CHECK(n.dot(apex - p) > 0.0);
+    }
   }
 
   TEST_CASE("the metric midpoint is at equal metric distance from both ends") {

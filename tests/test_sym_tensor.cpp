@@ -65,6 +65,19 @@ TEST_SUITE("property") {
     CHECK(iso[1] == 0.0);
   }
 
+  TEST_CASE("the adjugate is det(M) M^-1 and sym_times is M v") {
+    auto r = test::rng(13);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 200; ++i) {
+      const auto m = random_metric(r, 1e4);
+      const Matrix3 a = to_matrix(adjugate(m));
+      CHECK((a * to_matrix(m) - determinant(m) * Matrix3::Identity()).norm() / (a.norm() * to_matrix(m).norm()) <
+            1e-13);
+      const Eigen::Vector3d v = test::draw_point(u, r);
+      CHECK((sym_times(m, v) - to_matrix(m) * v).norm() <= 1e-14 * to_matrix(m).norm() * v.norm());
+    }
+  }
+
   TEST_CASE("the metric factor L gives M as its Gram matrix and metric norms") {
     auto r = test::rng(11);
     std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -5,7 +5,9 @@
 
 #include <metrica/geometry.hpp>
 #include <metrica/metrics/sym_tensor.hpp>
+#include <metrica/metrics/unit_band.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <utility>
@@ -39,6 +41,19 @@ inline double ugawg_length(const Eigen::Vector3d& v, const Sym6& ma, const Sym6&
   return ugawg_length(std::sqrt(metric_norm2(ma, v)), std::sqrt(metric_norm2(mb, v)));
 }
 
+// Is that length in `band`? It is the logarithmic mean of the lengths at
+// the two ends, which lies between them: when both ends are inside the
+// band (or both on one side of it) the squared lengths decide, without a
+// root or a logarithm.
+inline bool ugawg_length_in(const UnitBand& band, const Eigen::Vector3d& v, const Sym6& ma, const Sym6& mb) {
+  const double a2 = metric_norm2(ma, v), b2 = metric_norm2(mb, v);
+  const double lo2 = band.lo * band.lo, hi2 = band.hi * band.hi;
+  const double min2 = std::min(a2, b2), max2 = std::max(a2, b2);
+  if (min2 >= lo2 && max2 <= hi2) return true;
+  if (max2 < lo2 || min2 > hi2) return false;
+  return band.contains(ugawg_length(std::sqrt(a2), std::sqrt(b2)));
+}
+
 // |K| sqrt(det M): the volume of K in the constant metric M.
 inline double metric_volume(const TetPoints& p, const Sym6& m) {
   return tet_volume(p[0], p[1], p[2], p[3]) * std::sqrt(determinant(m));
@@ -64,11 +79,11 @@ inline double mean_ratio(const TetPoints& p, const Sym6& m) {
 // edges' v^T M v. For finding the smallest of many mean ratios, which is
 // the cube root of the smallest cube (the root was 7% of an adaptation in
 // smoothing), where a moving vertex leaves most parts fixed.
+// 36^3 / 3 (|K| sqrt(det M))^2 / sum^3 = kMeanRatioCubedNorm volume6^2 det M / sum^3, |K| = volume6 / 6.
+inline constexpr double kMeanRatioCubedNorm = 36.0 * 36.0 / 3.0;
 inline double mean_ratio_cubed(double volume6, double det, double edge_norms) {
   if (!(edge_norms > 0.0)) return 0.0;
-  // 36^3 / 3 (|K| sqrt(det M))^2 / sum^3 with |K| = volume6 / 6.
-  constexpr double kNorm3 = 36.0 * 36.0 / 3.0;
-  const double q3 = kNorm3 * volume6 * volume6 * det / (edge_norms * edge_norms * edge_norms);
+  const double q3 = kMeanRatioCubedNorm * volume6 * volume6 * det / (edge_norms * edge_norms * edge_norms);
   return volume6 < 0.0 ? -q3 : q3;
 }
 

@@ -42,6 +42,8 @@ concept MetricSpace = requires(const Mesh& mesh, VertexId a, const TetVertices& 
   // The metric of a tet: interpolated at its centroid.
   { S::tet_metric(mesh, t) } -> std::same_as<Sym6>;
   { S::edge_length(mesh, a, a) } -> std::same_as<double>;
+  // Is edge_length in the band (most edges decided without the length)?
+  { S::edge_length_in(mesh, a, a, kUnitBand) } -> std::same_as<bool>;
   // Mean ratio and metric volume of tet t, at the mesh's points or with
   // the vertices at the points p (a trial position, e.g. in smoothing).
   { S::mean_ratio(mesh, t) } -> std::same_as<double>;
@@ -67,6 +69,10 @@ struct SpaceCommon {
   static double edge_length(const Mesh& mesh, VertexId a, VertexId b) {
     return ugawg_length(mesh.point(b) - mesh.point(a), Derived::vertex_metric(mesh, a),
                         Derived::vertex_metric(mesh, b));
+  }
+  static bool edge_length_in(const Mesh& mesh, VertexId a, VertexId b, const UnitBand& band) {
+    return ugawg_length_in(band, mesh.point(b) - mesh.point(a), Derived::vertex_metric(mesh, a),
+                           Derived::vertex_metric(mesh, b));
   }
   static Sym6 tet_metric(const Mesh& mesh, const TetVertices& t) {
     return Derived::metric_at(mesh, std::span<const VertexId>(t), kCentroidWeights);

@@ -74,4 +74,16 @@ Sym6 log_euclidean_mean(std::span<const Sym6> metrics, std::span<const double> w
 
 inline double determinant(const Sym6& m) { return to_matrix(m).determinant(); }
 
+// The adjugate of m (det(m) m^-1, symmetric), in the same storage.
+inline Sym6 adjugate(const Sym6& m) {
+  return {m[2] * m[5] - m[4] * m[4], m[3] * m[4] - m[1] * m[5], m[0] * m[5] - m[3] * m[3],
+          m[1] * m[4] - m[2] * m[3], m[1] * m[3] - m[0] * m[4], m[0] * m[2] - m[1] * m[1]};
+}
+
+// m v for symmetric m.
+inline Eigen::Vector3d sym_times(const Sym6& m, const Eigen::Vector3d& v) {
+  return {m[0] * v.x() + m[1] * v.y() + m[3] * v.z(), m[1] * v.x() + m[2] * v.y() + m[4] * v.z(),
+          m[3] * v.x() + m[4] * v.y() + m[5] * v.z()};
+}
+
 }  // namespace metrica

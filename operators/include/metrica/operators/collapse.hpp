@@ -141,10 +141,11 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
       if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0) return Refusal::rejected;
     }
   // New edges: b to a's neighbours; when b moves, all of b's edges too.
+  const UnitBand allowed{0.0, o.max_new_length};
   for (const auto* list : {&s.neighbours, &s.neighbours_b}) {
     if (list == &s.neighbours_b && moved == nullptr) break;
     for (VertexId x : *list)
-      if (x != a && x != b && ugawg_length(mesh.point(x) - pb, mb, S::vertex_metric(mesh, x)) > o.max_new_length)
+      if (x != a && x != b && !ugawg_length_in(allowed, mesh.point(x) - pb, mb, S::vertex_metric(mesh, x)))
         return Refusal::rejected;
   }
   if (mesh.vertex_class(a) != VertexClass::interior) {

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace metrica {
@@ -49,11 +50,14 @@ template <MetricSpace S, class C = Serial>
 std::vector<EdgeCandidate> edges_beyond(const Mesh& mesh, double bound, EdgeOrder order,
                                         Mesh::Epoch changed_since = 0) {
   const bool longer = order == EdgeOrder::longest_first;
+  // The lengths that are not beyond the bound.
+  const UnitBand inside = longer ? UnitBand{0.0, bound} : UnitBand{bound, std::numeric_limits<double>::infinity()};
   const std::vector<std::uint8_t> changed =
       changed_since > 0 ? changed_vertices<C>(mesh, changed_since) : std::vector<std::uint8_t>{};
   std::vector<EdgeCandidate> out =
       collect_mesh_edges<C, EdgeCandidate>(mesh, [&](VertexId a, VertexId b, std::vector<EdgeCandidate>& part) {
         if (!changed.empty() && !changed[a] && !changed[b]) return;
+        if (S::edge_length_in(mesh, a, b, inside)) return;
         const double l = S::edge_length(mesh, a, b);
         if (longer ? l > bound : l < bound) part.push_back({length_class(l), a, b});
       });

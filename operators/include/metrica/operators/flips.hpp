@@ -49,6 +49,13 @@ struct FlipOptions {
   // (few such removals are applied: docs/benchmarks.md).
   double short_edge_ring4 = 0.0;
   double short_edge_ring5 = 0.0;
+  // Under a criterion scored by the mean ratio (MinQuality), an edge
+  // removal is not tried when the shell's worst tet is at or above
+  // good_shell[n], n the ring's size (the last entry for larger rings; 1:
+  // always tried). A ring's triangles joined to a and b are flatter the
+  // larger the ring, so a good shell of a large ring is rarely beaten
+  // (docs/benchmarks.md, "Why the defaults").
+  std::array<double, 8> good_shell{1, 1, 1, 1, 1, 1, 1, 1};
   // Boundary faces of a 2-2 flip: largest angle between old and new
   // normals, as 1 - cos (flat surfaces: round-off only).
   double max_normal_deviation = 1e-9;
@@ -167,7 +174,8 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
   const std::size_t ring_size = shell.closed ? n : n + 1;
   if (ring_size >= 4) {
     const double shortest = ring_size == 4 ? o.short_edge_ring4 : o.short_edge_ring5;
-    if (shortest > 0.0 && S::edge_length(mesh, a, b) < shortest) return Refusal::not_applicable;
+    if (shortest > 0.0 && !S::edge_length_in(mesh, a, b, {shortest, std::numeric_limits<double>::infinity()}))
+      return Refusal::not_applicable;
   }
   if (shell.closed) {
     if (n < 3 || static_cast<int>(n) > o.max_shell) return Refusal::not_applicable;
@@ -199,6 +207,10 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
   double best_score = 0.0;
   if constexpr (scored) {
     best_score = min_score_of<Criterion, S>(mesh, view(shell.tets));
+    if constexpr (score_is_mean_ratio_cubed<Criterion>()) {
+      const double good = o.good_shell[std::min(m, o.good_shell.size() - 1)];
+      if (best_score >= good * good * good) return Refusal::not_applicable;
+    }
     if (memo) s.clear_memo();
   } else {
     tet_vertices_of(mesh, view(shell.tets), s.old_tets);
@@ -393,12 +405,12 @@ struct EdgeRemoval {
     // Holding a, a tet that shows a and b holds them for good (a writer
     // would hold a), so its peeked vertices are its vertices.
     const TetVertices held = mesh.peek_tet(e.tet);
-    if (local_index(held, a) >= 0 && local_index(held, b) >= 0) {
-      edge_shell_from(mesh, a, b, e.tet, s.shell);
-    } else {
-      vertex_ball(mesh, a, s.ball);
-      if (!edge_shell(mesh, a, b, s.ball, s.shell)) return Found::gone;
+    TetId start = e.tet;
+    if (local_index(held, a) < 0 || local_index(held, b) < 0) {
+      start = tet_with_edge(mesh, a, b, s.ball);
+      if (start == kNoId) return Found::gone;
     }
+    edge_shell_from(mesh, a, b, start, s.shell);
     hold.push_back(a);
     hold.push_back(b);
     append_vertices(mesh, s.shell.tets, hold);

@@ -81,6 +81,33 @@ inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
   }
 }
 
+// A live tet holding edge ab (kNoId when none): the walk of vertex_ball
+// from a's hint, stopped at the first such tet (a shell's start without
+// the whole ball). `walk` is scratch.
+inline TetId tet_with_edge(const Mesh& mesh, VertexId a, VertexId b, TetList& walk) {
+  walk.clear();
+  const TetId start = mesh.vert2tet(a);
+  if (start == kNoId || !mesh.tet_alive(start)) return kNoId;
+  SmallIdSet seen;
+  seen.insert(start, walk);
+  walk.push_back(start);
+  for (std::size_t k = 0; k < walk.size(); ++k) {
+    const TetId t = walk[k];
+    const TetVertices& tv = mesh.tet(t);
+    if (local_index(tv, b) >= 0) return t;
+    const int ia = local_index(tv, a);
+    for (int f = 0; f < 4; ++f) {
+      if (f == ia) continue;
+      const FaceRef n = mesh.neighbour(t, f);
+      if (n.valid() && seen.insert(n.tet(), walk)) {
+        mesh.prefetch_tet(n.tet());
+        walk.push_back(n.tet());
+      }
+    }
+  }
+  return kNoId;
+}
+
 // Appends to `list` the vertices of `tets` it does not hold yet (the
 // vertex set of a cavity, to lock).
 template <class Tets>

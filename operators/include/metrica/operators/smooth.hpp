@@ -50,19 +50,49 @@ struct SmoothOptions {
   Mesh::Epoch changed_since = 0;
 };
 
-// What the mean ratio of a ball tet needs when only v moves: the face
-// opposite v (f0, and f1, f2 for v's three edges), the inward normal n of
-// that face (6 |K| = n . (p - f0) with v at p), the metric norms of the
-// face's three edges (fixed), the tet's metric and its determinant (v
-// keeps its metric until it moves). A trial then costs three metric norms
-// and a dot product per tet, not the tet's six edges, a determinant and
-// an orientation test.
+// What the mean ratio of a ball tet needs when only v moves, as functions
+// of d = p - x, v's offset from where it is (x): with f0, f1, f2 the face
+// opposite v and n its inward normal, six times the volume is
+// n . d + n . (x - f0), and the sum of the squared metric lengths of the
+// six edges is
+//   sum_i (d - e_i)^T M (d - e_i) + face_edges
+//     = 3 d^T M d - 2 d . (M sum_i e_i) + (sum_i e_i^T M e_i + face_edges),
+// e_i = f_i - x (all of the tet's size: no cancellation). A trial costs a
+// quadratic form and two dot products per tet, not the tet's six edges,
+// a determinant and an orientation test; M is the tet's metric, fixed
+// while only v moves (v keeps its metric until it moves).
 struct BallTerm {
-  Point f0, f1, f2;
   Eigen::Vector3d normal;
-  double face_edges = 0.0;
-  double det = 0.0;
+  double volume0 = 0.0;     // n . (x - f0): six times the volume at d = 0
+  Eigen::Vector3d linear;   // M sum_i e_i
+  double constant = 0.0;    // sum_i e_i^T M e_i + face_edges
+  double scale = 0.0;       // the mean ratio's constant times det M
+  // The cube of the mean ratio at offset d (sign kept) as a fraction:
+  // numerator and denominator (the denominator > 0 but for a degenerate
+  // metric, where the tet counts as flat).
+  std::pair<double, double> quality3_parts(const Sym6& m, const Eigen::Vector3d& d) const {
+    const double volume6 = normal.dot(d) + volume0;
+    const double sum = 3.0 * metric_norm2(m, d) - 2.0 * linear.dot(d) + constant;
+    if (!(sum > 0.0)) return {0.0, 1.0};
+    return {scale * volume6 * std::abs(volume6), sum * sum * sum};
+  }
 };
+
+// The terms of the ball tet of v (at x) with the face f0, f1, f2 opposite
+// v, ordered so that n = (f1 - f0) x (f2 - f0) points towards x, in
+// metric m of determinant det_m.
+inline BallTerm ball_term(const Point& x, const Point& f0, const Point& f1, const Point& f2, const Sym6& m,
+                          double det_m) {
+  BallTerm b;
+  b.normal = (f1 - f0).cross(f2 - f0);
+  b.volume0 = b.normal.dot(x - f0);
+  const Eigen::Vector3d e0 = f0 - x, e1 = f1 - x, e2 = f2 - x;
+  b.linear = sym_times(m, e0 + e1 + e2);
+  b.constant = metric_norm2(m, e0) + metric_norm2(m, e1) + metric_norm2(m, e2) + metric_norm2(m, f1 - f0) +
+               metric_norm2(m, f2 - f1) + metric_norm2(m, f0 - f2);
+  b.scale = kMeanRatioCubedNorm * det_m;
+  return b;
+}
 
 struct SmoothScratch {
   TetList ball;
@@ -75,20 +105,22 @@ struct SmoothScratch {
 };
 
 namespace detail {
-// The apex of the regular tet on face (p, q, r) (oriented so that the
-// apex side is the positive one) in metric m: the face's centroid plus the
-// height sqrt(2/3) l along the unit normal, l the face's mean edge length,
-// all measured after mapping by L (M = L^T L).
-template <MetricSpace S>
-Point ideal_apex(const Point& p, const Point& q, const Point& r, const Sym6& m) {
-  const Matrix3 l = S::factor(m);
-  const Point pm = l * p, qm = l * q, rm = l * r;
-  const Eigen::Vector3d n = (qm - pm).cross(rm - pm);
-  const double len = ((qm - pm).norm() + (rm - qm).norm() + (pm - rm).norm()) / 3.0;
-  const double nn = n.norm();
-  if (nn <= 0.0) return (p + q + r) / 3.0;
-  const Point apex = (pm + qm + rm) / 3.0 + std::sqrt(2.0 / 3.0) * len * n / nn;
-  return l.triangularView<Eigen::Upper>().solve(apex);
+// The apex of the regular tet on face (p, q, r) in metric m, on the side
+// of n = (q - p) x (r - p): the face's centroid plus the height sqrt(2/3) l
+// along the face's unit normal in the metric, l the mean metric length of
+// the face's edges. That normal is the direction d = m^-1 n (m-orthogonal
+// to the face's edges), here adj(m) n, whose metric length is
+// sqrt(det(m) n . d): no factorisation of m.
+inline Point ideal_apex(const Point& p, const Point& q, const Point& r, const Eigen::Vector3d& n, const Sym6& m,
+                        double det_m) {
+  const Point centroid = (p + q + r) / 3.0;
+  const Eigen::Vector3d d = sym_times(adjugate(m), n);
+  const double d_norm2 = det_m * n.dot(d);
+  if (!(d_norm2 > 0.0)) return centroid;
+  const double len =
+      (std::sqrt(metric_norm2(m, q - p)) + std::sqrt(metric_norm2(m, r - q)) + std::sqrt(metric_norm2(m, p - r))) /
+      3.0;
+  return centroid + (std::sqrt(2.0 / 3.0) * len / std::sqrt(d_norm2)) * d;
 }
 }  // namespace detail
 
@@ -155,16 +187,13 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   for (std::size_t i = 0; i < s.ball.size(); ++i) {
     const auto& tv = mesh.tet(s.ball[i]);
     const auto f = face_vertices(tv, local_index(tv, v));
-    BallTerm b;
-    b.f0 = mesh.point(f[0]);
-    b.f1 = mesh.point(f[2]);
-    b.f2 = mesh.point(f[1]);
-    b.normal = (b.f1 - b.f0).cross(b.f2 - b.f0);
+    const Point& f0 = mesh.point(f[0]);
+    const Point& f1 = mesh.point(f[2]);
+    const Point& f2 = mesh.point(f[1]);
     const Sym6& m = s.metrics[i];
-    b.face_edges = metric_norm2(m, b.f1 - b.f0) + metric_norm2(m, b.f2 - b.f1) + metric_norm2(m, b.f0 - b.f2);
-    b.det = determinant(m);
-    s.terms.push_back(b);
-    optimal += detail::ideal_apex<S>(b.f0, b.f1, b.f2, m);
+    const double det = determinant(m);
+    s.terms.push_back(ball_term(x, f0, f1, f2, m, det));
+    optimal += detail::ideal_apex(f0, f1, f2, s.terms.back().normal, m, det);
   }
   optimal /= static_cast<double>(s.ball.size());
   // Trials from `secondary` on are tried only when none before improved.
@@ -232,7 +261,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   auto out_of_range = [&](const Point& p) {
     int n = 0;
     for (VertexId u : s.neighbours)
-      n += !kUnitBand.contains(ugawg_length(mesh.point(u) - p, mv, S::vertex_metric(mesh, u)));
+      n += !ugawg_length_in(kUnitBand, mesh.point(u) - p, mv, S::vertex_metric(mesh, u));
     return n;
   };
   // The decision's orientation tests, with the Precision policy, for a
@@ -246,31 +275,29 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   };
   auto all_positive_at = [&](const Point& p) { return ball_positive_at<P>(mesh, v, s.ball, p); };
   if constexpr (score_is_mean_ratio_cubed<Criterion>()) {
-    // The cube of the mean ratio of ball tet i with v at p, from its terms.
+    // The smallest mean ratio (cubed) of the ball with v at p, from the
+    // terms; stops at the first tet at or below floor3 (that trial cannot
+    // win), tested without a division. It starts from the tet that stopped
+    // the last trial: the ball's bottleneck stops most failing trials at
+    // once.
     const std::size_t n = s.ball.size();
-    auto quality3 = [&](std::size_t i, const Point& p) {
-      const BallTerm& b = s.terms[i];
-      const Sym6& m = s.metrics[i];
-      const double sum =
-          b.face_edges + metric_norm2(m, p - b.f0) + metric_norm2(m, p - b.f1) + metric_norm2(m, p - b.f2);
-      return mean_ratio_cubed(b.normal.dot(p - b.f0), b.det, sum);
-    };
-    // The smallest mean ratio (cubed) of the ball with v at p; stops at the
-    // first tet at or below floor3 (that trial cannot win). It starts from
-    // the tet that stopped the last trial: the ball's bottleneck stops most
-    // failing trials at once.
     std::size_t first = 0;
     auto min_quality3_at = [&](const Point& p, double floor3) {
-      double q3 = std::numeric_limits<double>::infinity();
+      const Eigen::Vector3d d = p - x;
+      double num_min = std::numeric_limits<double>::infinity(), den_min = 1.0;
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t i = first + k < n ? first + k : first + k - n;
-        q3 = std::min(q3, quality3(i, p));
-        if (q3 <= floor3) {
+        const auto [num, den] = s.terms[i].quality3_parts(s.metrics[i], d);
+        if (num <= floor3 * den) {
           first = i;
-          break;
+          return num / den;
+        }
+        if (num * den_min < num_min * den) {
+          num_min = num;
+          den_min = den;
         }
       }
-      return q3;
+      return num_min / den_min;
     };
     // The ball's quality now: the cache, or the terms (a cube root, no tet
     // metric; not stored, since a move, the usual outcome of smoothing
@@ -278,7 +305,12 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     double q_old = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) {
       const double q = mesh.cached_quality(s.ball[i]);
-      q_old = std::min(q_old, q != Mesh::kUnknownQuality ? q : std::cbrt(quality3(i, x)));
+      if (q != Mesh::kUnknownQuality) {
+        q_old = std::min(q_old, q);
+      } else {
+        const auto [num, den] = s.terms[i].quality3_parts(s.metrics[i], Eigen::Vector3d::Zero());
+        q_old = std::min(q_old, std::cbrt(num / den));
+      }
     }
     const int bad_old = out_of_range(x);
     double q_best = q_old, q3_best = q_old * q_old * q_old;

@@ -47,14 +47,17 @@ struct AdaptOptions {
   CollapseOptions collapse;
   // Flips: one sweep per cycle from the changed tets below Q 0.7 (all tets
   // cost 15% more time for no gain in range); edge removals skip short
-  // edges with large rings and 2-3 flips need a tet below 0.3 across the
-  // face (both rarely flip). The quality phase sweeps from the tets below
-  // polish_below until little changes.
-  ReconnectOptions reconnect{.flips = {.short_edge_ring4 = 0.8, .short_edge_ring5 = 1.0},
+  // edges with large rings and shells of 5 or 6 ring vertices whose worst
+  // tet is at 0.7 or above (0.6 from 7 on), and 2-3 flips need a tet below
+  // 0.3 across the face (all rarely flip). The quality phase sweeps from
+  // the tets below polish_below until little changes.
+  ReconnectOptions reconnect{.flips = {.short_edge_ring4 = 0.8,
+                                       .short_edge_ring5 = 1.0,
+                                       .good_shell = {1, 1, 1, 1, 1, 0.7, 0.7, 0.6}},
                              .seed_below = 0.7,
                              .max_sweeps = 1,
                              .face_flip_below = 0.3};
-  double polish_below = 0.8;
+  double polish_below = 0.75;
   SmoothOptions smooth{.below = 0.3};
   // Smoothing in the quality phase: every vertex (UGAWG linear: min Q 0.64
   // against 0.40 with 0.4).

@@ -92,7 +92,7 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
   std::vector<Count> counts(parts);
   for_each_mesh_edge_bucket<C>(mesh, parts, [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
     std::size_t in = 0;
-    for (VertexId b : kept) in += kUnitBand.contains(S::edge_length(mesh, a, b));
+    for (VertexId b : kept) in += S::edge_length_in(mesh, a, b, kUnitBand);
     counts[p].in += in;
     counts[p].all += kept.size();
   });
