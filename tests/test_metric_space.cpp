@@ -125,8 +125,7 @@ TEST_SUITE("property") {
     CHECK(outside > 1000);
   }
 
-  TEST_CASE_TEMPLATE("edge_length_in agrees with edge_length in every space", S, Isotropic, Anisotropic,
-                     LogEuclidean) {
+  TEST_CASE_TEMPLATE("edge_length_in agrees with edge_length in every space", S, Isotropic, Anisotropic, LogEuclidean) {
     auto r = test::rng(206);
     Mesh mesh = box_with_metric(r, 1e2);
     int inside = 0;

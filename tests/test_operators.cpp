@@ -493,8 +493,7 @@ TEST_SUITE("unit") {
         // As decide_smoothing orders them: the face opposite v, two swapped.
         const auto fv = face_vertices(tv, iv);
         const Point x = mesh.point(tv[iv]);
-        const BallTerm b =
-            ball_term(x, mesh.point(fv[0]), mesh.point(fv[2]), mesh.point(fv[1]), m, determinant(m));
+        const BallTerm b = ball_term(x, mesh.point(fv[0]), mesh.point(fv[2]), mesh.point(fv[1]), m, determinant(m));
         for (int k = 0; k < 3; ++k) {
           const Eigen::Vector3d d = k == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(u(r), u(r), u(r));
           TetPoints p = detail::tet_points(mesh, tv);

@@ -13,9 +13,9 @@
 // range (coarser classes: docs/benchmarks.md).
 #pragma once
 
+#include <metrica/metrics/space.hpp>
 #include <metrica/operators/edge_buckets.hpp>
 #include <metrica/operators/shell.hpp>
-#include <metrica/metrics/space.hpp>
 #include <metrica/policies/concurrency.hpp>
 
 #include <algorithm>

@@ -63,10 +63,10 @@ struct SmoothOptions {
 // while only v moves (v keeps its metric until it moves).
 struct BallTerm {
   Eigen::Vector3d normal;
-  double volume0 = 0.0;     // n . (x - f0): six times the volume at d = 0
-  Eigen::Vector3d linear;   // M sum_i e_i
-  double constant = 0.0;    // sum_i e_i^T M e_i + face_edges
-  double scale = 0.0;       // the mean ratio's constant times det M
+  double volume0 = 0.0;    // n . (x - f0): six times the volume at d = 0
+  Eigen::Vector3d linear;  // M sum_i e_i
+  double constant = 0.0;   // sum_i e_i^T M e_i + face_edges
+  double scale = 0.0;      // the mean ratio's constant times det M
   // The cube of the mean ratio at offset d (sign kept) as a fraction:
   // numerator and denominator (the denominator > 0 but for a degenerate
   // metric, where the tet counts as flat).
@@ -118,8 +118,7 @@ inline Point ideal_apex(const Point& p, const Point& q, const Point& r, const Ei
   const double d_norm2 = det_m * n.dot(d);
   if (!(d_norm2 > 0.0)) return centroid;
   const double len =
-      (std::sqrt(metric_norm2(m, q - p)) + std::sqrt(metric_norm2(m, r - q)) + std::sqrt(metric_norm2(m, p - r))) /
-      3.0;
+      (std::sqrt(metric_norm2(m, q - p)) + std::sqrt(metric_norm2(m, r - q)) + std::sqrt(metric_norm2(m, p - r))) / 3.0;
   return centroid + (std::sqrt(2.0 / 3.0) * len / std::sqrt(d_norm2)) * d;
 }
 }  // namespace detail
@@ -260,8 +259,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   const auto& mv = S::vertex_metric(mesh, v);
   auto out_of_range = [&](const Point& p) {
     int n = 0;
-    for (VertexId u : s.neighbours)
-      n += !ugawg_length_in(kUnitBand, mesh.point(u) - p, mv, S::vertex_metric(mesh, u));
+    for (VertexId u : s.neighbours) n += !ugawg_length_in(kUnitBand, mesh.point(u) - p, mv, S::vertex_metric(mesh, u));
     return n;
   };
   // The decision's orientation tests, with the Precision policy, for a

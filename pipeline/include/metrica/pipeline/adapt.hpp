@@ -51,12 +51,11 @@ struct AdaptOptions {
   // tet is at 0.7 or above (0.6 from 7 on), and 2-3 flips need a tet below
   // 0.3 across the face (all rarely flip). The quality phase sweeps from
   // the tets below polish_below until little changes.
-  ReconnectOptions reconnect{.flips = {.short_edge_ring4 = 0.8,
-                                       .short_edge_ring5 = 1.0,
-                                       .good_shell = {1, 1, 1, 1, 1, 0.7, 0.7, 0.6}},
-                             .seed_below = 0.7,
-                             .max_sweeps = 1,
-                             .face_flip_below = 0.3};
+  ReconnectOptions reconnect{
+      .flips = {.short_edge_ring4 = 0.8, .short_edge_ring5 = 1.0, .good_shell = {1, 1, 1, 1, 1, 0.7, 0.7, 0.6}},
+      .seed_below = 0.7,
+      .max_sweeps = 1,
+      .face_flip_below = 0.3};
   double polish_below = 0.75;
   SmoothOptions smooth{.below = 0.3};
   // Smoothing in the quality phase: every vertex (UGAWG linear: min Q 0.64
