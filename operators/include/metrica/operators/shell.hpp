@@ -56,16 +56,20 @@ class SmallIdSet {
   std::size_t count_ = 0;
 };
 
-// The tets containing v, by a walk over faces through v from its hint.
-inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
+// The walk over the tets containing v, across faces through v, from v's
+// hint, listing them in `ball`; it stops at the first tet for which
+// stop(t) holds and returns it (kNoId when the walk ends).
+template <class Stop>
+TetId walk_vertex_ball(const Mesh& mesh, VertexId v, TetList& ball, Stop&& stop) {
   ball.clear();
   const TetId start = mesh.vert2tet(v);
-  if (start == kNoId || !mesh.tet_alive(start)) return;
+  if (start == kNoId || !mesh.tet_alive(start)) return kNoId;
   SmallIdSet seen;
   seen.insert(start, ball);
   ball.push_back(start);
   for (std::size_t k = 0; k < ball.size(); ++k) {
     const TetId t = ball[k];
+    if (stop(t)) return t;
     const int iv = local_index(mesh.tet(t), v);
     for (int f = 0; f < 4; ++f) {
       if (f == iv) continue;  // the face opposite v does not contain it
@@ -79,33 +83,19 @@ inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
       }
     }
   }
+  return kNoId;
 }
 
-// A live tet holding edge ab (kNoId when none): the walk of vertex_ball
-// from a's hint, stopped at the first such tet (a shell's start without
-// the whole ball). `walk` is scratch.
+// The tets containing v.
+inline void vertex_ball(const Mesh& mesh, VertexId v, TetList& ball) {
+  walk_vertex_ball(mesh, v, ball, [](TetId) { return false; });
+}
+
+// A live tet holding edge ab (kNoId when none): a's walk stopped at the
+// first such tet (a shell's start without the whole ball). `walk` is
+// scratch.
 inline TetId tet_with_edge(const Mesh& mesh, VertexId a, VertexId b, TetList& walk) {
-  walk.clear();
-  const TetId start = mesh.vert2tet(a);
-  if (start == kNoId || !mesh.tet_alive(start)) return kNoId;
-  SmallIdSet seen;
-  seen.insert(start, walk);
-  walk.push_back(start);
-  for (std::size_t k = 0; k < walk.size(); ++k) {
-    const TetId t = walk[k];
-    const TetVertices& tv = mesh.tet(t);
-    if (local_index(tv, b) >= 0) return t;
-    const int ia = local_index(tv, a);
-    for (int f = 0; f < 4; ++f) {
-      if (f == ia) continue;
-      const FaceRef n = mesh.neighbour(t, f);
-      if (n.valid() && seen.insert(n.tet(), walk)) {
-        mesh.prefetch_tet(n.tet());
-        walk.push_back(n.tet());
-      }
-    }
-  }
-  return kNoId;
+  return walk_vertex_ball(mesh, a, walk, [&](TetId t) { return local_index(mesh.tet(t), b) >= 0; });
 }
 
 // Appends to `list` the vertices of `tets` it does not hold yet (the
