@@ -74,13 +74,15 @@ inline double mean_ratio(const TetPoints& p, const Sym6& m) {
   return vol < 0.0 ? -q : q;
 }
 
+// The mean ratio cubed is 36^3 / 3 (|K| sqrt(det M))^2 / sum^3, that is
+// kMeanRatioCubedNorm volume6^2 det M / sum^3 with |K| = volume6 / 6.
+inline constexpr double kMeanRatioCubedNorm = 36.0 * 36.0 / 3.0;
+
 // The cube of mean_ratio (sign kept), without its cube root, from its
 // parts: six times the tet's signed volume, det M and the sum of the six
 // edges' v^T M v. For finding the smallest of many mean ratios, which is
 // the cube root of the smallest cube (the root was 7% of an adaptation in
 // smoothing), where a moving vertex leaves most parts fixed.
-// 36^3 / 3 (|K| sqrt(det M))^2 / sum^3 = kMeanRatioCubedNorm volume6^2 det M / sum^3, |K| = volume6 / 6.
-inline constexpr double kMeanRatioCubedNorm = 36.0 * 36.0 / 3.0;
 inline double mean_ratio_cubed(double volume6, double det, double edge_norms) {
   if (!(edge_norms > 0.0)) return 0.0;
   const double q3 = kMeanRatioCubedNorm * volume6 * volume6 * det / (edge_norms * edge_norms * edge_norms);
