@@ -27,6 +27,23 @@ using namespace metrica;
 
 using namespace metrica::test;
 
+namespace {
+// Calls f(a, b) for every edge ab of `mesh` with a closed shell of
+// min_tets to max_tets tets, the shell in s.shell; returns the calls.
+template <class F>
+int for_each_closed_shell(const Mesh& mesh, std::size_t min_tets, std::size_t max_tets, FlipScratch& s, F&& f) {
+  int calls = 0;
+  for (const auto& [a, b] : unique_edges(mesh)) {
+    vertex_ball(mesh, a, s.ball);
+    REQUIRE(edge_shell(mesh, a, b, s.ball, s.shell));
+    if (!s.shell.closed || s.shell.tets.size() < min_tets || s.shell.tets.size() > max_tets) continue;
+    f(a, b);
+    ++calls;
+  }
+  return calls;
+}
+}  // namespace
+
 TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("edge refinement leaves no edge longer than sqrt 2 and a valid mesh", T,
                      METRICA_POLICY_COMBINATIONS) {
@@ -139,11 +156,7 @@ TEST_SUITE("invariant") {
     Mesh mesh = jittered_box(3, 0.2, 5);
     set_uniform_metric(mesh, 0.3);
     FlipScratch s;
-    int checked = 0;
-    for (const auto& [a, b] : unique_edges(mesh)) {
-      vertex_ball(mesh, a, s.ball);
-      REQUIRE(edge_shell(mesh, a, b, s.ball, s.shell));
-      if (!s.shell.closed || s.shell.tets.size() < 4 || s.shell.tets.size() > 7) continue;
+    const int checked = for_each_closed_shell(mesh, 4, 7, s, [&](VertexId a, VertexId b) {
       const double l = LogEuclidean::edge_length(mesh, a, b);
       const auto before = sorted_tets(mesh);
       // The ring's own threshold applies: 4 vertices, ring4; more, ring5.
@@ -159,8 +172,7 @@ TEST_SUITE("invariant") {
         Mesh copy = mesh;
         CHECK(remove_edge<LogEuclidean, Filtered, AlwaysFlip>(copy, a, b, s, o) != FlipResult::not_applicable);
       }
-      ++checked;
-    }
+    });
     CHECK(checked > 10);
   }
 
@@ -168,11 +180,7 @@ TEST_SUITE("invariant") {
     Mesh mesh = jittered_box(3, 0.2, 6);
     set_uniform_metric(mesh, 0.3);
     FlipScratch s;
-    int checked = 0;
-    for (const auto& [a, b] : unique_edges(mesh)) {
-      vertex_ball(mesh, a, s.ball);
-      REQUIRE(edge_shell(mesh, a, b, s.ball, s.shell));
-      if (!s.shell.closed || s.shell.tets.size() < 3 || s.shell.tets.size() > 7) continue;
+    const int checked = for_each_closed_shell(mesh, 3, 7, s, [&](VertexId a, VertexId b) {
       double worst = 1.0;
       for (TetId t : s.shell.tets) worst = std::min(worst, cached_mean_ratio<LogEuclidean>(mesh, t));
       const std::size_t ring = s.shell.tets.size();
@@ -195,8 +203,7 @@ TEST_SUITE("invariant") {
         CHECK(remove_edge<LogEuclidean, Filtered, MinQuality>(copy, a, b, s, o) == expected);
         CHECK(sorted_tets(copy) == sorted_tets(plain));
       }
-      ++checked;
-    }
+    });
     CHECK(checked > 10);
   }
 
