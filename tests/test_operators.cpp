@@ -500,7 +500,8 @@ TEST_SUITE("unit") {
         // As decide_smoothing orders them: the face opposite v, two swapped.
         const auto fv = face_vertices(tv, iv);
         const Point x = mesh.point(tv[iv]);
-        const BallTerm b = ball_term(x, mesh.point(fv[0]), mesh.point(fv[2]), mesh.point(fv[1]), m, determinant(m));
+        const Point &f0 = mesh.point(fv[0]), &f1 = mesh.point(fv[2]), &f2 = mesh.point(fv[1]);
+        const BallTerm b = ball_term(x, f0, f1, f2, m, determinant(m), face_edges2(m, f0, f1, f2));
         for (int k = 0; k < 3; ++k) {
           const Eigen::Vector3d d = k == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(u(r), u(r), u(r));
           TetPoints p = detail::tet_points(mesh, tv);
@@ -531,7 +532,7 @@ TEST_SUITE("unit") {
       const Point p = back(l * c + side * e1), q = back(l * c + side * (-0.5 * e1 + std::sqrt(0.75) * e2)),
                   s = back(l * c + side * (-0.5 * e1 - std::sqrt(0.75) * e2));
       const Eigen::Vector3d n = (q - p).cross(s - p);
-      const Point apex = detail::ideal_apex(p, q, s, n, m, determinant(m));
+      const Point apex = detail::ideal_apex(p, q, s, n, m, determinant(m), face_edges2(m, p, q, s));
       CHECK(std::abs(mean_ratio({p, q, s, apex}, m)) == doctest::Approx(1.0).epsilon(1e-9));
       CHECK(n.dot(apex - p) > 0.0);
     }

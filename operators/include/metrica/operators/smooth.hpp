@@ -28,6 +28,7 @@
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
+#include <array>
 #include <atomic>
 #include <vector>
 
@@ -78,18 +79,23 @@ struct BallTerm {
   }
 };
 
+// The squared metric lengths of face f0, f1, f2's edges f0f1, f1f2, f2f0
+// (the ball term and the ideal apex both need them).
+inline std::array<double, 3> face_edges2(const Sym6& m, const Point& f0, const Point& f1, const Point& f2) {
+  return {metric_norm2(m, f1 - f0), metric_norm2(m, f2 - f1), metric_norm2(m, f0 - f2)};
+}
+
 // The terms of the ball tet of v (at x) with the face f0, f1, f2 opposite
 // v, ordered so that n = (f1 - f0) x (f2 - f0) points towards x, in
-// metric m of determinant det_m.
+// metric m of determinant det_m; edges2 = face_edges2(m, f0, f1, f2).
 inline BallTerm ball_term(const Point& x, const Point& f0, const Point& f1, const Point& f2, const Sym6& m,
-                          double det_m) {
+                          double det_m, const std::array<double, 3>& edges2) {
   BallTerm b;
   b.normal = (f1 - f0).cross(f2 - f0);
   b.volume0 = b.normal.dot(x - f0);
   const Eigen::Vector3d e0 = f0 - x, e1 = f1 - x, e2 = f2 - x;
   b.linear = sym_times(m, e0 + e1 + e2);
-  b.constant = metric_norm2(m, e0) + metric_norm2(m, e1) + metric_norm2(m, e2) + metric_norm2(m, f1 - f0) +
-               metric_norm2(m, f2 - f1) + metric_norm2(m, f0 - f2);
+  b.constant = metric_norm2(m, e0) + metric_norm2(m, e1) + metric_norm2(m, e2) + edges2[0] + edges2[1] + edges2[2];
   b.scale = kMeanRatioCubedNorm * det_m;
   return b;
 }
@@ -110,15 +116,14 @@ namespace detail {
 // along the face's unit normal in the metric, l the mean metric length of
 // the face's edges. That normal is the direction d = m^-1 n (m-orthogonal
 // to the face's edges), here adj(m) n, whose metric length is
-// sqrt(det(m) n . d): no factorisation of m.
+// sqrt(det(m) n . d): no factorisation of m. edges2 = face_edges2(m, p, q, r).
 inline Point ideal_apex(const Point& p, const Point& q, const Point& r, const Eigen::Vector3d& n, const Sym6& m,
-                        double det_m) {
+                        double det_m, const std::array<double, 3>& edges2) {
   const Point centroid = (p + q + r) / 3.0;
   const Eigen::Vector3d d = sym_times(adjugate(m), n);
   const double d_norm2 = det_m * n.dot(d);
   if (!(d_norm2 > 0.0)) return centroid;
-  const double len =
-      (std::sqrt(metric_norm2(m, q - p)) + std::sqrt(metric_norm2(m, r - q)) + std::sqrt(metric_norm2(m, p - r))) / 3.0;
+  const double len = (std::sqrt(edges2[0]) + std::sqrt(edges2[1]) + std::sqrt(edges2[2])) / 3.0;
   return centroid + (std::sqrt(2.0 / 3.0) * len / std::sqrt(d_norm2)) * d;
 }
 }  // namespace detail
@@ -191,8 +196,9 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     const Point& f2 = mesh.point(f[1]);
     const Sym6& m = s.metrics[i];
     const double det = determinant(m);
-    s.terms.push_back(ball_term(x, f0, f1, f2, m, det));
-    optimal += detail::ideal_apex(f0, f1, f2, s.terms.back().normal, m, det);
+    const std::array<double, 3> edges2 = face_edges2(m, f0, f1, f2);
+    s.terms.push_back(ball_term(x, f0, f1, f2, m, det, edges2));
+    optimal += detail::ideal_apex(f0, f1, f2, s.terms.back().normal, m, det, edges2);
   }
   optimal /= static_cast<double>(s.ball.size());
   // Trials from `secondary` on are tried only when none before improved.
