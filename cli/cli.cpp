@@ -6,6 +6,7 @@
 #include <metrica/io/output_set.hpp>
 #include <metrica/log.hpp>
 #include <metrica/mesh_build.hpp>
+#include <metrica/policies/speculative.hpp>
 #include <metrica/policies/threads.hpp>
 #include <metrica/timer.hpp>
 
@@ -150,6 +151,13 @@ LoadedMesh load_mesh(const std::string& path, Valid valid) {
   log::info("read {} in {:.3f} s, built adjacency in {:.3f} s", path, out.read_seconds, out.build_seconds);
   if (valid == Valid::required) check_valid_input(out.mesh, path);
   return out;
+}
+
+PartRunner sweep_runner(bool serial) {
+  if (serial) return {};
+  const auto threads = static_cast<std::size_t>(std::max(1, thread_count()));
+  return PartRunner{threads,
+                    [](std::size_t k, const std::function<void(std::size_t)>& f) { Speculative::parallel_for(k, f); }};
 }
 
 std::size_t default_max_tets() {

@@ -8,9 +8,9 @@
 #include <metrica/io/mesh_data.hpp>
 #include <metrica/mesh.hpp>
 #include <metrica/metrics/metric_bounds.hpp>
+#include <metrica/part_runner.hpp>
 
 #include <boost/program_options.hpp>
-
 #include <fmt/core.h>
 
 #include <cmath>
@@ -162,6 +162,11 @@ std::string model_distance_text(const Mesh& mesh, const CadModel& model);
 // lies farther than `check --geometry`'s default tolerance (1e-8) from it:
 // an output that check would refuse is never written.
 void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what);
+
+// What runs a command's sweeps outside the operators (validation, the
+// formatting of ASCII outputs): the --threads threads, or the calling
+// thread alone when `serial` (--concurrency serial).
+PartRunner sweep_runner(bool serial = false);
 
 // Human-readable sizes and numbers.
 std::string bytes_text(double bytes);

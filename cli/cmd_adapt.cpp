@@ -226,7 +226,9 @@ int run_adapt(const std::vector<std::string>& args) {
   // boundary, collapses may flatten it within their normal-deviation bound
   // (2 degrees), which changes the volume by a few 1e-6 (cube-cylinder).
   // On a model the volume moves from the input's facets to the model's.
+  const PartRunner sweeps = sweep_runner(serial);
   ValidateOptions vo;
+  vo.run = sweeps;
   if (!model) {
     vo.expected_volume = volume;
     vo.volume_tolerance = 1e-4;
@@ -234,17 +236,20 @@ int run_adapt(const std::vector<std::string>& args) {
   const auto check = mesh.validate(vo);
   if (!check.ok())
     throw InputError(fmt::format("adapt: the adapted mesh is invalid; nothing written\n{}", check.to_string()));
-  log::info("volume {:.17g}, relative change {:.3g}", mesh.volume(), std::abs(mesh.volume() - volume) / volume);
+  if (log::level() >= log::Level::verbose) {
+    const double adapted = mesh.volume();
+    log::info("volume {:.17g}, relative change {:.3g}", adapted, std::abs(adapted - volume) / volume);
+  }
   if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
   if (model) require_on_model(mesh, *model, "adapt");
   auto data = extract_mesh_data(mesh);
   data.version = input_version;
   if (model) complete_geometry_records(data, *model);
-  io::write_mesh_file(output, data, o.format_version());
+  io::write_mesh_file(output, data, o.format_version(), sweeps);
   if (o.has("metric-out")) {
     auto sol = metric_field_to_sol(live_metrics(mesh));
     sol.version = input_version;
-    io::write_sol(o.get<std::string>("metric-out"), sol, o.format_version());
+    io::write_sol(o.get<std::string>("metric-out"), sol, o.format_version(), sweeps);
   }
   if (o.has("vtu")) io::write_mesh_file(o.get<std::string>("vtu"), data);
   if (talk) {

@@ -45,7 +45,7 @@ int run_convert(const std::vector<std::string>& args) {
   if (in_sol) {
     const auto sol = io::read_sol(input);
     if (o.dry_run()) return kOk;
-    io::write_sol(output, sol, version);
+    io::write_sol(output, sol, version, sweep_runner());
     if (log::level() >= log::Level::normal)
       fmt::print("wrote {}: {} vertices x {} fields ({:.2f} s)\n", output, count_text(sol.count), sol.types.size(),
                  clock.seconds());
@@ -58,13 +58,15 @@ int run_convert(const std::vector<std::string>& args) {
   if (!o.has("no-check")) {
     BuildOptions bo;
     bo.source = input;
-    const auto report = build_mesh(data, bo).validate();
+    ValidateOptions vo;
+    vo.run = sweep_runner();
+    const auto report = build_mesh(data, bo).validate(vo);
     if (!report.ok()) {
       fmt::print(stderr, "{}: {}\n", input, report.to_string());
       throw InputError(fmt::format("{}: invalid mesh, not converted (use --no-check to convert anyway)", input));
     }
   }
-  io::write_mesh_file(output, data, version);
+  io::write_mesh_file(output, data, version, sweep_runner());
   if (log::level() >= log::Level::normal)
     fmt::print("wrote {}: {} vertices, {} tets, {} triangles ({:.2f} s)\n", output, count_text(data.vertices.size()),
                count_text(data.tets.size()), count_text(data.triangles.size()), clock.seconds());

@@ -13,6 +13,15 @@ void ValidationReport::add(const std::string& check, std::string message, std::s
   if (counts_[check]++ < max_messages) problems_.push_back({check, std::move(message)});
 }
 
+void ValidationReport::append(const ValidationReport& later, std::size_t max_messages) {
+  std::map<std::string, std::size_t> kept;
+  for (const Problem& p : later.problems_) {
+    add(p.check, p.message, max_messages);
+    ++kept[p.check];
+  }
+  for (const auto& [check, c] : later.counts_) counts_[check] += c - kept[check];
+}
+
 std::size_t ValidationReport::count(const std::string& check) const {
   const auto it = counts_.find(check);
   return it == counts_.end() ? 0 : it->second;
@@ -54,59 +63,77 @@ class Checker {
  private:
   template <class... Args>
   void fail(const char* check, fmt::format_string<Args...> f, Args&&... args) {
-    report_.add(check, fmt::format(f, std::forward<Args>(args)...), opt_.max_messages_per_check);
+    fail_in(report_, check, f, std::forward<Args>(args)...);
+  }
+  template <class... Args>
+  void fail_in(ValidationReport& r, const char* check, fmt::format_string<Args...> f, Args&&... args) {
+    r.add(check, fmt::format(f, std::forward<Args>(args)...), opt_.max_messages_per_check);
+  }
+
+  // check(t, report) for every live tet, on opt_.run's parts, each part
+  // with its own report; the reports joined in tet order.
+  template <class Check>
+  void per_live_tet(Check&& check) {
+    const std::size_t parts = m_.tet_capacity() < 65536 ? 1 : std::max<std::size_t>(opt_.run.parts, 1);
+    std::vector<ValidationReport> reports(parts);
+    opt_.run(parts, [&](std::size_t p) {
+      const auto [first, last] = part_slice(m_.tet_capacity(), parts, p);
+      for (auto t = static_cast<TetId>(first); t < last; ++t)
+        if (m_.tet_alive(t)) check(t, reports[p]);
+    });
+    for (const ValidationReport& r : reports) report_.append(r, opt_.max_messages_per_check);
   }
 
   bool check_vertices() {
-    std::size_t live_v = 0, live_t = 0;
+    std::size_t live_v = 0;
     for (VertexId v = 0; v < m_.vertex_capacity(); ++v) live_v += m_.vertex_alive(v);
     if (live_v != m_.num_vertices())
       fail("vertices", "{} live vertices flagged, but the count says {}", live_v, m_.num_vertices());
     const std::size_t before = report_.total();
-    for (TetId t = 0; t < m_.tet_capacity(); ++t) {
-      if (!m_.tet_alive(t)) continue;
-      ++live_t;
+    per_live_tet([&](TetId t, ValidationReport& r) {
       const auto& tv = m_.tet(t);
       for (int i = 0; i < 4; ++i) {
         if (tv[i] >= m_.vertex_capacity() || !m_.vertex_alive(tv[i]))
-          fail("vertices", "tet {}: vertex {} ({}) is dead or out of range", t, i, tv[i]);
+          fail_in(r, "vertices", "tet {}: vertex {} ({}) is dead or out of range", t, i, tv[i]);
         for (int j = 0; j < i; ++j)
-          if (tv[i] == tv[j]) fail("vertices", "tet {}: vertex {} appears twice", t, tv[i]);
+          if (tv[i] == tv[j]) fail_in(r, "vertices", "tet {}: vertex {} appears twice", t, tv[i]);
       }
-    }
+    });
+    std::size_t live_t = 0;
+    for (TetId t = 0; t < m_.tet_capacity(); ++t) live_t += m_.tet_alive(t);
     if (live_t != m_.num_tets()) fail("vertices", "{} live tets found, but the count says {}", live_t, m_.num_tets());
     return report_.total() == before;
   }
 
   void check_orientation() {
-    for (TetId t = 0; t < m_.tet_capacity(); ++t) {
-      if (!m_.tet_alive(t)) continue;
+    per_live_tet([&](TetId t, ValidationReport& r) {
       const auto& v = m_.tet(t);
       const double o = orient3d_fast(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
-      if (!(o > 0)) fail("orientation", "tet {} ({} {} {} {}): orient3d = {:.3e} <= 0", t, v[0], v[1], v[2], v[3], o);
-    }
+      if (!(o > 0))
+        fail_in(r, "orientation", "tet {} ({} {} {} {}): orient3d = {:.3e} <= 0", t, v[0], v[1], v[2], v[3], o);
+    });
   }
 
   void check_adjacency() {
-    for (TetId t = 0; t < m_.tet_capacity(); ++t) {
-      if (!m_.tet_alive(t)) continue;
+    per_live_tet([&](TetId t, ValidationReport& r) {
       for (int f = 0; f < 4; ++f) {
         const FaceRef n = m_.neighbour(t, f);
         const SurfaceId s = m_.surface_id(t, f);
         if (!n.valid()) {
-          if (s <= 0) fail("boundary", "tet {} face {}: boundary face with surface id {} (must be > 0)", t, f, s);
+          if (s <= 0) fail_in(r, "boundary", "tet {} face {}: boundary face with surface id {} (must be > 0)", t, f, s);
           continue;
         }
         if (n.tet() >= m_.tet_capacity() || !m_.tet_alive(n.tet())) {
-          fail("adjacency", "tet {} face {}: neighbour tet {} is dead or out of range", t, f, n.tet());
+          fail_in(r, "adjacency", "tet {} face {}: neighbour tet {} is dead or out of range", t, f, n.tet());
           continue;
         }
         if (m_.neighbour(n) != FaceRef(t, f))
-          fail("adjacency", "tet {} face {} -> tet {} face {}, which does not point back", t, f, n.tet(), n.face());
+          fail_in(r, "adjacency", "tet {} face {} -> tet {} face {}, which does not point back", t, f, n.tet(),
+                  n.face());
         if (sorted(face_vertices(m_.tet(t), f)) != sorted(face_vertices(m_.tet(n.tet()), n.face())))
-          fail("adjacency", "tet {} face {} and tet {} face {} hold different vertices", t, f, n.tet(), n.face());
+          fail_in(r, "adjacency", "tet {} face {} and tet {} face {} hold different vertices", t, f, n.tet(), n.face());
       }
-    }
+    });
   }
 
   // Each boundary edge on exactly two boundary faces, and around each

@@ -7,21 +7,27 @@
 #include "operator_test_support.hpp"
 
 #include <metrica/allocator.hpp>
+#include <metrica/box.hpp>
+#include <metrica/io/meshb.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_edges.hpp>
-#include <metrica/part_runner.hpp>
-#include <metrica/pipeline/adapt.hpp>
-#include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/edge_buckets.hpp>
 #include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/refine_edges.hpp>
+#include <metrica/part_runner.hpp>
+#include <metrica/pipeline/adapt.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/policies/speculative.hpp>
 #include <metrica/policies/threads.hpp>
+#include <metrica/validate.hpp>
 
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
+#include <functional>
+#include <iterator>
 #include <random>
 #include <set>
 #include <sstream>
@@ -95,6 +101,14 @@ struct ThreadCountGuard {
   int saved = thread_count();
   ~ThreadCountGuard() { set_thread_count(saved); }
 };
+
+// `parts` parts run in reverse order on the calling thread: a result that
+// depends on the order of the parts shows.
+PartRunner reversed_parts(std::size_t parts) {
+  return PartRunner{parts, [](std::size_t n, const std::function<void(std::size_t)>& f) {
+                      for (std::size_t p = n; p-- > 0;) f(p);
+                    }};
+}
 
 }  // namespace
 
@@ -220,10 +234,79 @@ TEST_SUITE("parallel") {
     CHECK_THROWS_WITH(SpeculativeThreads<2>::collect<std::uint32_t>(n, fails), "item 77777");
   }
 
+  TEST_CASE("ASCII outputs formatted on 2 and 8 threads and on 3 reversed parts: the bytes of one thread") {
+    // Enough rows for several chunks and batches of chunks in each keyword.
+    io::MeshData m;
+    m.version = 2;
+    auto r = rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const std::uint32_t n = 150001;  // 10 chunks of rows: 2 batches on 2 threads
+    for (std::uint32_t i = 0; i < n; ++i) {
+      m.vertices.push_back(draw_point(u, r));
+      m.vertex_refs.push_back(static_cast<int>(i % 5));
+      m.tets.push_back({i, (i + 1) % n, (i + 2) % n, (i + 3) % n});
+      m.tet_refs.push_back(static_cast<int>(i % 3));
+    }
+    for (std::uint32_t i = 0; i < 40000; ++i) m.triangles.push_back({i, i + 1, i + 2});
+    m.triangle_refs.assign(m.triangles.size(), 1);
+    m.corners = {0, 5, 17};
+    io::SolData sol;
+    sol.count = n;
+    sol.types = {io::SolType::sym_matrix};
+    for (std::size_t i = 0; i < n * 6; ++i) sol.values.push_back(u(r));
+    const PartRunner reversed = reversed_parts(3);
+    TempDir dir;
+    auto bytes_of = [](const std::string& path) {
+      std::ifstream in(path, std::ios::binary);
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    for (int version : {1, 2}) {
+      CAPTURE(version);
+      const std::string mesh_text = io::format_mesh(m, io::Encoding::ascii, version);
+      const std::string sol_text = io::format_sol(sol, io::Encoding::ascii, version);
+      REQUIRE(mesh_text.size() > (std::size_t{4} << 20));
+      for (const PartRunner& run :
+           {part_runner<SpeculativeThreads<2>>(1 << 20), reversed, part_runner<SpeculativeThreads<8>>(1 << 20)}) {
+        CAPTURE(run.parts);
+        CHECK(io::format_mesh(m, io::Encoding::ascii, version, run) == mesh_text);
+        CHECK(io::format_sol(sol, io::Encoding::ascii, version, run) == sol_text);
+        io::write_meshb(dir / "m.mesh", m, version, run);
+        io::write_sol(dir / "s.sol", sol, version, run);
+        CHECK(bytes_of(dir / "m.mesh") == mesh_text);
+        CHECK(bytes_of(dir / "s.sol") == sol_text);
+      }
+    }
+  }
+
+  TEST_CASE("validate on 2 and 8 threads and on 3 reversed parts: the report of one thread") {
+    auto mesh = make_box({.nx = 24, .ny = 24, .nz = 24});
+    REQUIRE(mesh.tet_capacity() >= 65536);  // the size from which the checks run in parts
+    // Vertices pushed through their balls (orientation) and neighbour
+    // slots that do not point back (adjacency), all over the arrays.
+    for (VertexId v = 0; v < mesh.vertex_capacity(); v += 997)
+      if (mesh.vertex_class(v) == VertexClass::interior) mesh.point(v) += Point(0.3, 0.2, 0.1);
+    for (TetId t = 5; t < mesh.tet_capacity(); t += 4999)
+      for (int f = 0; f < 4; ++f)
+        if (mesh.neighbour(t, f).valid()) {
+          mesh.set_neighbour(t, f, FaceRef(t == 5 ? 6 : 5, 0));
+          break;
+        }
+    const PartRunner reversed = reversed_parts(3);
+    for (std::size_t cap : {3, 1000}) {
+      const ValidationReport one = mesh.validate({.max_messages_per_check = cap});
+      REQUIRE(one.count("orientation") > 3);
+      REQUIRE(one.count("adjacency") > 3);
+      for (const PartRunner& run :
+           {part_runner<SpeculativeThreads<2>>(1 << 20), reversed, part_runner<SpeculativeThreads<8>>(1 << 20)}) {
+        const ValidationReport parts = mesh.validate({.max_messages_per_check = cap, .run = run});
+        CHECK(parts.counts() == one.counts());
+        CHECK(parts.to_string() == one.to_string());
+      }
+    }
+  }
+
   TEST_CASE("grow_array on 2 and 8 threads and on 3 reversed parts: old elements kept, new ones filled") {
-    const PartRunner reversed{3, [](std::size_t n, const std::function<void(std::size_t)>& f) {
-                                for (std::size_t p = n; p-- > 0;) f(p);
-                              }};
+    const PartRunner reversed = reversed_parts(3);
     for (const PartRunner& run : {PartRunner{}, part_runner<SpeculativeThreads<2>>(1 << 20), reversed,
                                   part_runner<SpeculativeThreads<8>>(1 << 20)}) {
       MeshArray<std::uint32_t> a;
@@ -398,9 +481,7 @@ TEST_SUITE("parallel") {
     require_valid(one, volume);
     // Parts run in reverse order on this thread: no part may rely on an
     // earlier one having run.
-    const PartRunner reversed{3, [](std::size_t n, const std::function<void(std::size_t)>& f) {
-                                for (std::size_t p = n; p-- > 0;) f(p);
-                              }};
+    const PartRunner reversed = reversed_parts(3);
     for (const PartRunner& run : {part_runner<SpeculativeThreads<2>>(one.tet_capacity()), reversed,
                                   part_runner<SpeculativeThreads<8>>(one.tet_capacity())}) {
       Mesh other = coarsened();

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <metrica/mesh.hpp>
+#include <metrica/part_runner.hpp>
 
 #include <cstddef>
 #include <map>
@@ -18,6 +19,9 @@ struct ValidateOptions {
   double volume_tolerance = 1e-10;
   // Messages kept per check; the counts stay exact beyond it.
   std::size_t max_messages_per_check = 20;
+  // The per-tet checks run on its parts; the report is the same for any
+  // number of parts.
+  PartRunner run;
 };
 
 class ValidationReport {
@@ -28,6 +32,9 @@ class ValidationReport {
   };
 
   void add(const std::string& check, std::string message, std::size_t max_messages);
+  // Appends `later`'s problems and counts, as if they were added after
+  // this report's.
+  void append(const ValidationReport& later, std::size_t max_messages);
   bool ok() const { return counts_.empty(); }
   explicit operator bool() const { return ok(); }
   // Number of failures of one check (all of them, kept or not).

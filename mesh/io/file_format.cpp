@@ -43,10 +43,12 @@ MeshData read_mesh_file(const std::string& path) {
   return read_meshb(path);
 }
 
-void write_mesh_file(const std::string& path, const MeshData& data, int version) {
+void write_mesh_file(const std::string& path, const MeshData& data, int version, const PartRunner& run) {
   switch (format_of(path)) {
     case FileFormat::mesh:
-    case FileFormat::meshb: write_meshb(path, data, version); return;
+    case FileFormat::meshb:
+      write_meshb(path, data, version, run);
+      return;
     case FileFormat::vtu: write_vtu(path, data); return;
     case FileFormat::su2: write_su2(path, data); return;
     default:

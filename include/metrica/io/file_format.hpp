@@ -3,6 +3,7 @@
 #pragma once
 
 #include <metrica/io/mesh_data.hpp>
+#include <metrica/part_runner.hpp>
 
 #include <string>
 
@@ -16,7 +17,8 @@ const char* to_string(FileFormat f);
 // .mesh or .meshb; IoError for other formats.
 MeshData read_mesh_file(const std::string& path);
 
-// .mesh, .meshb (libMeshb `version`, 0 = keep data.version), .vtu, .su2.
-void write_mesh_file(const std::string& path, const MeshData& data, int version = 0);
+// .mesh, .meshb (libMeshb `version`, 0 = keep data.version), .vtu, .su2;
+// a .mesh's rows formatted on run's parts.
+void write_mesh_file(const std::string& path, const MeshData& data, int version = 0, const PartRunner& run = {});
 
 }  // namespace metrica::io

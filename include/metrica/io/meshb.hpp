@@ -9,6 +9,7 @@
 #pragma once
 
 #include <metrica/io/mesh_data.hpp>
+#include <metrica/part_runner.hpp>
 
 #include <string>
 #include <string_view>
@@ -28,13 +29,14 @@ SolData parse_sol(std::string_view bytes, Encoding encoding, const std::string& 
 
 // Writes through a temporary file renamed on success. `version` 0 keeps
 // data.version; a binary version-2 file that would pass 2 GB is written as
-// version 3 (64-bit offsets), which every libMeshb reader accepts.
-void write_meshb(const std::string& path, const MeshData& data, int version = 0);
-void write_sol(const std::string& path, const SolData& data, int version = 0);
+// version 3 (64-bit offsets), which every libMeshb reader accepts. ASCII
+// rows are formatted on run's parts (the same bytes for any number).
+void write_meshb(const std::string& path, const MeshData& data, int version = 0, const PartRunner& run = {});
+void write_sol(const std::string& path, const SolData& data, int version = 0, const PartRunner& run = {});
 
 // Serialises to memory (the writers' core, and handy in tests).
-std::string format_mesh(const MeshData& data, Encoding encoding, int version = 0);
-std::string format_sol(const SolData& data, Encoding encoding, int version = 0);
+std::string format_mesh(const MeshData& data, Encoding encoding, int version = 0, const PartRunner& run = {});
+std::string format_sol(const SolData& data, Encoding encoding, int version = 0, const PartRunner& run = {});
 
 // The encoding a path's extension asks for (`ascii_ext` or `binary_ext`,
 // e.g. ".mesh" / ".meshb"); IoError for any other extension.
