@@ -127,6 +127,12 @@ TEST_SUITE("parallel") {
     a.release();
     CHECK(b.acquire({5, 6, 4}));
     CHECK(owners.data()[4].load() == 2);
+    // The only thread of a pass takes anything and writes no word.
+    Speculative::Locks alone(owners.data(), 1, true);
+    CHECK(alone.acquire({4, 7}));
+    CHECK(alone.held() == 0);
+    CHECK(owners.data()[4].load() == 2);
+    CHECK(owners.data()[7].load() == 0);
   }
 
   TEST_CASE("every item of a work list runs to the end exactly once, conflicts replayed in later rounds") {

@@ -306,30 +306,34 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     // The ball's quality now: the cache, or the terms (a cube root, no tet
     // metric; not stored, since a move, the usual outcome of smoothing
     // every vertex, makes them stale at once).
-    double q_old = std::numeric_limits<double>::infinity();
+    // Cube roots only where a mean ratio is compared with the cache's
+    // (min and cbrt commute: one root for the uncached tets, one for the
+    // best trial).
+    double q_old = std::numeric_limits<double>::infinity(), q3_uncached = q_old;
     for (std::size_t i = 0; i < n; ++i) {
       const double q = mesh.cached_quality(s.ball[i]);
       if (q != Mesh::kUnknownQuality) {
         q_old = std::min(q_old, q);
       } else {
         const auto [num, den] = s.terms[i].quality3_parts(s.metrics[i], Eigen::Vector3d::Zero());
-        q_old = std::min(q_old, std::cbrt(num / den));
+        q3_uncached = std::min(q3_uncached, num / den);
       }
     }
+    if (q3_uncached < std::numeric_limits<double>::infinity()) q_old = std::min(q_old, std::cbrt(q3_uncached));
     const int bad_old = out_of_range(x);
-    double q_best = q_old, q3_best = q_old * q_old * q_old;
+    double q3_best = q_old * q_old * q_old;
     std::size_t best = s.trials.size();
+    auto improves = [&] { return best != s.trials.size() && improves_min_quality(q_old, std::cbrt(q3_best)); };
     for (std::size_t i = 0; i < s.trials.size(); ++i) {
-      if (i == secondary && improves_min_quality(q_old, q_best)) break;
+      if (i == secondary && improves()) break;
       const Point& p = s.trials[i];
       const double q3 = min_quality3_at(p, q3_best);
       if (q3 > q3_best && out_of_range(p) <= bad_old && all_positive_at(p)) {
         q3_best = q3;
-        q_best = std::cbrt(q3);
         best = i;
       }
     }
-    if (best == s.trials.size() || !improves_min_quality(q_old, q_best)) return Refusal::rejected;
+    if (!improves()) return Refusal::rejected;
     return SmoothPlan{s.trials[best], s.trial_params.empty() ? GeoParam{} : s.trial_params[best]};
   } else {
     // Any other criterion: its smallest score over the ball at each trial,
