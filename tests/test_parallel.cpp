@@ -404,21 +404,34 @@ TEST_SUITE("parallel") {
       std::vector<Edge> joined;
       for (const auto& part : got) joined.insert(joined.end(), part.begin(), part.end());
       CHECK(joined == (sorted ? by_key : first_seen));
-      // Range by range of lower ends (the whole mesh's lists are made so):
-      // the ranges' buckets one after the other are the same list.
-      std::vector<Edge> ranged;
-      for (const LowerRange range : {LowerRange{0, 700, capacity}, LowerRange{700, 701, capacity},
-                                     LowerRange{701, 1500, capacity}, LowerRange{1500, capacity, capacity}}) {
-        std::vector<std::vector<Edge>> in_range(parts);
-        for_each_edge_bucket<P, UpperTet>(parts, n, tet_of, vertices_of, range, sorted,
-                                          [&](std::size_t p, VertexId a, std::span<const UpperTet> kept) {
-                                            REQUIRE(a >= range.lo);
-                                            REQUIRE(a < range.hi);
-                                            for (const UpperTet& x : kept) in_range[p].push_back({a, x.upper, x.tet});
-                                          });
-        for (const auto& part : in_range) ranged.insert(ranged.end(), part.begin(), part.end());
+      // Range by range of lower ends (the whole mesh's lists are made so),
+      // each range counting its own lower ends or all counted at once: the
+      // ranges' buckets one after the other are the same list.
+      for (const bool counted_once : {false, true}) {
+        CAPTURE(counted_once);
+        MeshArray<std::uint32_t> counts;
+        if (counted_once)
+          count_keys(
+              n, capacity, parts,
+              [&](std::size_t i, auto&& add) {
+                if (const TetId t = tet_of(i); t != kNoId) add_lower_ends(vertices_of(t), add);
+              },
+              [](std::size_t k, auto&& f) { P::parallel_for(k, f); }, counts);
+        std::vector<Edge> ranged;
+        for (LowerRange range : {LowerRange{0, 700, capacity}, LowerRange{700, 701, capacity},
+                                 LowerRange{701, 1500, capacity}, LowerRange{1500, capacity, capacity}}) {
+          if (counted_once) range.counts = &counts;
+          std::vector<std::vector<Edge>> in_range(parts);
+          for_each_edge_bucket<P, UpperTet>(parts, n, tet_of, vertices_of, range, sorted,
+                                            [&](std::size_t p, VertexId a, std::span<const UpperTet> kept) {
+                                              REQUIRE(a >= range.lo);
+                                              REQUIRE(a < range.hi);
+                                              for (const UpperTet& x : kept) in_range[p].push_back({a, x.upper, x.tet});
+                                            });
+          for (const auto& part : in_range) ranged.insert(ranged.end(), part.begin(), part.end());
+        }
+        CHECK(ranged == joined);
       }
-      CHECK(ranged == joined);
     };
     for (bool sorted : {false, true})
       for (std::size_t parts : {1u, 2u, 3u, 8u}) {

@@ -63,7 +63,17 @@ struct NoEdgeCounts {
 struct LowerRange {
   std::size_t lo = 0, hi = 0;
   std::size_t end = 0;  // every vertex id is below it (the higher ends too)
+  // When set: count_keys of the same items over all `end` lower ends,
+  // made once for every range (each range then scans the items once, to
+  // scatter, not twice); this range's counts become its cursors.
+  MeshArray<std::uint32_t>* counts = nullptr;
 };
+
+// The lower end of each of tet vertices v's edges, as add(a).
+template <class Add>
+void add_lower_ends(const TetVertices& v, Add&& add) {
+  for (const auto& e : kEdgeVertex) add(std::min(v[e[0]], v[e[1]]));
+}
 
 template <class C, class Entry, class TetOf, class VerticesOf, class Visit, class Sizes = NoEdgeCounts>
 void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, VerticesOf&& vertices_of,
@@ -72,25 +82,29 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
   parts = std::max<std::size_t>(parts, 1);
   const std::size_t lo = range.lo, cap = range.hi > range.lo ? range.hi - range.lo : 0;
   auto in_range = [lo, cap](VertexId a) { return static_cast<std::size_t>(a) - lo < cap; };  // wraps below lo
-  // Per part: counters, then cursors (bucket_cursors).
-  MeshArray<std::uint32_t> per_part, start;
+  // Per part: counters, then cursors (bucket_cursors); part p's cursor of
+  // lower end a at cursor[p * stride + a - offset].
+  MeshArray<std::uint32_t> own, start;
+  MeshArray<std::uint32_t>& per_part = range.counts != nullptr ? *range.counts : own;
+  const std::size_t stride = range.counts != nullptr ? range.end : cap, offset = range.counts != nullptr ? 0 : lo;
   auto items_of = [&](std::size_t p) { return part_slice(n, parts, p); };
-  const std::size_t total = bucket_cursors(
-      n, cap, parts,
-      [&](std::size_t i, auto&& add) {
-        const TetId t = tet_of(i);
-        if (t == kNoId) return;
-        const TetVertices& v = vertices_of(t);
-        for (const auto& e : kEdgeVertex) {
-          const VertexId a = std::min(v[e[0]], v[e[1]]);
-          if (in_range(a)) add(a - lo);
-        }
-      },
-      [](std::size_t k, auto&& f) { C::parallel_for(k, f); }, per_part, start);
+  auto run = [](std::size_t k, auto&& f) { C::parallel_for(k, f); };
+  const std::size_t total = range.counts != nullptr
+                                ? cursors_of_counts(range.end, lo, lo + cap, parts, run, per_part, start)
+                                : bucket_cursors(
+                                      n, cap, parts,
+                                      [&](std::size_t i, auto&& add) {
+                                        const TetId t = tet_of(i);
+                                        if (t == kNoId) return;
+                                        add_lower_ends(vertices_of(t), [&](VertexId a) {
+                                          if (in_range(a)) add(a - lo);
+                                        });
+                                      },
+                                      run, own, start);
   MeshArray<Entry> entries;
   entries.resize(total);
   C::parallel_for(parts, [&](std::size_t p) {
-    std::uint32_t* cursor = per_part.data() + p * cap;
+    std::uint32_t* cursor = per_part.data() + p * stride;
     const auto [first, last] = items_of(p);
     for (std::size_t i = first; i < last; ++i) {
       const TetId t = tet_of(i);
@@ -100,7 +114,7 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
         const VertexId a = v[e[0]], b = v[e[1]];
         const VertexId lower = std::min(a, b);
         if (!in_range(lower)) continue;
-        Entry& x = entries[cursor[lower - lo]++];
+        Entry& x = entries[cursor[lower - offset]++];
         if constexpr (std::is_same_v<Entry, UpperTet>)
           x = {std::max(a, b), t};
         else
@@ -108,7 +122,7 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
       }
     }
   });
-  per_part = {};
+  own = {};
   // Slices of about total / parts entries, cut at bucket starts.
   std::vector<std::size_t> cut(parts + 1, cap);
   cut[0] = 0;
@@ -194,15 +208,29 @@ struct NoRangeEnd {
 // unsorted), in `parts` parts (sweep_parts<C> of the tet capacity), range
 // by range of lower ends (lower_ranges): for each range, sizes(counts)
 // with its parts' numbers of edges, visit(part, a, kept) for its lower ends
-// a, then range_end(). Lower ends ascend across ranges and parts.
+// a, then range_end(). Lower ends ascend across ranges and parts. With
+// several ranges the lower ends are counted for all in one scan (the
+// per-range counting scans were a third of a conformity count at 4.3M
+// tets, 4 ranges: 5 scans of the tets instead of 8).
 template <class C, class Visit, class Sizes = NoEdgeCounts, class RangeEnd = NoRangeEnd>
 void for_each_mesh_edge_bucket(const Mesh& mesh, std::size_t parts, Visit&& visit, Sizes&& sizes = {},
                                RangeEnd&& range_end = {}) {
-  for (const LowerRange& range : lower_ranges(mesh.num_tets(), mesh.vertex_capacity())) {
-    for_each_edge_bucket<C, VertexId>(
-        parts, mesh.tet_capacity(),
-        [&](std::size_t i) { return mesh.tet_alive(static_cast<TetId>(i)) ? static_cast<TetId>(i) : kNoId; },
-        [&](TetId t) -> const TetVertices& { return mesh.tet(t); }, range, false, visit, sizes);
+  auto tet_of = [&](std::size_t i) { return mesh.tet_alive(static_cast<TetId>(i)) ? static_cast<TetId>(i) : kNoId; };
+  auto vertices_of = [&](TetId t) -> const TetVertices& { return mesh.tet(t); };
+  std::vector<LowerRange> ranges = lower_ranges(mesh.num_tets(), mesh.vertex_capacity());
+  // Several ranges: the lower ends counted in one scan of the tets for all.
+  MeshArray<std::uint32_t> counts;
+  if (ranges.size() > 1) {
+    count_keys(
+        mesh.tet_capacity(), mesh.vertex_capacity(), parts,
+        [&](std::size_t i, auto&& add) {
+          if (const TetId t = tet_of(i); t != kNoId) add_lower_ends(vertices_of(t), add);
+        },
+        [](std::size_t k, auto&& f) { C::parallel_for(k, f); }, counts);
+    for (LowerRange& r : ranges) r.counts = &counts;
+  }
+  for (const LowerRange& range : ranges) {
+    for_each_edge_bucket<C, VertexId>(parts, mesh.tet_capacity(), tet_of, vertices_of, range, false, visit, sizes);
     range_end();
   }
 }
