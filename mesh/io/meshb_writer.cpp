@@ -139,10 +139,10 @@ class TextRow {
   int version_;
 };
 
-// Formatting numbers is most of an ASCII write (the file system takes
-// the bytes at several hundred MB/s): the rows of a long keyword are
-// formatted in chunks on run's parts, a batch of chunks at a time, and
-// handed to the file in order, so the bytes are those of one thread.
+// Formatting the numbers is most of an ASCII write: the rows of a long
+// keyword are formatted in chunks on run's parts, a batch of chunks at a
+// time, and handed to the file in order, so the bytes are those of one
+// thread.
 class TextWriter {
  public:
   TextWriter(int version, AtomicFile* file = nullptr, const PartRunner& run = {})
