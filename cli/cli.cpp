@@ -153,12 +153,7 @@ LoadedMesh load_mesh(const std::string& path, Valid valid) {
   return out;
 }
 
-PartRunner sweep_runner(bool serial) {
-  if (serial) return {};
-  const auto threads = static_cast<std::size_t>(std::max(1, thread_count()));
-  return PartRunner{threads,
-                    [](std::size_t k, const std::function<void(std::size_t)>& f) { Speculative::parallel_for(k, f); }};
-}
+PartRunner sweep_runner(std::size_t n, bool serial) { return serial ? PartRunner{} : part_runner<Speculative>(n); }
 
 std::size_t default_max_tets() {
   const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);

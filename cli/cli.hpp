@@ -163,10 +163,11 @@ std::string model_distance_text(const Mesh& mesh, const CadModel& model);
 // an output that check would refuse is never written.
 void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what);
 
-// What runs a command's sweeps outside the operators (validation, the
-// formatting of ASCII outputs): the --threads threads, or the calling
-// thread alone when `serial` (--concurrency serial).
-PartRunner sweep_runner(bool serial = false);
+// What runs a command's sweeps over `n` items outside the operators
+// (validation, the formatting of ASCII outputs): the default policy's
+// part_runner (the --threads threads, one below its sweep size), or the
+// calling thread alone when `serial` (--concurrency serial).
+PartRunner sweep_runner(std::size_t n, bool serial = false);
 
 // Human-readable sizes and numbers.
 std::string bytes_text(double bytes);

@@ -226,7 +226,7 @@ int run_adapt(const std::vector<std::string>& args) {
   // boundary, collapses may flatten it within their normal-deviation bound
   // (2 degrees), which changes the volume by a few 1e-6 (cube-cylinder).
   // On a model the volume moves from the input's facets to the model's.
-  const PartRunner sweeps = sweep_runner(serial);
+  const PartRunner sweeps = sweep_runner(mesh.tet_capacity(), serial);
   ValidateOptions vo;
   vo.run = sweeps;
   if (!model) {

@@ -45,7 +45,7 @@ int run_convert(const std::vector<std::string>& args) {
   if (in_sol) {
     const auto sol = io::read_sol(input);
     if (o.dry_run()) return kOk;
-    io::write_sol(output, sol, version, sweep_runner());
+    io::write_sol(output, sol, version, sweep_runner(sol.count));
     if (log::level() >= log::Level::normal)
       fmt::print("wrote {}: {} vertices x {} fields ({:.2f} s)\n", output, count_text(sol.count), sol.types.size(),
                  clock.seconds());
@@ -59,14 +59,14 @@ int run_convert(const std::vector<std::string>& args) {
     BuildOptions bo;
     bo.source = input;
     ValidateOptions vo;
-    vo.run = sweep_runner();
+    vo.run = sweep_runner(data.tets.size());
     const auto report = build_mesh(data, bo).validate(vo);
     if (!report.ok()) {
       fmt::print(stderr, "{}: {}\n", input, report.to_string());
       throw InputError(fmt::format("{}: invalid mesh, not converted (use --no-check to convert anyway)", input));
     }
   }
-  io::write_mesh_file(output, data, version, sweep_runner());
+  io::write_mesh_file(output, data, version, sweep_runner(data.tets.size()));
   if (log::level() >= log::Level::normal)
     fmt::print("wrote {}: {} vertices, {} tets, {} triangles ({:.2f} s)\n", output, count_text(data.vertices.size()),
                count_text(data.tets.size()), count_text(data.triangles.size()), clock.seconds());

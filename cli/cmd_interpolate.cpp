@@ -49,7 +49,7 @@ int run_interpolate(const std::vector<std::string>& args) {
   sol.types = field.types;
   sol.values.assign(out.begin(),
                     out.begin() + static_cast<std::ptrdiff_t>(sol.count * static_cast<std::size_t>(width)));
-  io::write_sol(output, sol, 0, sweep_runner());
+  io::write_sol(output, sol, 0, sweep_runner(sol.count));
   if (log::level() >= log::Level::normal)
     fmt::print("wrote {}: {} vertices x {} values ({} outside the source mesh, clamped) in {:.2f} s\n", output,
                count_text(sol.count), width, count_text(outside), clock.seconds());

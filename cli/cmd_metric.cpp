@@ -165,7 +165,7 @@ int run_metric(const std::vector<std::string>& args) {
   check_predicted_size(o, complexity(mesh, field), "the metric");
   auto sol = metric_field_to_sol(field);
   sol.version = loaded.data.version;
-  io::write_sol(output, sol, o.format_version(), sweep_runner());
+  io::write_sol(output, sol, o.format_version(), sweep_runner(sol.count));
   if (log::level() >= log::Level::normal)
     fmt::print("wrote {}: {} at {} vertices, complexity {:.6g} ({:.2f} s)\n", output, what, count_text(n),
                complexity(mesh, field), clock.seconds());

@@ -74,7 +74,7 @@ class Checker {
   // with its own report; the reports joined in tet order.
   template <class Check>
   void per_live_tet(Check&& check) {
-    const std::size_t parts = m_.tet_capacity() < 65536 ? 1 : std::max<std::size_t>(opt_.run.parts, 1);
+    const std::size_t parts = std::max<std::size_t>(opt_.run.parts, 1);
     std::vector<ValidationReport> reports(parts);
     opt_.run(parts, [&](std::size_t p) {
       const auto [first, last] = part_slice(m_.tet_capacity(), parts, p);

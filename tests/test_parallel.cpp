@@ -286,7 +286,6 @@ TEST_SUITE("parallel") {
 
   TEST_CASE("validate on 2 and 8 threads and on 3 reversed parts: the report of one thread") {
     auto mesh = make_box({.nx = 24, .ny = 24, .nz = 24});
-    REQUIRE(mesh.tet_capacity() >= 65536);  // the size from which the checks run in parts
     // Vertices pushed through their balls (orientation) and neighbour
     // slots that do not point back (adjacency), all over the arrays.
     for (VertexId v = 0; v < mesh.vertex_capacity(); v += 997)

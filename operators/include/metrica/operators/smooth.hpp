@@ -303,12 +303,11 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
       }
       return num_min / den_min;
     };
-    // The ball's quality now: the cache, or the terms (a cube root, no tet
-    // metric; not stored, since a move, the usual outcome of smoothing
-    // every vertex, makes them stale at once).
-    // Cube roots only where a mean ratio is compared with the cache's
-    // (min and cbrt commute: one root for the uncached tets, one for the
-    // best trial).
+    // The ball's quality now: the cache, or the terms (no tet metric; not
+    // stored, since a move, the usual outcome of smoothing every vertex,
+    // makes them stale at once). Cube roots only where a mean ratio meets
+    // the cache's: min and cbrt commute, so one for the uncached tets and
+    // one for the best trial.
     double q_old = std::numeric_limits<double>::infinity(), q3_uncached = q_old;
     for (std::size_t i = 0; i < n; ++i) {
       const double q = mesh.cached_quality(s.ball[i]);
@@ -319,7 +318,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
         q3_uncached = std::min(q3_uncached, num / den);
       }
     }
-    if (q3_uncached < std::numeric_limits<double>::infinity()) q_old = std::min(q_old, std::cbrt(q3_uncached));
+    q_old = std::min(q_old, std::cbrt(q3_uncached));
     const int bad_old = out_of_range(x);
     double q3_best = q_old * q_old * q_old;
     std::size_t best = s.trials.size();
