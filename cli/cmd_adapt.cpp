@@ -32,15 +32,20 @@ std::string stats_text(const char* name, const OperatorStats& s) {
 }
 
 // Attempts, applied, conflicts (locks released, item replayed later),
-// replays and the items left to one thread, per operator.
+// replays, the items left to one thread and, on several threads, the
+// share of the parallel loops' thread time spent working (the rest is
+// waiting at a loop's end for the last thread), per operator.
 void print_parallel_stats(const AdaptReport& r) {
-  for (const auto& [name, s] : r.ops)
+  for (const auto& [name, s] : r.ops) {
+    const std::string busy =
+        s.thread_seconds > 0.0 ? fmt::format(" busy {:.1f}%", 100.0 * s.busy_seconds / s.thread_seconds) : "";
     fmt::print(
-        "  {:<8} tried {:>10} applied {:>10} conflicts {:>8} ({:.2f}%) replays {:>8} one-thread tail {:>6} | {:.2f} "
-        "s\n",
+        "  {:<8} tried {:>10} applied {:>10} conflicts {:>8} ({:.2f}%) replays {:>8} one-thread tail {:>6}{} | "
+        "{:.2f} s\n",
         name, count_text(s.tried), count_text(s.applied), count_text(s.conflicts),
         s.tried > 0 ? 100.0 * double(s.conflicts) / double(s.tried + s.conflicts) : 0.0, count_text(s.replays),
-        count_text(s.serial_tail), s.seconds);
+        count_text(s.serial_tail), busy, s.seconds);
+  }
 }
 
 void print_cycle(const CycleReport& c) {
