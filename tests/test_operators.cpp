@@ -8,15 +8,16 @@
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_edges.hpp>
 #include <metrica/metrics/metric_field.hpp>
-#include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/reconnect.hpp>
 #include <metrica/operators/refine_edges.hpp>
 #include <metrica/operators/smooth.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/validate.hpp>
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <limits>
 #include <map>
 #include <random>
@@ -460,6 +461,61 @@ TEST_SUITE("unit") {
     CHECK(open > 0);
     vertex_ball(mesh, 0, ball);
     CHECK_FALSE(edge_shell(mesh, 0, 26, ball, shell));  // opposite corners: no edge
+  }
+
+  TEST_CASE("a shell's vertex list holds each vertex of its tets once, closed or open") {
+    const Mesh mesh = jittered_box(3, 0.2, 5);
+    TetList ball;
+    Shell shell;
+    VertexList fast, reference;
+    std::size_t open = 0;
+    for (const auto& [a, b] : unique_edges(mesh)) {
+      vertex_ball(mesh, a, ball);
+      REQUIRE(edge_shell(mesh, a, b, ball, shell));
+      fast.clear();
+      append_shell_vertices(mesh, a, b, shell, fast);
+      reference.clear();
+      append_vertices(mesh, shell.tets, reference);
+      std::sort(fast.begin(), fast.end());
+      std::sort(reference.begin(), reference.end());
+      CHECK(std::adjacent_find(fast.begin(), fast.end()) == fast.end());
+      CHECK(fast == reference);
+      open += shell.closed ? 0 : 1;
+    }
+    CHECK(open > 0);
+  }
+
+  TEST_CASE("a cavity plan glues every face by its triple: each new face to an outer face or a new one") {
+    // Every closed shell's 3-2 or n -> 2n-4 replacement by a fan, planned:
+    // the matches are the groups a sort of the triples makes, and a plan
+    // with one face twice too many is refused.
+    const Mesh mesh = jittered_box(3, 0.1, 9);
+    FlipScratch s;
+    int plans = 0;
+    for_each_closed_shell(mesh, 3, 7, s, [&](VertexId a, VertexId b) {
+      const int sign = edge_ring(mesh, a, b, s.shell, s.ring);
+      fan_tets(s.ring, 0, a, b, sign, s.candidate);
+      if (!plan_cavity(mesh, view(s.shell.tets), view(s.candidate), s.plan)) return;
+      ++plans;
+      std::map<TriangleVertices, std::vector<int>> groups;
+      for (const auto& e : s.plan.entries) groups[e.key].push_back(e.index);
+      REQUIRE(s.plan.matches.size() == groups.size());
+      for (const auto& m : s.plan.matches) {
+        const auto& x = s.plan.entries[static_cast<std::size_t>(m.first)];
+        REQUIRE(m.second >= 0);  // a closed shell's fan has no free face
+        const auto& y = s.plan.entries[static_cast<std::size_t>(m.second)];
+        CHECK(x.key == y.key);
+        CHECK(x.index < y.index);
+        std::vector<int> group = groups[x.key];
+        std::sort(group.begin(), group.end());
+        CHECK(group == std::vector<int>{x.index, y.index});
+      }
+      // The same new tet twice: its faces appear three times.
+      NewTets doubled = s.candidate;
+      doubled.push_back(s.candidate[0]);
+      CHECK_FALSE(plan_cavity(mesh, view(s.shell.tets), view(doubled), s.plan));
+    });
+    CHECK(plans > 10);
   }
 
   TEST_CASE("tet_with_edge finds a tet of every edge from either end, and none for two vertices without an edge") {

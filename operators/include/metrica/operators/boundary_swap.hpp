@@ -45,7 +45,7 @@ struct BoundarySwap {
     const auto [a, b] = edge_from_key(e.key);
     vertex_ball(mesh, a, s.ball);
     if (!edge_shell(mesh, a, b, s.ball, s.shell)) return Found::gone;
-    append_vertices(mesh, s.shell.tets, hold);
+    append_shell_vertices(mesh, a, b, s.shell, hold);
     return Found::cavity;
   }
   Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {

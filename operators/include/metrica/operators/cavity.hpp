@@ -18,6 +18,7 @@
 #include <boost/container/small_vector.hpp>
 
 #include <algorithm>
+#include <cstdint>
 
 namespace metrica {
 
@@ -47,10 +48,53 @@ struct CavityPlan {
     TriangleVertices key;
     int index;  // >= 0: outer face; < 0: new face -(4 * tet + face) - 1
   };
+  // The faces with one triple: entries[first] alone (second < 0), or
+  // entries[first] and entries[second] glued, first's index the smaller
+  // (so a new face comes before an outer one).
+  struct Match {
+    int first, second;
+  };
   boost::container::small_vector<OuterFace, 64> outer;
   boost::container::small_vector<Entry, 160> entries;
+  boost::container::small_vector<Match, 96> matches;
   SurfaceId new_boundary_surface = 0;
 };
+
+namespace detail {
+// Groups plan.entries by triple into plan.matches, through an
+// open-addressing table (linear in the faces; sorting the triples costs
+// 3% of an adaptation). False when a triple appears more than twice.
+inline bool match_faces(CavityPlan& plan) {
+  const std::size_t n = plan.entries.size();
+  std::size_t slots = 64;
+  while (slots < 2 * n) slots *= 2;
+  boost::container::small_vector<std::int32_t, 512> table(slots, -1);  // a match, or -1
+  const std::size_t mask = slots - 1;
+  plan.matches.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const TriangleVertices& k = plan.entries[i].key;
+    std::size_t h = (k[0] * 0x9E3779B1u) ^ (k[1] * 0x85EBCA77u) ^ (k[2] * 0xC2B2AE3Du);
+    h = (h ^ (h >> 15)) & mask;
+    for (;; h = (h + 1) & mask) {
+      const std::int32_t m = table[h];
+      if (m < 0) {
+        table[h] = static_cast<std::int32_t>(plan.matches.size());
+        plan.matches.push_back({static_cast<int>(i), -1});
+        break;
+      }
+      CavityPlan::Match& match = plan.matches[static_cast<std::size_t>(m)];
+      if (!same_triangle(plan.entries[static_cast<std::size_t>(match.first)].key, k)) continue;
+      if (match.second >= 0) return false;
+      match.second = static_cast<int>(i);
+      if (plan.entries[static_cast<std::size_t>(match.second)].index <
+          plan.entries[static_cast<std::size_t>(match.first)].index)
+        std::swap(match.first, match.second);
+      break;
+    }
+  }
+  return true;
+}
+}  // namespace detail
 
 // Plans replacing `old_tets` by `new_tets`, reading the old faces with
 // vertex `from` renamed `to` (an edge collapse; kNoId for none). A new face
@@ -86,40 +130,26 @@ inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::
   for (std::size_t k = 0; k < new_tets.size(); ++k)
     for (int f = 0; f < 4; ++f)
       plan.entries.push_back({sorted(face_vertices(new_tets[k], f)), -static_cast<int>(4 * k + f) - 1});
-  // Triples compared element by element (std::array's operators go
-  // through memcmp, a call per comparison: 1.4% of an adaptation).
-  std::sort(plan.entries.begin(), plan.entries.end(), [](const CavityPlan::Entry& x, const CavityPlan::Entry& y) {
-    if (x.key[0] != y.key[0]) return x.key[0] < y.key[0];
-    if (x.key[1] != y.key[1]) return x.key[1] < y.key[1];
-    if (x.key[2] != y.key[2]) return x.key[2] < y.key[2];
-    return x.index < y.index;
-  });
+  if (!detail::match_faces(plan)) return false;
   // Every triple must appear exactly twice, or once as a new face when the
   // replacement is allowed to make boundary faces.
-  for (std::size_t i = 0; i < plan.entries.size();) {
-    std::size_t j = i + 1;
-    while (j < plan.entries.size() && same_triangle(plan.entries[j].key, plan.entries[i].key)) ++j;
-    const std::size_t count = j - i;
-    if (count == 1) {
+  for (const CavityPlan::Match& m : plan.matches) {
+    const auto& x = plan.entries[static_cast<std::size_t>(m.first)];
+    if (m.second < 0) {
       // Allowed only when the replacement remakes part of one surface
       // (the 2-2 flip): new boundary faces appear, old ones of that
       // surface vanish; the operator checks that they cover the same area.
-      const auto& x = plan.entries[i];
       if (new_boundary_surface <= 0) return false;
       if (x.index >= 0 && (plan.outer[x.index].outside.valid() || plan.outer[x.index].surface != new_boundary_surface))
         return false;
-    } else if (count == 2) {
-      const auto& x = plan.entries[i];
-      const auto& y = plan.entries[i + 1];
+    } else {
+      const auto& y = plan.entries[static_cast<std::size_t>(m.second)];
       if (x.index >= 0 && y.index >= 0) {
         // Two outer faces meet (the cavity of a collapse pinched to a
         // face): at most one of them may be a boundary face.
         if (!plan.outer[x.index].outside.valid() && !plan.outer[y.index].outside.valid()) return false;
       }
-    } else {
-      return false;
     }
-    i = j;
   }
   return true;
 }
@@ -141,48 +171,56 @@ void apply_cavity(Mesh& mesh, std::span<const TetId> old_tets, std::span<const T
     const int code = -index - 1;
     return FaceRef(created[static_cast<std::size_t>(code / 4)], code % 4);
   };
-  for (std::size_t i = 0; i < plan.entries.size();) {
-    std::size_t j = i + 1;
-    while (j < plan.entries.size() && same_triangle(plan.entries[j].key, plan.entries[i].key)) ++j;
-    const auto& x = plan.entries[i];
-    if (j - i == 1) {
-      if (x.index >= 0) {  // an old boundary face that the new ones replace
-        i = j;
-        continue;
-      }
+  // Two outer faces glued (a pinched collapse) re-point their vertices'
+  // hints at the tet kept; done last, in the order of their triples, so
+  // the hints do not depend on the table's order.
+  boost::container::small_vector<const CavityPlan::Match*, 8> glued;
+  for (const CavityPlan::Match& m : plan.matches) {
+    const auto& x = plan.entries[static_cast<std::size_t>(m.first)];
+    if (m.second < 0) {
+      if (x.index >= 0) continue;  // an old boundary face that the new ones replace
       const FaceRef f = new_face(x.index);
       mesh.set_neighbour(f.tet(), f.face(), FaceRef::none());
       mesh.set_surface_id(f.tet(), f.face(), plan.new_boundary_surface);
-    } else {
-      const auto& y = plan.entries[i + 1];
-      // Sorted by index: a new face (negative) comes first.
-      if (x.index < 0 && y.index < 0) {
-        mesh.link(new_face(x.index), new_face(y.index));
-      } else if (x.index < 0) {
-        const FaceRef f = new_face(x.index);
-        const auto& o = plan.outer[y.index];
-        if (o.outside.valid()) {
-          mesh.link(f, o.outside);
-        } else {
-          mesh.set_neighbour(f.tet(), f.face(), FaceRef::none());
-          mesh.set_surface_id(f.tet(), f.face(), o.surface);
-        }
-      } else {
-        const auto& o1 = plan.outer[x.index];
-        const auto& o2 = plan.outer[y.index];
-        if (o1.outside.valid() && o2.outside.valid()) {
-          mesh.link(o1.outside, o2.outside);
-        } else {
-          const auto& in = o1.outside.valid() ? o1 : o2;
-          const auto& bd = o1.outside.valid() ? o2 : o1;
-          mesh.set_neighbour(in.outside.tet(), in.outside.face(), FaceRef::none());
-          mesh.set_surface_id(in.outside.tet(), in.outside.face(), bd.surface);
-        }
-        const FaceRef keep = o1.outside.valid() ? o1.outside : o2.outside;
-        for (VertexId v : x.key) mesh.set_vert2tet(v, keep.tet());
-      }
+      continue;
     }
-    i = j;
+    const auto& y = plan.entries[static_cast<std::size_t>(m.second)];
+    // The smaller index first: a new face (negative) comes first.
+    if (x.index < 0 && y.index < 0) {
+      mesh.link(new_face(x.index), new_face(y.index));
+    } else if (x.index < 0) {
+      const FaceRef f = new_face(x.index);
+      const auto& o = plan.outer[y.index];
+      if (o.outside.valid()) {
+        mesh.link(f, o.outside);
+      } else {
+        mesh.set_neighbour(f.tet(), f.face(), FaceRef::none());
+        mesh.set_surface_id(f.tet(), f.face(), o.surface);
+      }
+    } else {
+      const auto& o1 = plan.outer[x.index];
+      const auto& o2 = plan.outer[y.index];
+      if (o1.outside.valid() && o2.outside.valid()) {
+        mesh.link(o1.outside, o2.outside);
+      } else {
+        const auto& in = o1.outside.valid() ? o1 : o2;
+        const auto& bd = o1.outside.valid() ? o2 : o1;
+        mesh.set_neighbour(in.outside.tet(), in.outside.face(), FaceRef::none());
+        mesh.set_surface_id(in.outside.tet(), in.outside.face(), bd.surface);
+      }
+      glued.push_back(&m);
+    }
+  }
+  auto key_of = [&](const CavityPlan::Match* m) -> const TriangleVertices& {
+    return plan.entries[static_cast<std::size_t>(m->first)].key;
+  };
+  std::sort(glued.begin(), glued.end(),
+            [&](const CavityPlan::Match* a, const CavityPlan::Match* b) { return key_of(a) < key_of(b); });
+  for (const CavityPlan::Match* m : glued) {
+    const auto& o1 = plan.outer[plan.entries[static_cast<std::size_t>(m->first)].index];
+    const auto& o2 = plan.outer[plan.entries[static_cast<std::size_t>(m->second)].index];
+    const FaceRef keep = o1.outside.valid() ? o1.outside : o2.outside;
+    for (VertexId v : key_of(m)) mesh.set_vert2tet(v, keep.tet());
   }
 }
 

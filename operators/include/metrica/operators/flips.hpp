@@ -411,9 +411,7 @@ struct EdgeRemoval {
       if (start == kNoId) return Found::gone;
     }
     edge_shell_from(mesh, a, b, start, s.shell);
-    hold.push_back(a);
-    hold.push_back(b);
-    append_vertices(mesh, s.shell.tets, hold);
+    append_shell_vertices(mesh, a, b, s.shell, hold);
     return Found::cavity;
   }
   Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {

@@ -83,7 +83,7 @@ struct EdgeSplit {
     vertex_ball(mesh, c.a, x.ball);
     if (!edge_shell(mesh, c.a, c.b, x.ball, x.shell)) return Found::gone;
     x.cavity.clear();
-    append_vertices(mesh, x.shell.tets, x.cavity);
+    append_shell_vertices(mesh, c.a, c.b, x.shell, x.cavity);
     hold.insert(hold.end(), x.cavity.begin(), x.cavity.end());
     return Found::cavity;
   }

@@ -227,4 +227,24 @@ inline void edge_shell_from(const Mesh& mesh, VertexId a, VertexId b, TetId star
   }
 }
 
+// Appends a, b and the ring of ab's shell to `list`: each vertex of the
+// shell once, without the set append_vertices needs (tet k of a shell is
+// (a, b, v_k, v_{k+1}), so each tet after the first adds the ring vertex
+// it does not share with the tet before; a closed shell's last one is v_0).
+inline void append_shell_vertices(const Mesh& mesh, VertexId a, VertexId b, const Shell& shell, VertexList& list) {
+  list.push_back(a);
+  list.push_back(b);
+  const std::size_t n = shell.tets.size();
+  if (n == 0) return;
+  std::array<VertexId, 2> before = edge_opposite(mesh.tet(shell.tets[0]), a, b);
+  list.push_back(before[0]);
+  list.push_back(before[1]);
+  for (std::size_t k = 1; k < n; ++k) {
+    const std::array<VertexId, 2> o = edge_opposite(mesh.tet(shell.tets[k]), a, b);
+    const VertexId fresh = (o[0] == before[0] || o[0] == before[1]) ? o[1] : o[0];
+    if (k + 1 < n || !shell.closed) list.push_back(fresh);
+    before = o;
+  }
+}
+
 }  // namespace metrica
