@@ -35,10 +35,11 @@ std::string stats_text(const char* name, const OperatorStats& s) {
 // replays, the items left to one thread and, on several threads, the
 // share of the parallel loops' thread time spent working (the rest is
 // waiting at a loop's end for the last thread), per operator.
-void print_parallel_stats(const AdaptReport& r) {
+void print_parallel_stats(const AdaptReport& r, int threads) {
   for (const auto& [name, s] : r.ops) {
-    const std::string busy =
-        s.thread_seconds > 0.0 ? fmt::format(" busy {:.1f}%", 100.0 * s.busy_seconds / s.thread_seconds) : "";
+    const std::string busy = threads > 1 && s.thread_seconds > 0.0
+                                 ? fmt::format(" busy {:.1f}%", 100.0 * s.busy_seconds / s.thread_seconds)
+                                 : "";
     fmt::print(
         "  {:<8} tried {:>10} applied {:>10} conflicts {:>8} ({:.2f}%) replays {:>8} one-thread tail {:>6}{} | "
         "{:.2f} s\n",
@@ -225,7 +226,7 @@ int run_adapt(const std::vector<std::string>& args) {
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
                  count_text(report.ops.get("collapse").applied), count_text(report.ops.get("split").applied),
                  count_text(report.ops.get("flip").applied), count_text(report.ops.get("smooth").applied));
-    if (talk && !serial) print_parallel_stats(report);
+    if (talk && !serial) print_parallel_stats(report, thread_count());
   }
   // Flat boundaries keep the volume to round-off; on a curved discrete
   // boundary, collapses may flatten it within their normal-deviation bound
@@ -247,16 +248,21 @@ int run_adapt(const std::vector<std::string>& args) {
   }
   if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
   if (model) require_on_model(mesh, *model, "adapt");
-  auto data = extract_mesh_data(mesh);
-  data.version = input_version;
-  if (model) complete_geometry_records(data, *model);
-  io::write_mesh_file(output, data, o.format_version(), sweeps);
+  {
+    // The writers' copy of the mesh (25 bytes per tet) is dropped before
+    // anything else is built beside the mesh: at the end of a run the
+    // copy and the report's edge buckets together were the peak.
+    auto data = extract_mesh_data(mesh);
+    data.version = input_version;
+    if (model) complete_geometry_records(data, *model);
+    io::write_mesh_file(output, data, o.format_version(), sweeps);
+    if (o.has("vtu")) io::write_mesh_file(o.get<std::string>("vtu"), data);
+  }
   if (o.has("metric-out")) {
     auto sol = metric_field_to_sol(live_metrics(mesh));
     sol.version = input_version;
     io::write_sol(o.get<std::string>("metric-out"), sol, o.format_version(), sweeps);
   }
-  if (o.has("vtu")) io::write_mesh_file(o.get<std::string>("vtu"), data);
   if (talk) {
     fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());
     // quality_report throws on a non-finite value: the run then fails and

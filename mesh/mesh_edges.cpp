@@ -5,8 +5,7 @@
 
 namespace metrica {
 
-// A counting pass then a filling pass over the tets.
-void edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& start, std::vector<VertexId>& upper) {
+void count_edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& start) {
   const std::size_t nv = mesh.vertex_capacity();
   start.assign(nv + 1, 0);
   for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
@@ -15,16 +14,26 @@ void edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& start, 
     for (const auto& e : kEdgeVertex) ++start[std::min(v[e[0]], v[e[1]]) + 1];
   }
   for (std::size_t i = 0; i < nv; ++i) start[i + 1] += start[i];
-  upper.resize(start[nv]);
-  std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
+}
+
+void edges_by_lower_vertex(const Mesh& mesh, const std::vector<std::uint32_t>& start, VertexId lo, VertexId hi,
+                           std::vector<VertexId>& upper) {
+  upper.resize(start[hi] - start[lo]);
+  std::vector<std::uint32_t> cursor(start.begin() + lo, start.begin() + hi);
   for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
     if (!mesh.tet_alive(t)) continue;
     const auto& v = mesh.tet(t);
     for (const auto& e : kEdgeVertex) {
-      const VertexId a = v[e[0]], b = v[e[1]];
-      upper[cursor[std::min(a, b)]++] = std::max(a, b);
+      const VertexId a = std::min(v[e[0]], v[e[1]]);
+      if (a < lo || a >= hi) continue;
+      upper[cursor[a - lo]++ - start[lo]] = std::max(v[e[0]], v[e[1]]);
     }
   }
+}
+
+std::size_t unique_edge_ranges(std::size_t entries) {
+  constexpr std::size_t kRangeBytes = std::size_t{32} << 20, kMaxRanges = 8;
+  return std::clamp<std::size_t>((entries * sizeof(VertexId) + kRangeBytes - 1) / kRangeBytes, 1, kMaxRanges);
 }
 
 // A bucket sort by the lower vertex (one counting pass, one filling pass),

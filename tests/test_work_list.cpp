@@ -2,12 +2,15 @@
 // give what std::sort and std::unique give, on any input.
 #include "test_support.hpp"
 
+#include <metrica/box.hpp>
+#include <metrica/mesh_edges.hpp>
 #include <metrica/operators/work_list.hpp>
 
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <random>
+#include <set>
 
 using namespace metrica;
 
@@ -43,5 +46,34 @@ TEST_SUITE("property") {
         }
       }
     }
+  }
+
+  TEST_CASE("a mesh's unique edges in ranges of lower ends: the sorted distinct edges, in any number of ranges") {
+    Mesh mesh = make_box({.nx = 4, .ny = 3, .nz = 5});
+    // Some tets dead, so the buckets skip them.
+    for (TetId t = 0; t < mesh.tet_capacity(); t += 7) mesh.remove_tet(t);
+    std::set<std::pair<VertexId, VertexId>> expected;
+    for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+      if (mesh.tet_alive(t))
+        for (const auto& e : kEdgeVertex) {
+          const VertexId a = mesh.tet(t)[e[0]], b = mesh.tet(t)[e[1]];
+          expected.insert({std::min(a, b), std::max(a, b)});
+        }
+    const std::vector<std::pair<VertexId, VertexId>> sorted(expected.begin(), expected.end());
+    for (std::size_t ranges : {0u, 1u, 2u, 3u, 8u, 1000u}) {
+      CAPTURE(ranges);
+      std::vector<std::pair<VertexId, VertexId>> got;
+      for_each_unique_edge(
+          mesh,
+          [&](VertexId a, VertexId b) {
+            got.push_back({a, b});
+          },
+          ranges);
+      CHECK(got == sorted);
+    }
+    CHECK(unique_edge_ranges(0) == 1);
+    CHECK(unique_edge_ranges(std::size_t{8} << 20) == 1);  // 32 MiB of entries
+    CHECK(unique_edge_ranges((std::size_t{8} << 20) + 1) == 2);
+    CHECK(unique_edge_ranges(std::size_t{1} << 40) == 8);
   }
 }

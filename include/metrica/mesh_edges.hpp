@@ -10,22 +10,49 @@
 
 namespace metrica {
 
-// The higher ends of the edges, bucketed by lower end (with repeats):
-// bucket a is upper[start[a] .. start[a + 1]).
-void edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& start, std::vector<VertexId>& upper);
+// Bucket offsets of the tets' edges by lower end (with repeats): bucket a
+// is [start[a], start[a + 1]), start[vertex_capacity] edges in all.
+void count_edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& start);
+
+// The higher ends of the edges whose lower end is in [lo, hi), bucketed:
+// bucket a is upper[start[a] - start[lo] .. start[a + 1] - start[lo]).
+void edges_by_lower_vertex(const Mesh& mesh, const std::vector<std::uint32_t>& start, VertexId lo, VertexId hi,
+                           std::vector<VertexId>& upper);
+
+// How many ranges of lower ends for_each_unique_edge lists `entries`
+// bucket entries in: one per 32 MiB of them, at most 8 (a range costs a
+// scan of the tets).
+std::size_t unique_edge_ranges(std::size_t entries);
 
 // f(a, b) for each edge, a < b, in the order of unique_edges, without
-// holding the list (a report over every edge of a large mesh).
+// holding the list: the buckets of one range of lower ends at a time
+// (unique_edge_ranges), so a report over every edge of a large mesh holds
+// an eighth of its edges' entries at most, not 24 bytes per tet.
+// `ranges` > 0 sets their number (tests).
 template <class F>
-void for_each_unique_edge(const Mesh& mesh, F&& f) {
+void for_each_unique_edge(const Mesh& mesh, F&& f, std::size_t ranges = 0) {
   std::vector<std::uint32_t> start;
+  count_edges_by_lower_vertex(mesh, start);
+  const auto nv = static_cast<VertexId>(mesh.vertex_capacity());
+  const std::size_t total = start[nv];
+  if (ranges == 0) ranges = unique_edge_ranges(total);
   std::vector<VertexId> upper;
-  edges_by_lower_vertex(mesh, start, upper);
-  for (VertexId a = 0; a < mesh.vertex_capacity(); ++a) {
-    const auto first = upper.begin() + start[a], last = upper.begin() + start[a + 1];
-    std::sort(first, last);
-    for (auto it = first; it != last; ++it)
-      if (it == first || *it != *(it - 1)) f(a, *it);
+  VertexId lo = 0;
+  for (std::size_t r = 0; r < ranges && lo < nv; ++r) {
+    // The range ends where the buckets reach its share of the entries.
+    const auto target = static_cast<std::uint32_t>(total * (r + 1) / ranges);
+    const VertexId hi =
+        r + 1 == ranges ? nv
+                        : static_cast<VertexId>(std::max<std::ptrdiff_t>(
+                              lo, std::lower_bound(start.begin() + lo, start.begin() + nv, target) - start.begin()));
+    edges_by_lower_vertex(mesh, start, lo, hi, upper);
+    for (VertexId a = lo; a < hi; ++a) {
+      const auto first = upper.begin() + (start[a] - start[lo]), last = upper.begin() + (start[a + 1] - start[lo]);
+      std::sort(first, last);
+      for (auto it = first; it != last; ++it)
+        if (it == first || *it != *(it - 1)) f(a, *it);
+    }
+    lo = hi;
   }
 }
 
