@@ -162,9 +162,11 @@ std::size_t default_max_tets() {
 }
 
 void max_tets_option(Options& o) {
-  o.add()("max-tets", po::value<double>()->value_name("N"),
-          "refuse a run predicted to make more than N tets (default: what 90% of this machine's memory holds, "
-          "160 bytes per tet)");
+  static const std::string help = fmt::format(
+      "refuse a run predicted to make more than N tets (default: what 90% of this machine's memory holds, {} bytes "
+      "per tet)",
+      kBytesPerTet);
+  o.add()("max-tets", po::value<double>()->value_name("N"), help.c_str());
 }
 
 double check_predicted_size(const Options& o, double complexity, const std::string& what) {

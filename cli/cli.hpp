@@ -139,11 +139,11 @@ LoadedMesh load_mesh(const std::string& path, Valid valid = Valid::required);
 
 // --max-tets: the most tetrahedra a run may be asked to make. Its default
 // is what 90% of the machine's memory holds at kBytesPerTet: the peak of
-// an adaptation was measured at 110-114 bytes per output tet at 4.3M tets
-// and 154-158 at 1M (where the program's fixed part weighs more), one and
-// two threads (docs/benchmarks.md, "Memory"); 160 is kept as the bound
-// until a 100M-tet run confirms the lower figure there.
-inline constexpr double kBytesPerTet = 160;
+// an adaptation was measured at 110-114 bytes per output tet from 4.3M to
+// 108M tets, one and two threads (154-158 at 1M, where the program's
+// fixed part weighs more; docs/benchmarks.md, "Memory"), and a tenth more
+// is kept for meshes that grow more within a cycle.
+inline constexpr double kBytesPerTet = 125;
 // Output tets per unit of complexity: 10-14 measured on the UGAWG cases.
 inline constexpr double kTetsPerComplexity = 10;
 std::size_t default_max_tets();
