@@ -31,9 +31,10 @@ void edges_by_lower_vertex(const Mesh& mesh, const std::vector<std::uint32_t>& s
   }
 }
 
-std::size_t unique_edge_ranges(std::size_t entries) {
-  constexpr std::size_t kRangeBytes = std::size_t{32} << 20, kMaxRanges = 8;
-  return std::clamp<std::size_t>((entries * sizeof(VertexId) + kRangeBytes - 1) / kRangeBytes, 1, kMaxRanges);
+std::size_t edge_ranges(std::size_t entries, std::size_t max_ranges) {
+  constexpr std::size_t kRangeBytes = std::size_t{32} << 20;
+  return std::clamp<std::size_t>((entries * sizeof(VertexId) + kRangeBytes - 1) / kRangeBytes, 1,
+                                 std::max<std::size_t>(max_ranges, 1));
 }
 
 // A bucket sort by the lower vertex (one counting pass, one filling pass),

@@ -19,10 +19,14 @@ void count_edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& s
 void edges_by_lower_vertex(const Mesh& mesh, const std::vector<std::uint32_t>& start, VertexId lo, VertexId hi,
                            std::vector<VertexId>& upper);
 
-// How many ranges of lower ends for_each_unique_edge lists `entries`
-// bucket entries in: one per 32 MiB of them, at most 8 (a range costs a
-// scan of the tets).
-std::size_t unique_edge_ranges(std::size_t entries);
+// How many ranges of lower ends a listing of `entries` edge bucket
+// entries (a vertex id each, 6 per tet) is cut into: one per 32 MiB of
+// them, at most max_ranges (a range costs a scan of the tets). Listed at
+// once, a mesh's edges were among an adaptation's memory peaks.
+std::size_t edge_ranges(std::size_t entries, std::size_t max_ranges);
+
+// The ranges of for_each_unique_edge: edge_ranges, at most 8.
+inline std::size_t unique_edge_ranges(std::size_t entries) { return edge_ranges(entries, 8); }
 
 // f(a, b) for each edge, a < b, in the order of unique_edges, without
 // holding the list: the buckets of one range of lower ends at a time

@@ -28,6 +28,7 @@
 #include <metrica/ids.hpp>
 #include <metrica/mesh.hpp>
 #include <metrica/mesh_array.hpp>
+#include <metrica/mesh_edges.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/tet_topology.hpp>
 
@@ -183,15 +184,10 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
 }
 
 // The lower-end ranges the edges of `tets` tets over vertex ids below
-// `capacity` are listed in: up to 4, one per 32 MiB of entries (4 bytes
-// per tet edge, 24 per tet), at the price of a scan of the tets per range.
-// Listed at once, the edges of collapse and split and the flips' seed
-// edges were among the adaptation's memory peaks.
+// `capacity` are listed in: edge_ranges of their 6 entries per tet, up to
+// 4 (the edges of collapse and split and the flips' seed edges).
 inline std::vector<LowerRange> lower_ranges(std::size_t tets, std::size_t capacity) {
-  constexpr std::size_t kEntriesBytes = std::size_t{32} << 20;
-  constexpr std::size_t kMaxRanges = 4;
-  const std::size_t entries = 6 * sizeof(VertexId) * tets;
-  const std::size_t ranges = std::clamp<std::size_t>((entries + kEntriesBytes - 1) / kEntriesBytes, 1, kMaxRanges);
+  const std::size_t ranges = edge_ranges(6 * tets, 4);
   std::vector<LowerRange> out;
   for (std::size_t r = 0; r < ranges; ++r) {
     const auto [lo, hi] = part_slice(capacity, ranges, r);

@@ -65,28 +65,11 @@ struct FlipOptions {
   double min_quality = 1e-3;
 };
 
-// The ring of edge ab from its shell: tet k of the shell is (a, b, v_k,
-// v_{k+1}); closed shells have as many ring vertices as tets, open ones
-// one more. Returns the orientation sign of (a, b, v0, v1).
+// The ring of edge ab from its shell (append_ring: tet k of the shell is
+// (a, b, v_k, v_{k+1})). Returns the orientation sign of (a, b, v0, v1).
 inline int edge_ring(const Mesh& mesh, VertexId a, VertexId b, const Shell& shell, VertexList& ring) {
   ring.clear();
-  auto others = [&](TetId t) { return edge_opposite(mesh.tet(t), a, b); };
-  const std::size_t n = shell.tets.size();
-  const auto o0 = others(shell.tets[0]);
-  if (n == 1) {
-    ring.push_back(o0[0]);
-    ring.push_back(o0[1]);
-  } else {
-    const auto o1 = others(shell.tets[1]);
-    const VertexId shared = (o0[0] == o1[0] || o0[0] == o1[1]) ? o0[0] : o0[1];
-    ring.push_back(shared == o0[0] ? o0[1] : o0[0]);
-    ring.push_back(shared);
-    for (std::size_t k = 1; k < n; ++k) {
-      const auto o = others(shell.tets[k]);
-      const VertexId next = (o[0] == ring.back()) ? o[1] : o[0];
-      if (k + 1 < n || !shell.closed) ring.push_back(next);
-    }
-  }
+  append_ring(mesh, a, b, shell, ring);
   return permutation_sign(mesh.tet(shell.tets[0]), a, b, ring[0], ring[1]);
 }
 

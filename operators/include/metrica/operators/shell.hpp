@@ -227,24 +227,38 @@ inline void edge_shell_from(const Mesh& mesh, VertexId a, VertexId b, TetId star
   }
 }
 
+// Appends the ring of ab's shell to `list` in rotation order: tet k of
+// the shell is (a, b, v_k, v_{k+1}), so after the first tet (v_0, then the
+// vertex it shares with the second) each tet adds the ring vertex it does
+// not share with the one before; closed shells have as many ring vertices
+// as tets, open ones one more.
+inline void append_ring(const Mesh& mesh, VertexId a, VertexId b, const Shell& shell, VertexList& list) {
+  const std::size_t n = shell.tets.size();
+  if (n == 0) return;
+  auto others = [&](TetId t) { return edge_opposite(mesh.tet(t), a, b); };
+  const auto o0 = others(shell.tets[0]);
+  if (n == 1) {
+    list.push_back(o0[0]);
+    list.push_back(o0[1]);
+    return;
+  }
+  const auto o1 = others(shell.tets[1]);
+  const VertexId shared = (o0[0] == o1[0] || o0[0] == o1[1]) ? o0[0] : o0[1];
+  list.push_back(shared == o0[0] ? o0[1] : o0[0]);
+  list.push_back(shared);
+  for (std::size_t k = 1; k < n; ++k) {
+    const auto o = others(shell.tets[k]);
+    const VertexId next = (o[0] == list.back()) ? o[1] : o[0];
+    if (k + 1 < n || !shell.closed) list.push_back(next);
+  }
+}
+
 // Appends a, b and the ring of ab's shell to `list`: each vertex of the
-// shell once, without the set append_vertices needs (tet k of a shell is
-// (a, b, v_k, v_{k+1}), so each tet after the first adds the ring vertex
-// it does not share with the tet before; a closed shell's last one is v_0).
+// shell once, without the set append_vertices needs.
 inline void append_shell_vertices(const Mesh& mesh, VertexId a, VertexId b, const Shell& shell, VertexList& list) {
   list.push_back(a);
   list.push_back(b);
-  const std::size_t n = shell.tets.size();
-  if (n == 0) return;
-  std::array<VertexId, 2> before = edge_opposite(mesh.tet(shell.tets[0]), a, b);
-  list.push_back(before[0]);
-  list.push_back(before[1]);
-  for (std::size_t k = 1; k < n; ++k) {
-    const std::array<VertexId, 2> o = edge_opposite(mesh.tet(shell.tets[k]), a, b);
-    const VertexId fresh = (o[0] == before[0] || o[0] == before[1]) ? o[1] : o[0];
-    if (k + 1 < n || !shell.closed) list.push_back(fresh);
-    before = o;
-  }
+  append_ring(mesh, a, b, shell, list);
 }
 
 }  // namespace metrica
