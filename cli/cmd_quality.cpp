@@ -55,7 +55,7 @@ int run_quality(const std::vector<std::string>& args) {
   check_metric_field(field, analytic ? fmt::format("metric '{}'", to_string(*analytic)) : o.get<std::string>("metric"));
   if (o.dry_run()) return kOk;
   assign_metric(loaded.mesh, field);
-  const auto report = quality_report(loaded.mesh, space);
+  const auto report = quality_report(loaded.mesh, space, {.run = sweep_runner(loaded.mesh.tet_capacity())});
   if (o.has("csv")) io::write_file_atomically(o.get<std::string>("csv"), report_csv(report));
   if (log::level() >= log::Level::normal) fmt::print("{}: {}", input, format_report(report));
   return kOk;

@@ -58,39 +58,92 @@ struct Accumulator {
   }
 };
 
+// One block's share of a measure: its extremes and sum, its histogram, and
+// the counts of two thresholds. Summed block by block in block order, so
+// that the report is the same for any runner.
+struct BlockMeasure {
+  Accumulator acc;
+  Histogram hist;
+  std::size_t first = 0, second = 0;
+  void add_measure(double x) {
+    acc.add(x);
+    add(hist, x);
+  }
+  void merge_into(BlockMeasure& all) const {
+    all.acc.s.min = std::min(all.acc.s.min, acc.s.min);
+    all.acc.s.max = std::max(all.acc.s.max, acc.s.max);
+    all.acc.sum += acc.sum;
+    all.acc.s.count += acc.s.count;
+    for (std::size_t i = 0; i < hist.counts.size(); ++i) all.hist.counts[i] += hist.counts[i];
+    all.hist.below += hist.below;
+    all.hist.above += hist.above;
+    all.first += first;
+    all.second += second;
+  }
+};
+
+std::vector<BlockMeasure> block_measures(std::size_t blocks, const std::vector<double>& bins) {
+  std::vector<BlockMeasure> m(blocks);
+  for (auto& b : m) b.hist = make_histogram(bins);
+  return m;
+}
+
+BlockMeasure sum_blocks(const std::vector<BlockMeasure>& blocks, const std::vector<double>& bins) {
+  BlockMeasure all;
+  all.hist = make_histogram(bins);
+  for (const auto& b : blocks) b.merge_into(all);
+  return all;
+}
+
 template <MetricSpace S>
-QualityReport report_in(const Mesh& mesh) {
+QualityReport report_in(const Mesh& mesh, const QualityReportOptions& o) {
   QualityReport r;
   r.space = std::string(S::name);
   r.vertices = mesh.num_vertices();
   r.tets = mesh.num_tets();
-  std::vector<double> length_edges;
-  for (int k = -8; k <= 8; ++k) length_edges.push_back(std::exp2(0.5 * k));
-  r.length_histogram = make_histogram(length_edges);
-  std::vector<double> q_edges;
-  for (int k = 0; k <= 10; ++k) q_edges.push_back(0.1 * k);
-  r.quality_histogram = make_histogram(q_edges);
+  std::vector<double> length_bins;
+  for (int k = -8; k <= 8; ++k) length_bins.push_back(std::exp2(0.5 * k));
+  std::vector<double> q_bins;
+  for (int k = 0; k <= 10; ++k) q_bins.push_back(0.1 * k);
 
-  Accumulator len, qual;
-  std::size_t unit = 0;
   // Edge by edge, not from a list of them: the report of a large mesh
-  // must not hold more than the adaptation did.
-  for_each_unique_edge(mesh, [&](VertexId a, VertexId b) {
-    const double l = S::edge_length(mesh, a, b);
-    len.add(l);
-    add(r.length_histogram, l);
-    unit += kUnitBand.contains(l);
-    ++r.edges;
+  // must not hold more than the adaptation did. One measure per block of
+  // lower ends (first: edges in the unit band).
+  auto edge_blocks = block_measures(mesh.vertex_capacity() / kEdgeBlockVertices + 1, length_bins);
+  for_each_unique_edge(
+      mesh,
+      [&](VertexId a, VertexId b) {
+        const double l = S::edge_length(mesh, a, b);
+        BlockMeasure& m = edge_blocks[a / kEdgeBlockVertices];
+        m.add_measure(l);
+        m.first += kUnitBand.contains(l);
+      },
+      o.run);
+  // Tets in blocks of kTetBlock (first, second: below 0.1 and 0.3).
+  constexpr std::size_t kTetBlock = std::size_t{1} << 16;
+  const std::size_t nt = mesh.tet_capacity();
+  auto tet_blocks = block_measures(nt / kTetBlock + 1, q_bins);
+  const std::size_t parts = std::clamp<std::size_t>(o.run.parts, 1, tet_blocks.size());
+  o.run(parts, [&](std::size_t p) {
+    const auto [b0, b1] = part_slice(tet_blocks.size(), parts, p);
+    for (std::size_t b = b0; b < b1; ++b) {
+      BlockMeasure& m = tet_blocks[b];
+      for (auto t = static_cast<TetId>(b * kTetBlock); t < std::min(nt, (b + 1) * kTetBlock); ++t) {
+        if (!mesh.tet_alive(t)) continue;
+        const double q = o.cached_quality ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t));
+        m.add_measure(q);
+        m.first += q < 0.1;
+        m.second += q < 0.3;
+      }
+    }
   });
-  std::size_t below01 = 0, below03 = 0;
-  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
-    if (!mesh.tet_alive(t)) continue;
-    const double q = S::mean_ratio(mesh, mesh.tet(t));
-    qual.add(q);
-    add(r.quality_histogram, q);
-    below01 += q < 0.1;
-    below03 += q < 0.3;
-  }
+  const BlockMeasure edges = sum_blocks(edge_blocks, length_bins), tets = sum_blocks(tet_blocks, q_bins);
+  const Accumulator& len = edges.acc;
+  const Accumulator& qual = tets.acc;
+  r.edges = len.s.count;
+  r.length_histogram = edges.hist;
+  r.quality_histogram = tets.hist;
+  const std::size_t unit = edges.first, below01 = tets.first, below03 = tets.second;
   // A NaN or infinite measure says the metric (or a coordinate) is
   // degenerate: no report rather than one that reads "nan".
   if (!std::isfinite(len.sum) || !std::isfinite(qual.sum))
@@ -127,9 +180,9 @@ std::string histogram_text(const Histogram& h, const char* name, const char* for
 
 }  // namespace
 
-QualityReport quality_report(const Mesh& mesh, std::string_view space) {
+QualityReport quality_report(const Mesh& mesh, std::string_view space, const QualityReportOptions& options) {
   if (!mesh.has_metric()) throw InputError("quality report: the mesh has no metric");
-  return with_policy<Spaces>("metric space", space, [&]<class S>() { return report_in<S>(mesh); });
+  return with_policy<Spaces>("metric space", space, [&]<class S>() { return report_in<S>(mesh, options); });
 }
 
 std::string format_report(const QualityReport& r) {

@@ -8,6 +8,7 @@
 
 #include <metrica/box.hpp>
 #include <metrica/error.hpp>
+#include <metrica/mesh_edges.hpp>
 #include <metrica/metrics/intersection.hpp>
 #include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/metric_field.hpp>
@@ -17,12 +18,11 @@
 #include <metrica/predicates/metric_delaunay.hpp>
 #include <metrica/predicates/quality_criterion.hpp>
 
+#include <Eigen/LU>
 #include <doctest/doctest.h>
 
 #include <iomanip>
 #include <limits>
-
-#include <Eigen/LU>
 
 using namespace metrica;
 using test::random_metric;
@@ -340,6 +340,32 @@ TEST_SUITE("unit") {
     CHECK_THROWS_AS(quality_report(mesh, "riemann"), InputError);
     Mesh bare = make_box({.nx = 1, .ny = 1, .nz = 1});
     CHECK_THROWS_AS(quality_report(bare), InputError);
+  }
+
+  TEST_CASE("quality report: the same to the bit on any runner, its parts in any order") {
+    // Several blocks of edges (4096 lower ends each) and of tets (65536),
+    // an anisotropic metric that varies, and holes left by deleted tets.
+    Mesh mesh = make_box({.nx = 26, .ny = 26, .nz = 26});
+    std::vector<Sym6> field(mesh.vertex_capacity());
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+      const Point& p = mesh.point(v);
+      field[v] = {1.0 + 30.0 * p.x() * p.x(), 0.3 * p.y(), 2.0 + p.z(), 0.1, 0.0, 5.0 + 10.0 * p.x() * p.y()};
+    }
+    assign_metric(mesh, field);
+    for (TetId t = 0; t < mesh.tet_capacity(); t += 997) mesh.remove_tet(t);
+    REQUIRE(mesh.vertex_capacity() > 3 * kEdgeBlockVertices);
+    REQUIRE(mesh.tet_capacity() > 1u << 16);
+    for (std::string_view s : {"isotropic", "anisotropic", "log-euclidean"}) {
+      CAPTURE(s);
+      const std::string one = report_csv(quality_report(mesh, s));
+      for (std::size_t parts : {2u, 3u, 7u, 1000u}) {
+        CAPTURE(parts);
+        PartRunner backwards{parts, [](std::size_t n, const std::function<void(std::size_t)>& f) {
+                               for (std::size_t p = n; p-- > 0;) f(p);
+                             }};
+        CHECK(report_csv(quality_report(mesh, s, {.run = backwards})) == one);
+      }
+    }
   }
 
   TEST_CASE("quality report: a non-finite measure is an error - never a histogram bin out of range") {

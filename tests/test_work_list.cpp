@@ -68,7 +68,7 @@ TEST_SUITE("property") {
           [&](VertexId a, VertexId b) {
             got.push_back({a, b});
           },
-          ranges);
+          {}, ranges);
       CHECK(got == sorted);
     }
     CHECK(unique_edge_ranges(0) == 1);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <metrica/mesh.hpp>
+#include <metrica/part_runner.hpp>
 
 #include <algorithm>
 #include <cstdint>
@@ -28,13 +29,20 @@ std::size_t edge_ranges(std::size_t entries, std::size_t max_ranges);
 // The ranges of for_each_unique_edge: edge_ranges, at most 8.
 inline std::size_t unique_edge_ranges(std::size_t entries) { return edge_ranges(entries, 8); }
 
+// The vertex blocks of for_each_unique_edge on several threads: the calls
+// for the lower ends in one block come from one thread, in order.
+inline constexpr std::size_t kEdgeBlockVertices = 4096;
+
 // f(a, b) for each edge, a < b, in the order of unique_edges, without
 // holding the list: the buckets of one range of lower ends at a time
 // (unique_edge_ranges), so a report over every edge of a large mesh holds
-// an eighth of its edges' entries at most, not 24 bytes per tet.
-// `ranges` > 0 sets their number (tests).
+// an eighth of its edges' entries at most, not 24 bytes per tet. With a
+// runner, the blocks of lower ends (a / kEdgeBlockVertices) of a range
+// are shared among its parts: f is then called concurrently for edges in
+// different blocks, and a caller that keeps one sum per block gets the
+// same sums for any runner. `ranges` > 0 sets their number (tests).
 template <class F>
-void for_each_unique_edge(const Mesh& mesh, F&& f, std::size_t ranges = 0) {
+void for_each_unique_edge(const Mesh& mesh, F&& f, const PartRunner& run = {}, std::size_t ranges = 0) {
   std::vector<std::uint32_t> start;
   count_edges_by_lower_vertex(mesh, start);
   const auto nv = static_cast<VertexId>(mesh.vertex_capacity());
@@ -49,13 +57,22 @@ void for_each_unique_edge(const Mesh& mesh, F&& f, std::size_t ranges = 0) {
         r + 1 == ranges ? nv
                         : static_cast<VertexId>(std::max<std::ptrdiff_t>(
                               lo, std::lower_bound(start.begin() + lo, start.begin() + nv, target) - start.begin()));
+    if (hi == lo) continue;
     edges_by_lower_vertex(mesh, start, lo, hi, upper);
-    for (VertexId a = lo; a < hi; ++a) {
-      const auto first = upper.begin() + (start[a] - start[lo]), last = upper.begin() + (start[a + 1] - start[lo]);
-      std::sort(first, last);
-      for (auto it = first; it != last; ++it)
-        if (it == first || *it != *(it - 1)) f(a, *it);
-    }
+    const std::size_t first_block = lo / kEdgeBlockVertices;
+    const std::size_t blocks = (hi - 1) / kEdgeBlockVertices + 1 - first_block;
+    const std::size_t parts = std::clamp<std::size_t>(run.parts, 1, blocks);
+    run(parts, [&](std::size_t p) {
+      const auto [b0, b1] = part_slice(blocks, parts, p);
+      const auto from = static_cast<VertexId>(std::max<std::size_t>(lo, (first_block + b0) * kEdgeBlockVertices));
+      const auto to = static_cast<VertexId>(std::min<std::size_t>(hi, (first_block + b1) * kEdgeBlockVertices));
+      for (VertexId a = from; a < to; ++a) {
+        const auto first = upper.begin() + (start[a] - start[lo]), last = upper.begin() + (start[a + 1] - start[lo]);
+        std::sort(first, last);
+        for (auto it = first; it != last; ++it)
+          if (it == first || *it != *(it - 1)) f(a, *it);
+      }
+    });
     lo = hi;
   }
 }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <metrica/mesh.hpp>
+#include <metrica/part_runner.hpp>
 
 #include <string>
 #include <string_view>
@@ -37,9 +38,19 @@ struct QualityReport {
   Histogram quality_histogram;  // bins of 0.1 on [0, 1]
 };
 
+struct QualityReportOptions {
+  // The sweeps over edges and tets on these parts (a Concurrency policy's
+  // part_runner); the report is the same for any runner.
+  PartRunner run;
+  // Read and fill the mesh's quality cache: only while it is known to hold
+  // this space's mean ratios, as after adapt in the same space.
+  bool cached_quality = false;
+};
+
 // The mesh must carry a metric (Mesh::has_metric); `space` is one of the
 // names of Spaces (InputError otherwise).
-QualityReport quality_report(const Mesh& mesh, std::string_view space = "log-euclidean");
+QualityReport quality_report(const Mesh& mesh, std::string_view space = "log-euclidean",
+                             const QualityReportOptions& options = {});
 
 // For people: a summary and both histograms as text.
 std::string format_report(const QualityReport& r);
