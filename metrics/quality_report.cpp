@@ -50,6 +50,12 @@ struct Accumulator {
     sum += x;
     ++s.count;
   }
+  void merge(const Accumulator& o) {
+    s.min = std::min(s.min, o.s.min);
+    s.max = std::max(s.max, o.s.max);
+    sum += o.sum;
+    s.count += o.s.count;
+  }
   SampleStats done() const {
     SampleStats r = s;
     if (r.count == 0) return {};
@@ -70,10 +76,7 @@ struct BlockMeasure {
     add(hist, x);
   }
   void merge_into(BlockMeasure& all) const {
-    all.acc.s.min = std::min(all.acc.s.min, acc.s.min);
-    all.acc.s.max = std::max(all.acc.s.max, acc.s.max);
-    all.acc.sum += acc.sum;
-    all.acc.s.count += acc.s.count;
+    all.acc.merge(acc);
     for (std::size_t i = 0; i < hist.counts.size(); ++i) all.hist.counts[i] += hist.counts[i];
     all.hist.below += hist.below;
     all.hist.above += hist.above;

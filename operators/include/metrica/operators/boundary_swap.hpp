@@ -43,8 +43,7 @@ struct BoundarySwap {
   Found seed(const Mesh&, const Item& e, Scratch&, VertexList& hold) const { return hold_edge_ends(e, hold); }
   Found find(const Mesh& mesh, const Item& e, Scratch& s, VertexList& hold) const {
     const auto [a, b] = edge_from_key(e.key);
-    vertex_ball(mesh, a, s.ball);
-    if (!edge_shell(mesh, a, b, s.ball, s.shell)) return Found::gone;
+    if (!find_edge_shell(mesh, a, b, s.ball, s.shell)) return Found::gone;
     append_shell_vertices(mesh, a, b, s.shell, hold);
     return Found::cavity;
   }
@@ -79,9 +78,7 @@ struct BoundarySwap {
     if (!keeps_shape<S, MinQuality>(mesh, view(shell.tets), view(s.candidate), options.min_quality))
       return Refusal::rejected;
     // The new boundary edge must not exist already.
-    vertex_ball(mesh, v0, s.ball);
-    for (TetId t : s.ball)
-      if (local_index(mesh.tet(t), v2) >= 0) return Refusal::rejected;
+    if (tet_with_edge(mesh, v0, v2, s.ball) != kNoId) return Refusal::rejected;
     s.best = s.candidate;
     s.best_scores.clear();
     if (!plan_cavity(mesh, view(shell.tets), view(s.best), s.plan, kNoId, kNoId, surface)) return Refusal::rejected;

@@ -80,11 +80,7 @@ struct EdgeSplit {
     return Found::cavity;
   }
   Found find(const Mesh& mesh, const Item& c, Scratch& x, VertexList& hold) const {
-    // a's walk stops at the first tet holding b (the shell's start that
-    // the whole ball would give): half a ball's cache misses.
-    const TetId start = tet_with_edge(mesh, c.a, c.b, x.ball);
-    if (start == kNoId) return Found::gone;
-    edge_shell_from(mesh, c.a, c.b, start, x.shell);
+    if (!find_edge_shell(mesh, c.a, c.b, x.ball, x.shell)) return Found::gone;
     x.cavity.clear();
     append_shell_vertices(mesh, c.a, c.b, x.shell, x.cavity);
     hold.insert(hold.end(), x.cavity.begin(), x.cavity.end());

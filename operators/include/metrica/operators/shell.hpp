@@ -227,6 +227,16 @@ inline void edge_shell_from(const Mesh& mesh, VertexId a, VertexId b, TetId star
   }
 }
 
+// The shell of edge ab from a's walk stopped at the first tet holding b
+// (the start the whole ball would give, at half a ball's cache misses);
+// false when ab is no edge. `walk` is scratch.
+inline bool find_edge_shell(const Mesh& mesh, VertexId a, VertexId b, TetList& walk, Shell& shell) {
+  const TetId start = tet_with_edge(mesh, a, b, walk);
+  if (start == kNoId) return false;
+  edge_shell_from(mesh, a, b, start, shell);
+  return true;
+}
+
 // Appends the ring of ab's shell to `list` in rotation order: tet k of
 // the shell is (a, b, v_k, v_{k+1}), so after the first tet (v_0, then the
 // vertex it shares with the second) each tet adds the ring vertex it does
