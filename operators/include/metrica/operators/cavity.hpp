@@ -79,7 +79,7 @@ inline bool match_faces(CavityPlan& plan) {
       const std::int32_t m = table[h];
       if (m < 0) {
         table[h] = static_cast<std::int32_t>(plan.matches.size());
-        plan.matches.push_back({static_cast<int>(i), -1});
+        plan.matches.emplace_back(CavityPlan::Match{static_cast<int>(i), -1});
         break;
       }
       CavityPlan::Match& match = plan.matches[static_cast<std::size_t>(m)];
@@ -123,13 +123,14 @@ inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::
         if (n.valid()) return false;
         continue;
       }
-      plan.entries.push_back({key, static_cast<int>(plan.outer.size())});
-      plan.outer.push_back({key, n, n.valid() ? 0 : mesh.surface_id(t, f)});
+      plan.entries.emplace_back(CavityPlan::Entry{key, static_cast<int>(plan.outer.size())});
+      plan.outer.emplace_back(CavityPlan::OuterFace{key, n, n.valid() ? 0 : mesh.surface_id(t, f)});
     }
   }
   for (std::size_t k = 0; k < new_tets.size(); ++k)
     for (int f = 0; f < 4; ++f)
-      plan.entries.push_back({sorted(face_vertices(new_tets[k], f)), -static_cast<int>(4 * k + f) - 1});
+      plan.entries.emplace_back(
+          CavityPlan::Entry{sorted(face_vertices(new_tets[k], f)), -static_cast<int>(4 * k + f) - 1});
   if (!detail::match_faces(plan)) return false;
   // Every triple must appear exactly twice, or once as a new face when the
   // replacement is allowed to make boundary faces.
@@ -164,7 +165,7 @@ void apply_cavity(Mesh& mesh, std::span<const TetId> old_tets, std::span<const T
   created.clear();
   for (const auto& v : new_tets) {
     const TetId t = mesh.add_tet(v, tet_ref);
-    created.push_back(t);
+    created.emplace_back(t);
     for (VertexId x : v) mesh.set_vert2tet(x, t);
   }
   auto new_face = [&](int index) {
@@ -208,7 +209,7 @@ void apply_cavity(Mesh& mesh, std::span<const TetId> old_tets, std::span<const T
         mesh.set_neighbour(in.outside.tet(), in.outside.face(), FaceRef::none());
         mesh.set_surface_id(in.outside.tet(), in.outside.face(), bd.surface);
       }
-      glued.push_back(&m);
+      glued.emplace_back(&m);
     }
   }
   auto key_of = [&](const CavityPlan::Match* m) -> const TriangleVertices& {

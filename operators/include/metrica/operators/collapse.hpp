@@ -116,16 +116,16 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
   for (TetId t : s.ball) {
     if (mesh.tet_ref(t) != ref) return Refusal::not_applicable;
     TetVertices v = mesh.tet(t);
-    s.old_tets.push_back(v);
+    s.old_tets.emplace_back(v);
     if (local_index(v, b) >= 0) continue;
     v[local_index(v, a)] = b;
-    s.new_tets.push_back(v);
+    s.new_tets.emplace_back(v);
   }
   // The tets of b's ball that b's move drags along (it keeps their topology).
   s.dragged.clear();
   if (moved != nullptr)
     for (TetId t : s.ball_b)
-      if (local_index(mesh.tet(t), a) < 0) s.dragged.push_back(mesh.tet(t));
+      if (local_index(mesh.tet(t), a) < 0) s.dragged.emplace_back(mesh.tet(t));
   const Point pb = moved != nullptr ? *moved : mesh.point(b);
   const Sym6 mb = moved_metric != nullptr ? moved_metric->m : S::vertex_metric(mesh, b);
   auto points_of = [&](const TetVertices& t) {
@@ -185,7 +185,7 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
       const double q = S::mean_ratio(mesh, t, points_of(t));
-      if (list == &s.new_tets) s.new_quality.push_back(q);
+      if (list == &s.new_tets) s.new_quality.emplace_back(q);
       if (o.require_gain && q <= worst_old()) return Refusal::rejected;
       if (!shape.admits(q, worst_old)) return Refusal::rejected;
     }
@@ -246,8 +246,8 @@ struct Collapse {
   // A collapse frees tets (net); a thread reuses its own at once.
   PassRoom room() const { return {.vertices_per_item = 0, .tets_per_item = 0}; }
   Found seed(const Mesh&, const Item& c, Scratch&, VertexList& hold) const {
-    hold.push_back(c.a);
-    hold.push_back(c.b);
+    hold.emplace_back(c.a);
+    hold.emplace_back(c.b);
     return Found::cavity;
   }
   // Both balls: the endpoint collapses change ball(from), the merge at the

@@ -101,7 +101,7 @@ bool all_positive(const Mesh& mesh, std::span<const TetVertices> tets) {
 
 inline void tet_vertices_of(const Mesh& mesh, std::span<const TetId> ids, NewTets& out) {
   out.clear();
-  for (TetId t : ids) out.push_back(mesh.tet(t));
+  for (TetId t : ids) out.emplace_back(mesh.tet(t));
 }
 
 // What a flip attempt found, for the pass's statistics.
@@ -260,7 +260,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
     s.best = s.candidate;
     s.best_scores.clear();
     if (memo)
-      for (std::size_t c = 0; c < s.candidate.size(); ++c) s.best_scores.push_back(s.memo_score[slot(c)]);
+      for (std::size_t c = 0; c < s.candidate.size(); ++c) s.best_scores.emplace_back(s.memo_score[slot(c)]);
     found = true;
   }
   if (!found) return Refusal::rejected;
@@ -302,7 +302,7 @@ Decision<Flip23Plan> decide_flip23(const Mesh& mesh, TetId t, int face, FlipScra
   s.candidate.clear();
   for (int i = 0; i < 3; ++i) {
     const VertexId p = f[i], q = f[(i + 1) % 3];
-    s.candidate.push_back({p, q, a, b});
+    s.candidate.emplace_back(TetVertices{p, q, a, b});
   }
   if (!all_positive<P>(mesh, view(s.candidate))) return Refusal::rejected;
   const std::array<TetId, 2> old{t, nb.tet()};
@@ -310,13 +310,13 @@ Decision<Flip23Plan> decide_flip23(const Mesh& mesh, TetId t, int face, FlipScra
   if constexpr (ScoredCriterion<Criterion>) {
     const double bar = Criterion::bar(min_score_of<Criterion, S>(mesh, old));
     for (std::size_t c = 0; c < 3; ++c) {
-      s.best_scores.push_back(Criterion::template tet_score<S>(mesh, s.candidate[c]));
+      s.best_scores.emplace_back(Criterion::template tet_score<S>(mesh, s.candidate[c]));
       if (s.best_scores.back() <= bar) return Refusal::rejected;
     }
   } else {
     s.old_tets.clear();
-    s.old_tets.push_back(mesh.tet(t));
-    s.old_tets.push_back(mesh.tet(nb.tet()));
+    s.old_tets.emplace_back(mesh.tet(t));
+    s.old_tets.emplace_back(mesh.tet(nb.tet()));
     if (!Criterion::template prefers<S, P>(mesh, view(s.old_tets), view(s.candidate))) return Refusal::rejected;
   }
   if (!keeps_shape<S, Criterion>(mesh, old, view(s.candidate), o.min_quality)) return Refusal::rejected;
@@ -362,8 +362,8 @@ FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptio
 // shell is walked (the edge removal, the boundary swap).
 inline Found hold_edge_ends(const EdgeSeed& e, VertexList& hold) {
   const auto [a, b] = edge_from_key(e.key);
-  hold.push_back(a);
-  hold.push_back(b);
+  hold.emplace_back(a);
+  hold.emplace_back(b);
   return Found::cavity;
 }
 
@@ -437,7 +437,7 @@ struct FaceFlip {
     if (mesh.tet(t) != s.seen) return Found::gone;  // changed since the list was made
     for (int f = 0; f < 4; ++f) {
       const FaceRef nb = mesh.neighbour(t, f);
-      if (nb.valid()) hold.push_back(mesh.tet(nb.tet())[nb.face()]);
+      if (nb.valid()) hold.emplace_back(mesh.tet(nb.tet())[nb.face()]);
     }
     return Found::cavity;
   }

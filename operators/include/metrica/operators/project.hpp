@@ -33,7 +33,7 @@ struct Projection {
 
   PassRoom room() const { return {.max_vertices = 0, .max_tets = 0, .vertices_per_item = 0, .tets_per_item = 0}; }
   Found seed(const Mesh&, VertexId v, Scratch&, VertexList& hold) const {
-    hold.push_back(v);
+    hold.emplace_back(v);
     return Found::cavity;
   }
   Found find(const Mesh& mesh, VertexId v, Scratch& s, VertexList& hold) const {
@@ -70,7 +70,7 @@ std::vector<VertexId> vertices_off_model(const Mesh& mesh, const G& geometry, do
     return C::template collect<VertexId>(mesh.vertex_capacity(), [&](std::size_t i, std::vector<VertexId>& part) {
       const auto v = static_cast<VertexId>(i);
       if (!mesh.vertex_alive(v) || !mesh.geo_param(v).valid()) return;
-      if ((geometry.point(mesh.geo_param(v)) - mesh.point(v)).norm() > tolerance) part.push_back(v);
+      if ((geometry.point(mesh.geo_param(v)) - mesh.point(v)).norm() > tolerance) part.emplace_back(v);
     });
   }
 }

@@ -53,7 +53,7 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}, const G& geo
       const auto t = static_cast<TetId>(i);
       if (mesh.tet_alive(t) && mesh.changed_since(t, since) &&
           (o.seed_below >= 1.0 || cached_mean_ratio<S>(mesh, t) < o.seed_below))
-        part.push_back(t);
+        part.emplace_back(t);
     });
     // Each edge once per sweep, in vertex order (space order after compact).
     unique_edge_seeds<C>(

@@ -138,7 +138,7 @@ std::vector<PointCandidate> centroid_candidates(const Mesh& mesh, const RefineOp
     }
     if (close) continue;
     candidate_of_tet[t] = static_cast<std::uint32_t>(out.size());
-    out.push_back(c);
+    out.emplace_back(c);
   }
   return out;
 }

@@ -75,8 +75,8 @@ struct EdgeSplit {
   // between rounds when needed.
   PassRoom room() const { return {.vertices_per_item = 0.6, .tets_per_item = 3.5}; }
   Found seed(const Mesh&, const Item& c, Scratch&, VertexList& hold) const {
-    hold.push_back(c.a);
-    hold.push_back(c.b);
+    hold.emplace_back(c.a);
+    hold.emplace_back(c.b);
     return Found::cavity;
   }
   Found find(const Mesh& mesh, const Item& c, Scratch& x, VertexList& hold) const {

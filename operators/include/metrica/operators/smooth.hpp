@@ -183,7 +183,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   s.trial_params.clear();
   s.metrics.clear();
   s.terms.clear();
-  for (TetId t : s.ball) s.metrics.push_back(S::tet_metric(mesh, mesh.tet(t)));
+  for (TetId t : s.ball) s.metrics.emplace_back(S::tet_metric(mesh, mesh.tet(t)));
   // The optimal point: face (t[kFaceVertex[iv]]) is oriented outwards, so
   // the apex lies on its negative side; swap two vertices. The same
   // swapped order gives the inward normal of the ball terms.
@@ -197,24 +197,24 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     const Sym6& m = s.metrics[i];
     const double det = determinant(m);
     const std::array<double, 3> edges2 = face_edges2(m, f0, f1, f2);
-    s.terms.push_back(ball_term(x, f0, f1, f2, m, det, edges2));
+    s.terms.emplace_back(ball_term(x, f0, f1, f2, m, det, edges2));
     optimal += detail::ideal_apex(f0, f1, f2, s.terms.back().normal, m, det, edges2);
   }
   optimal /= static_cast<double>(s.ball.size());
   // Trials from `secondary` on are tried only when none before improved.
   std::size_t secondary = std::numeric_limits<std::size_t>::max();
   if (cls == VertexClass::interior) {
-    for (double w : {1.0, 0.5, 0.25}) s.trials.push_back(x + w * (optimal - x));
+    for (double w : {1.0, 0.5, 0.25}) s.trials.emplace_back(x + w * (optimal - x));
     Point mean = Point::Zero();
     for (VertexId u : s.neighbours) mean += mesh.point(u);
     mean /= static_cast<double>(s.neighbours.size());
-    s.trials.push_back(x + 0.5 * (mean - x));
+    s.trials.emplace_back(x + 0.5 * (mean - x));
     secondary = s.trials.size();
     for (TetId t : s.ball) {
       const auto& tv = mesh.tet(t);
       const auto f = face_vertices(tv, local_index(tv, v));
       const Point c = (mesh.point(f[0]) + mesh.point(f[1]) + mesh.point(f[2])) / 3.0;
-      s.trials.push_back(x + 0.25 * (c - x));
+      s.trials.emplace_back(x + 0.25 * (c - x));
     }
   } else if (G::on_model) {
     if (!boundary_trials_on_model(mesh, v, s, geometry)) return Refusal::not_applicable;
@@ -235,7 +235,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
         for (int k = 0; k < 3; ++k) {
           if (fv[k] == v) {
             const Point mid = 0.5 * (mesh.point(fv[(k + 1) % 3]) + mesh.point(fv[(k + 2) % 3]));
-            for (double w : {0.5, 0.25}) s.trials.push_back(x + w * (mid - x));
+            for (double w : {0.5, 0.25}) s.trials.emplace_back(x + w * (mid - x));
           }
         }
       }
@@ -243,7 +243,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     if (normal.squaredNorm() == 0.0) return Refusal::not_applicable;
     normal.normalize();
     const Point projected = optimal - (optimal - x).dot(normal) * normal;
-    for (double w : {1.0, 0.5, 0.25}) s.trials.push_back(x + w * (projected - x));
+    for (double w : {1.0, 0.5, 0.25}) s.trials.emplace_back(x + w * (projected - x));
   } else {  // ridge: a straight one
     VertexId ends[2] = {kNoId, kNoId};
     int k = 0;
@@ -256,7 +256,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     const Eigen::Vector3d d1 = mesh.point(ends[0]) - x, d2 = mesh.point(ends[1]) - x;
     if (normal_deviation(d1, d2) > o.flat_tolerance) return Refusal::not_applicable;
     for (const auto& d : {d1, d2})
-      for (double w : {0.5, 0.25, 0.1}) s.trials.push_back(x + w * d);
+      for (double w : {0.5, 0.25, 0.1}) s.trials.emplace_back(x + w * d);
   }
   // Evaluate: the smallest score of the ball at each trial position, and
   // how many of v's edges leave the unit band (a move for quality must not
@@ -379,8 +379,8 @@ bool boundary_trials_on_model(const Mesh& mesh, VertexId v, SmoothScratch& s, co
   auto add = [&](std::span<const VertexId> parents, std::span<const double> w, SurfaceId surface) {
     const GeoParam g = geometry.boundary_vertex(mesh, parents, w, surface);
     if (!g.valid()) return;
-    s.trials.push_back(geometry.point(g));
-    s.trial_params.push_back(g);
+    s.trials.emplace_back(geometry.point(g));
+    s.trial_params.emplace_back(g);
   };
   if (mesh.vertex_class(v) == VertexClass::ridge) {
     for (VertexId u : s.neighbours) {
@@ -408,7 +408,7 @@ bool boundary_trials_on_model(const Mesh& mesh, VertexId v, SmoothScratch& s, co
         add(parents, weights, surface);
       }
       for (int j = 1; j <= 2; ++j)
-        if (std::find(around.begin(), around.end(), parents[j]) == around.end()) around.push_back(parents[j]);
+        if (std::find(around.begin(), around.end(), parents[j]) == around.end()) around.emplace_back(parents[j]);
     }
   }
   if (around.size() >= 2) {
@@ -456,7 +456,7 @@ struct Smoothing {
 
   PassRoom room() const { return {.max_vertices = 0, .max_tets = 0, .vertices_per_item = 0, .tets_per_item = 0}; }
   Found seed(const Mesh&, VertexId v, Scratch&, VertexList& hold) const {
-    hold.push_back(v);
+    hold.emplace_back(v);
     return Found::cavity;
   }
   Found find(const Mesh& mesh, VertexId v, Scratch& s, VertexList& hold) const {
@@ -494,7 +494,7 @@ OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}, const G& 
   });
   const std::vector<VertexId> todo =
       C::template collect<VertexId>(marked.size(), [&](std::size_t v, std::vector<VertexId>& part) {
-        if (marked[v] != 0) part.push_back(static_cast<VertexId>(v));
+        if (marked[v] != 0) part.emplace_back(static_cast<VertexId>(v));
       });
   OperatorStats stats = run_pass<C>(mesh, Smoothing<S, P, Criterion, G>{o, geometry}, todo);
   stats.seconds = clock.seconds();

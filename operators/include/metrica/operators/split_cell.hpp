@@ -29,7 +29,7 @@ inline void cell_children(const TetVertices& t, VertexId n, int kept_vertex, New
     if (i == kept_vertex) continue;
     TetVertices c = t;
     c[i] = n;
-    out.push_back(c);
+    out.emplace_back(c);
   }
 }
 
