@@ -222,6 +222,7 @@ void Mesh::compact(const PartRunner& given) {
   free_tets_.clear();
   live_vertices_ = nv;
   live_tets_ = live;
+  ++renumberings_;
 }
 
 }  // namespace metrica

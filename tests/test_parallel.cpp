@@ -38,6 +38,19 @@ using namespace metrica::test;
 
 namespace {
 
+// A random anisotropic metric (ratio `ratio`, seed `seed`) at each vertex,
+// scaled by base + slope x: sizes graded along x.
+void assign_graded_metric(Mesh& mesh, std::uint64_t seed, double ratio, double base, double slope) {
+  auto r = rng(seed);
+  std::vector<Sym6> field(mesh.vertex_capacity());
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    const Sym6 m = random_metric(r, ratio);
+    const double s = base + slope * mesh.point(v).x();
+    field[v] = Sym6{m[0] * s, m[1] * s, m[2] * s, m[3] * s, m[4] * s, m[5] * s};
+  }
+  assign_metric(mesh, field);
+}
+
 struct Adapted {
   Mesh mesh;
   AdaptReport report;
@@ -523,14 +536,7 @@ TEST_SUITE("parallel") {
     Mesh mesh = make_box({.nx = 16, .ny = 16, .nz = 16});
     // Sizes graded along x and random anisotropy, so lengths spread over
     // several classes.
-    auto r = rng(71);
-    std::vector<Sym6> field(mesh.vertex_capacity());
-    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
-      const Sym6 m = random_metric(r, 4.0);
-      const double s = 4.0 + 60.0 * mesh.point(v).x();
-      field[v] = Sym6{m[0] * s, m[1] * s, m[2] * s, m[3] * s, m[4] * s, m[5] * s};
-    }
-    assign_metric(mesh, field);
+    assign_graded_metric(mesh, 71, 4.0, 4.0, 60.0);
     const double step = std::exp2(1.0 / kLengthClassesPerDoubling);
     // Some tets written in a later epoch: the lists limited to it.
     const Mesh::Epoch since = mesh.next_epoch();
@@ -580,6 +586,84 @@ TEST_SUITE("parallel") {
       CHECK(edges_beyond<LogEuclidean, Serial>(mesh, bound, order, since) == limited);
       CHECK(edges_beyond<LogEuclidean, SpeculativeThreads<2>>(mesh, bound, order, since) == limited);
     }
+  }
+
+  TEST_CASE(
+      "edges_beyond from the edges outside the band at an earlier epoch: the full scan's list, on 1 and 2 threads") {
+    Mesh mesh = make_box({.nx = 12, .ny = 12, .nz = 12});
+    // Short edges at small x, long ones at large x.
+    assign_graded_metric(mesh, 72, 3.0, 20.0, 400.0);
+    mesh.compact();
+    OutOfBandEdges known;
+    conformity<LogEuclidean, Serial>(mesh, nullptr, false, &known.edges);
+    known.taken(mesh, kUnitBand);
+    REQUIRE(known.edges.size() > 1000);
+    // Bounds outside the band, on both sides, and one inside it.
+    struct Bound {
+      double length;
+      EdgeOrder order;
+    };
+    const std::vector<Bound> bounds{{kUnitBand.lo, EdgeOrder::shortest_first},
+                                    {0.5, EdgeOrder::shortest_first},
+                                    {kUnitBand.hi, EdgeOrder::longest_first},
+                                    {2.0, EdgeOrder::longest_first}};
+    auto same_as_scan = [&](const Bound& b, Mesh::Epoch since, bool from_known) {
+      const auto scan = edges_beyond<LogEuclidean, Serial>(mesh, b.length, b.order, since);
+      CHECK(edges_beyond<LogEuclidean, Serial>(mesh, b.length, b.order, since, &known) == scan);
+      CHECK(edges_beyond<LogEuclidean, SpeculativeThreads<2>>(mesh, b.length, b.order, since, &known) == scan);
+      // Whether the list came from `known` (the same list either way).
+      std::vector<EdgeCandidate> unused;
+      const bool longer = b.order == EdgeOrder::longest_first;
+      auto all = [&](VertexId, VertexId, std::vector<EdgeCandidate>&) {};
+      CHECK(detail::edges_from_known<Serial>(mesh, b.length, longer, &known, all, unused) == from_known);
+      return scan.size();
+    };
+    for (const Bound& b : bounds) CHECK(same_as_scan(b, 0, true) > 10);
+    // A few collapses, splits and moves around a corner of the box: the
+    // vertices changed since are few, the edges at them are measured anew.
+    const Mesh::Epoch local = mesh.next_epoch();
+    for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+      if (mesh.tet_alive(t) && mesh.tet_point(t, 0).y() > 0.85 && mesh.tet_point(t, 0).z() > 0.85) mesh.touch_tet(t);
+    const Mesh::Epoch changes = mesh.next_epoch();
+    const OperatorStats collapsed = collapse_edges<LogEuclidean, Filtered, Serial>(
+        mesh, {.max_new_length = 3.0, .quality_floor = 0.0, .changed_since = local});
+    INFO("collapses tried " << collapsed.tried);
+    CHECK(collapsed.applied > 0);
+    CHECK(refine_edges<LogEuclidean, Filtered, Serial>(mesh, {.changed_since = local}).applied > 0);
+    TetList ball;
+    std::size_t moved = 0;
+    for (VertexId v = 0; v < mesh.vertex_capacity() && moved < 20; ++v) {
+      if (!mesh.vertex_alive(v) || mesh.vertex_class(v) != VertexClass::interior || mesh.point(v).x() > 0.5) continue;
+      // A small move that keeps the ball positive.
+      vertex_ball(mesh, v, ball);
+      const Point p = mesh.point(v) + Point(1e-3, -1e-3, 5e-4);
+      if (!ball_positive_at<Filtered>(mesh, v, ball, p)) continue;
+      mesh.point(v) = p;
+      for (TetId t : ball) mesh.touch_tet(t);
+      ++moved;
+    }
+    REQUIRE(moved == 20);
+    require_valid(mesh, 1.0);
+    {
+      const auto changed = changed_vertices(mesh, known.epoch);
+      const auto n = static_cast<std::size_t>(std::count(changed.begin(), changed.end(), 1));
+      INFO(n << " of " << mesh.num_vertices() << " vertices changed");
+      REQUIRE(4 * n < mesh.num_vertices());
+    }
+    for (const Bound& b : bounds) {
+      same_as_scan(b, 0, true);
+      same_as_scan(b, changes, true);
+    }
+    // Not from `known`: a bound inside the band, or after a compaction.
+    same_as_scan({1.0, EdgeOrder::shortest_first}, 0, false);
+    same_as_scan({1.2, EdgeOrder::longest_first}, 0, false);
+    mesh.compact();
+    same_as_scan(bounds[0], 0, false);
+    // Nor when most vertices changed.
+    conformity<LogEuclidean, Serial>(mesh, nullptr, false, &known.edges);
+    known.taken(mesh, kUnitBand);
+    for (TetId t = 0; t < mesh.tet_capacity(); t += 2) mesh.touch_tet(t);
+    same_as_scan(bounds[2], 0, false);
   }
 
   TEST_CASE("Speculative on 1 thread: no conflict, a valid mesh of the serial quality") {

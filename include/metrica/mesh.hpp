@@ -240,6 +240,9 @@ class Mesh {
   // on that policy's threads; the result is the same for any runner.
   void compact();
   void compact(const PartRunner& run);
+  // How many compactions the mesh went through: ids taken at different
+  // counts name different entities.
+  std::uint32_t renumberings() const { return renumberings_; }
 
   // Checks every invariant of docs/architecture.md (validate.cpp).
   ValidationReport validate(const ValidateOptions& options) const;
@@ -277,6 +280,7 @@ class Mesh {
   // the holder of the tet's vertices' locks.
   mutable MeshArray<double> tet_quality_;
   Epoch epoch_ = 0;
+  std::uint32_t renumberings_ = 0;
 
   MeshArray<VertexId> free_vertices_;
   MeshArray<TetId> free_tets_;

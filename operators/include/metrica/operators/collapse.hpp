@@ -51,6 +51,9 @@ struct CollapseOptions {
   // Only edges with an end whose ball changed since this epoch are tried
   // (0: all); a collapse reads the two balls only.
   Mesh::Epoch changed_since = 0;
+  // When set, the work list comes from these edges where it can
+  // (edges_beyond): an adaptation's cycle keeps them from its last count.
+  const OutOfBandEdges* known = nullptr;
 };
 
 struct CollapseScratch {
@@ -315,7 +318,7 @@ struct Collapse {
 template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
-  const auto todo = edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first, o.changed_since);
+  const auto todo = edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first, o.changed_since, o.known);
   OperatorStats stats = run_pass<C>(mesh, Collapse<S, P, Criterion, G>{o, geometry}, todo);
   stats.seconds = clock.seconds();
   return stats;

@@ -31,6 +31,9 @@ struct RefineOptions {
   // Only edges with an end whose ball changed since this epoch are split
   // (0: all): the quality phase's repair works near its poor tets only.
   Mesh::Epoch changed_since = 0;
+  // When set, the work list comes from these edges where it can
+  // (edges_beyond): an adaptation's cycle keeps them from its last count.
+  const OutOfBandEdges* known = nullptr;
 };
 
 // The parameter t in [0,1] of the point of ab at equal metric distance from
@@ -119,7 +122,7 @@ struct EdgeSplit {
 template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
-  const auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first, o.changed_since);
+  const auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first, o.changed_since, o.known);
   const EdgeSplit<S, P, Criterion, G> split{o, mesh.next_epoch(), geometry};
   OperatorStats stats = run_pass<C>(mesh, split, todo);
   stats.seconds = clock.seconds();

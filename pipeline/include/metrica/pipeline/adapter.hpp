@@ -79,9 +79,11 @@ struct AdaptReport {
 
 // The share of edges in the unit band and, when asked, the smallest mean
 // ratio (through the quality cache when `cached`: only while the cache is
-// known to hold S's values, as inside an Adapter).
+// known to hold S's values, as inside an Adapter) and, when asked, the
+// edges outside the band (a < b).
 template <MetricSpace S, class C = Serial>
-double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached = false) {
+double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached = false,
+                  std::vector<std::pair<VertexId, VertexId>>* out_of_band = nullptr) {
   // Edges in range and in all, per part of the edge buckets; the minimum
   // in blocks of 64 tets; on C's threads.
   constexpr std::size_t kBlock = 64;
@@ -90,12 +92,22 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
     std::size_t in = 0, all = 0;
   };
   std::vector<Count> counts(parts);
+  using Edge = std::pair<VertexId, VertexId>;
+  std::vector<std::vector<Edge>> outside(out_of_band != nullptr ? parts : 0);
   for_each_mesh_edge_bucket<C>(mesh, parts, [&](std::size_t p, VertexId a, std::span<const VertexId> kept) {
     std::size_t in = 0;
-    for (VertexId b : kept) in += S::edge_length_in(mesh, a, b, kUnitBand);
+    for (VertexId b : kept) {
+      const bool inside = S::edge_length_in(mesh, a, b, kUnitBand);
+      in += inside;
+      if (!inside && out_of_band != nullptr) outside[p].emplace_back(a, b);
+    }
     counts[p].in += in;
     counts[p].all += kept.size();
   });
+  if (out_of_band != nullptr) {
+    out_of_band->clear();
+    for (const auto& part : outside) out_of_band->insert(out_of_band->end(), part.begin(), part.end());
+  }
   std::size_t in = 0, all = 0;
   for (const Count& c : counts) {
     in += c.in;
@@ -173,6 +185,7 @@ class Adapter {
   template <class Criterion = ShapeOnly>
   OperatorStats collapse(CollapseOptions o, const std::string& key = "collapse") {
     o.metric = metric_;
+    o.known = &out_of_band_;
     return incremental(key, o, [this](Mesh& m, const CollapseOptions& x) {
       return collapse_edges<S, P, C, Criterion>(m, x, geometry_);
     });
@@ -180,6 +193,7 @@ class Adapter {
   template <class Criterion = ShapeOnly>
   OperatorStats split(RefineOptions o) {
     o.metric = metric_;
+    o.known = &out_of_band_;
     return refine_edges<S, P, C, Criterion>(mesh_, o, geometry_);
   }
   template <class Criterion = ShapeOnly>
@@ -215,7 +229,8 @@ class Adapter {
     mesh_.compact(part_runner<C>(mesh_.tet_capacity()));
     c.vertices = mesh_.num_vertices();
     c.tets = mesh_.num_tets();
-    c.conformity = conformity<S, C>(mesh_, &c.min_quality, true);
+    c.conformity = conformity<S, C>(mesh_, &c.min_quality, true, &out_of_band_.edges);
+    out_of_band_.taken(mesh_, kUnitBand);
     c.seconds = clock.seconds();
     report_.ops += c.ops;
     report_.cycles.push_back(c);
@@ -234,6 +249,9 @@ class Adapter {
   G geometry_;
   std::map<std::string, Mesh::Epoch, std::less<>> epochs_;
   AdaptReport report_;
+  // The edges outside the unit band at the last cycle's end, for the next
+  // cycle's work lists (edges_beyond).
+  OutOfBandEdges out_of_band_;
 };
 
 // A stage of a pipeline: a name (its key in the reports) and what it does.
