@@ -596,7 +596,7 @@ TEST_SUITE("parallel") {
     mesh.compact();
     OutOfBandEdges known;
     conformity<LogEuclidean, Serial>(mesh, nullptr, false, &known.edges);
-    known.taken(mesh, kUnitBand);
+    known.taken(mesh);
     REQUIRE(known.edges.size() > 1000);
     // Bounds outside the band, on both sides, and one inside it.
     struct Bound {
@@ -661,7 +661,7 @@ TEST_SUITE("parallel") {
     same_as_scan(bounds[0], 0, false);
     // Nor when most vertices changed.
     conformity<LogEuclidean, Serial>(mesh, nullptr, false, &known.edges);
-    known.taken(mesh, kUnitBand);
+    known.taken(mesh);
     for (TetId t = 0; t < mesh.tet_capacity(); t += 2) mesh.touch_tet(t);
     same_as_scan(bounds[2], 0, false);
   }

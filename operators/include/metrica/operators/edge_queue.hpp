@@ -42,23 +42,19 @@ struct EdgeCandidate {
 
 enum class EdgeOrder { longest_first, shortest_first };
 
-// The edges whose length was outside `band` when a full scan listed them
-// (a cycle's conformity count does), with the mesh's epoch and
-// compaction count at that moment: with the vertices changed since, the
-// edges beyond a bound outside the band follow without a scan of every
-// edge (edges_beyond).
+// The edges whose length was outside the unit band when a full scan
+// listed them (a cycle's conformity count does), with the mesh's epoch
+// and compaction count at that moment: with the vertices changed since,
+// the edges beyond a bound outside the band follow without a scan of
+// every edge (edges_beyond).
 struct OutOfBandEdges {
-  UnitBand band = kUnitBand;
-  Mesh::Epoch epoch = 0;  // tets written from this epoch on came later
+  Mesh::Epoch epoch = 0;  // tets written from this epoch on came later (0: never taken)
   std::uint32_t renumberings = 0;
-  bool valid = false;
   std::vector<std::pair<VertexId, VertexId>> edges;  // a < b
-  // `edges` now lists the edges outside `b`: a new epoch starts.
-  void taken(Mesh& mesh, const UnitBand& b) {
-    band = b;
+  // `edges` now lists the mesh's edges outside kUnitBand: a new epoch starts.
+  void taken(Mesh& mesh) {
     epoch = mesh.next_epoch();
     renumberings = mesh.renumberings();
-    valid = true;
   }
 };
 
@@ -66,7 +62,7 @@ namespace detail {
 // The edges beyond a bound (on the side of `longer`) from `known`, as
 // candidate(a, b, part) with a < b appends them, into `out`; false when
 // `known` cannot give them: it is missing, taken before the last
-// compaction, or its band holds lengths beyond the bound, or more than a
+// compaction, or the band holds lengths beyond the bound, or more than a
 // quarter of the vertices changed since it was taken (listing their
 // edges from their balls then costs about a full scan). An edge whose
 // two ends did not change since has the length it had, every move or
@@ -77,8 +73,8 @@ namespace detail {
 template <class C, class Candidate>
 bool edges_from_known(const Mesh& mesh, double bound, bool longer, const OutOfBandEdges* known, Candidate&& candidate,
                       std::vector<EdgeCandidate>& out) {
-  if (known == nullptr || !known->valid || known->renumberings != mesh.renumberings()) return false;
-  if (longer ? bound < known->band.hi : bound > known->band.lo) return false;
+  if (known == nullptr || known->epoch == 0 || known->renumberings != mesh.renumberings()) return false;
+  if (longer ? bound < kUnitBand.hi : bound > kUnitBand.lo) return false;
   const std::vector<std::uint8_t> moved = changed_vertices<C>(mesh, known->epoch);
   const std::vector<VertexId> around =
       C::template collect<VertexId>(moved.size(), [&](std::size_t v, std::vector<VertexId>& part) {

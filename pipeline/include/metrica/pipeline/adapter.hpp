@@ -230,7 +230,7 @@ class Adapter {
     c.vertices = mesh_.num_vertices();
     c.tets = mesh_.num_tets();
     c.conformity = conformity<S, C>(mesh_, &c.min_quality, true, &out_of_band_.edges);
-    out_of_band_.taken(mesh_, kUnitBand);
+    out_of_band_.taken(mesh_);
     c.seconds = clock.seconds();
     report_.ops += c.ops;
     report_.cycles.push_back(c);
