@@ -107,21 +107,22 @@ PointLocator::PointLocator(const Mesh& mesh) : mesh_(mesh) {
   }
 }
 
-TetId PointLocator::grid_tet(const Point& p) const {
+void PointLocator::grid_tets(const Point& p, std::vector<TetId>& out) const {
+  out.clear();
   std::array<int, 3> c{};
   for (int k = 0; k < 3; ++k) c[k] = std::clamp(static_cast<int>((p[k] - lo_[k]) / cell_[k]), 0, n_[k] - 1);
-  // The cell of p, else the nearest filled cell in growing shells (a few:
-  // beyond, the walk from the first tet and the scan take over).
+  // The tets of the cell of p and of the cells around it (a walk from one
+  // of them reaches p around a hole the others meet), else of the nearest
+  // shell of cells with a tet (a few shells: beyond, the scan takes over).
   const int most = std::min(std::max({n_[0], n_[1], n_[2]}), 16);
-  for (int r = 0; r < most; ++r)
+  for (int r = 0; r < most && (r <= 1 || out.empty()); ++r)
     for (int z = std::max(0, c[2] - r); z <= std::min(n_[2] - 1, c[2] + r); ++z)
       for (int y = std::max(0, c[1] - r); y <= std::min(n_[1] - 1, c[1] + r); ++y)
         for (int x = std::max(0, c[0] - r); x <= std::min(n_[0] - 1, c[0] + r); ++x) {
           if (std::max({std::abs(x - c[0]), std::abs(y - c[1]), std::abs(z - c[2])}) != r) continue;
           const TetId t = cells_[(static_cast<std::size_t>(z) * n_[1] + y) * n_[0] + x];
-          if (t != kNoId) return t;
+          if (t != kNoId) out.push_back(t);
         }
-  return kNoId;
 }
 
 Location PointLocator::locate(const Point& p, TetId hint) const {
@@ -135,10 +136,15 @@ Location PointLocator::locate(const Point& p, TetId hint) const {
   Location best = metrica::locate(mesh_, p, hint);
   double best_miss = miss(best);
   if (best_miss <= round_off_) return best;
-  const Location again = metrica::locate(mesh_, p, grid_tet(p));
-  if (const double m = miss(again); m < best_miss) {
-    best = again;
-    best_miss = m;
+  std::vector<TetId> starts;
+  grid_tets(p, starts);
+  for (TetId start : starts) {
+    const Location again = metrica::locate(mesh_, p, start);
+    if (again.inside) return again;
+    if (const double m = miss(again); m < best_miss) {
+      best = again;
+      best_miss = m;
+    }
   }
   // A walk from a tet a cell away that stops within a cell of p: p lies
   // outside, beyond a boundary near it (a curved wall faceted differently).

@@ -32,9 +32,10 @@ Location locate(const Mesh& mesh, const Point& p, TetId start = kNoId);
 
 // Point location in a domain of any shape. A walk cannot go around a hole
 // (the body in a flow) or a re-entrant corner: it stops at the boundary
-// face in the way. The locator then walks again from the tet nearest the
-// point in a grid of tet centroids (about two tets per cell), and when
-// that also stops farther than a cell from the point, scans every tet. A
+// face in the way. The locator then walks again from the tets of the
+// point's cell and of the cells around it in a grid of tet centroids
+// (about two tets per cell), and when none ends in a tet holding the point
+// and the nearest stop is farther than a cell from it, scans every tet. A
 // point outside the mesh keeps the best tet found, coordinates clamped
 // (inside = false).
 class PointLocator {
@@ -43,7 +44,8 @@ class PointLocator {
   Location locate(const Point& p, TetId hint = kNoId) const;
 
  private:
-  TetId grid_tet(const Point& p) const;
+  // Tets with their centroid near p: in its cell or the cells around it.
+  void grid_tets(const Point& p, std::vector<TetId>& out) const;
   const Mesh& mesh_;
   Point lo_ = Point::Zero();
   Eigen::Vector3d cell_ = Eigen::Vector3d::Ones();
