@@ -42,6 +42,11 @@ struct CubeCylinder {
 
 double largest_distance(const Mesh& mesh, const CadModel& model) { return model_distance(mesh, model).max; }
 
+Point centroid(const Mesh& mesh, TetId t) {
+  const auto& v = mesh.tet(t);
+  return 0.25 * (mesh.point(v[0]) + mesh.point(v[1]) + mesh.point(v[2]) + mesh.point(v[3]));
+}
+
 // Vertices on the quarter cylinder (surface 5) are at radius 0.5.
 double largest_radius_error(const Mesh& mesh) {
   double e = 0.0;
@@ -478,8 +483,7 @@ TEST_SUITE("regression") {
     const Point behind(0.58, 0.2, 0.2);
     TetId front = kNoId;
     for (TetId t = 0; t < from.tet_capacity() && front == kNoId; ++t) {
-      const auto& v = from.tet(t);
-      const Point c = 0.25 * (from.point(v[0]) + from.point(v[1]) + from.point(v[2]) + from.point(v[3]));
+      const Point c = centroid(from, t);
       if (c.x() < 0.42 && std::abs(c.y() - 0.2) < 0.03 && std::abs(c.z() - 0.2) < 0.05) front = t;
     }
     REQUIRE(front != kNoId);
@@ -517,9 +521,7 @@ TEST_SUITE("regression") {
       double nearest = std::numeric_limits<double>::infinity();
       const Point inlet(0.0, 0.2, 0.2);
       for (TetId t = 0; t < from.tet_capacity(); ++t) {
-        const auto& v = from.tet(t);
-        const Point c = 0.25 * (from.point(v[0]) + from.point(v[1]) + from.point(v[2]) + from.point(v[3]));
-        if (const double d = (c - inlet).norm(); d < nearest) {
+        if (const double d = (centroid(from, t) - inlet).norm(); d < nearest) {
           nearest = d;
           start = t;
         }
@@ -527,7 +529,7 @@ TEST_SUITE("regression") {
       for (const double r : {0.052, 0.055, 0.06, 0.07, 0.1})
         for (int k = 0; k < 32; ++k)
           for (const double z : {0.01, 0.05, 0.12, 0.2, 0.28, 0.36, 0.4}) {
-            const double angle = 2.0 * std::numbers::pi * k / 32.0;
+            const double angle = 2.0 * kPi * k / 32.0;
             const Point p(0.5 + r * std::cos(angle), 0.2 + r * std::sin(angle), z);
             CHECK_MESSAGE(locator.locate(p, start).inside, "size " << size << ": not found at " << p.transpose());
           }
