@@ -1,6 +1,6 @@
 // One (space, concurrency, geometry) triple of the policy lists, compiled
 // with METRICA_ADAPT_UNIT = its index (space-major, geometry last): the
-// pipeline under every precision for that triple.
+// standard stages and the pipeline under every precision for that triple.
 #include <metrica/pipeline/adapt_dispatch.hpp>
 
 namespace metrica {
@@ -15,8 +15,17 @@ AdaptReport adapt_instance(Mesh& mesh, const AdaptOptions& options, std::string_
 constexpr std::size_t kUnit = METRICA_ADAPT_UNIT;
 constexpr std::size_t kPerSpace = Concurrencies::size * Geometries::size;
 static_assert(kUnit < Spaces::size * kPerSpace, "more adapt units than policy triples (pipeline/CMakeLists.txt)");
-template AdaptReport
-adapt_instance<Spaces::at<kUnit / kPerSpace>, Concurrencies::at<kUnit % kPerSpace / Geometries::size>,
-               Geometries::at<kUnit % Geometries::size>>(Mesh&, const AdaptOptions&, std::string_view);
+using UnitSpace = Spaces::at<kUnit / kPerSpace>;
+using UnitConcurrency = Concurrencies::at<kUnit % kPerSpace / Geometries::size>;
+using UnitGeometry = Geometries::at<kUnit % Geometries::size>;
+
+// The standard stages of the triple (declared in standard_stages.hpp).
+static_assert(Precisions::size == 3, "one line per precision below");
+METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<0>, UnitConcurrency, UnitGeometry)
+METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<1>, UnitConcurrency, UnitGeometry)
+METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<2>, UnitConcurrency, UnitGeometry)
+
+template AdaptReport adapt_instance<UnitSpace, UnitConcurrency, UnitGeometry>(Mesh&, const AdaptOptions&,
+                                                                               std::string_view);
 
 }  // namespace metrica

@@ -13,6 +13,7 @@
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/criterion.hpp>
+#include <metrica/pipeline/adapt.hpp>  // the standard stages, compiled in the library
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/predicates/precision.hpp>
 #include <metrica/validate.hpp>
@@ -112,21 +113,63 @@ inline std::map<SurfaceId, double> surface_areas(const Mesh& mesh) {
   return area;
 }
 
-template <class S, class P, class C>
+// A policy combination; Speculative ones with their thread count.
+template <class S, class P, class C, int Threads = 0>
 struct Policies {
   using Space = S;
   using Precision = P;
   using Concurrency = C;
+  static constexpr int threads = Threads;
+};
+
+// Speculative pinned to N threads with every list sent to them, as a type:
+// for the sweeps and executors tested one by one (each call runs under its
+// own SpeculativeScope).
+template <int N>
+struct SpeculativeOn {
+  static constexpr std::string_view name = Speculative::name;
+  using OwnerTable = Speculative::OwnerTable;
+  using Locks = Speculative::Locks;
+  static SpeculativeSettings pinned() { return {.threads = N, .small_list = 0}; }
+  static int threads() { return N; }
+  template <class T, class F>
+  static std::vector<T> collect(std::size_t n, F&& f) {
+    const SpeculativeScope scope(pinned());
+    return Speculative::collect<T>(n, std::forward<F>(f));
+  }
+  template <class F>
+  static void parallel_for(std::size_t n, F&& f) {
+    const SpeculativeScope scope(pinned());
+    Speculative::parallel_for(n, std::forward<F>(f));
+  }
+  template <class It, class Less>
+  static void sort(It first, It last, Less less) {
+    const SpeculativeScope scope(pinned());
+    Speculative::sort(first, last, less);
+  }
+  template <class Item, class Work>
+  static PassTally for_each(Mesh& mesh, std::span<const Item> items, const PassRoom& room, Work&& work) {
+    const SpeculativeScope scope(pinned());
+    return Speculative::for_each(mesh, items, room, std::forward<Work>(work));
+  }
+};
+
+// Speculative on T's threads with every list sent to them (no small-list
+// rule: the test meshes are small), for the test's lifetime.
+template <class T>
+struct ExecutorOf {
+  SpeculativeScope scope{{.threads = T::threads, .small_list = 0}};
 };
 
 }  // namespace metrica::test
 
 // Every Space and Precision under Serial; the Speculative policy with 1,
-// 2 and 8 threads (8 on a 2-core machine forces interleavings).
-#define METRICA_POLICY_COMBINATIONS                                                                       \
+// 2 and 8 threads (8 on a 2-core machine forces interleavings). A test
+// body opens with `const ExecutorOf<T> executor;`.
+#define METRICA_POLICY_COMBINATIONS                                                                                \
   metrica::test::Policies<LogEuclidean, Filtered, Serial>, metrica::test::Policies<Anisotropic, Filtered, Serial>, \
       metrica::test::Policies<Isotropic, Filtered, Serial>, metrica::test::Policies<LogEuclidean, Exact, Serial>,  \
       metrica::test::Policies<LogEuclidean, Fast, Serial>,                                                        \
-      metrica::test::Policies<LogEuclidean, Filtered, SpeculativeThreads<1>>,                                     \
-      metrica::test::Policies<LogEuclidean, Filtered, SpeculativeThreads<2>>,                                     \
-      metrica::test::Policies<Anisotropic, Filtered, SpeculativeThreads<8>>
+      metrica::test::Policies<LogEuclidean, Filtered, Speculative, 1>,                                            \
+      metrica::test::Policies<LogEuclidean, Filtered, Speculative, 2>,                                            \
+      metrica::test::Policies<Anisotropic, Filtered, Speculative, 8>

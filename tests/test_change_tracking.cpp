@@ -64,6 +64,7 @@ TEST_SUITE("unit") {
 TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("passes restricted to what changed find nothing on an unchanged mesh - caches stay fresh", T,
                      METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;

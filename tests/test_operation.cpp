@@ -270,6 +270,7 @@ TEST_SUITE("invariant") {
 
   TEST_CASE_TEMPLATE("a custom pipeline (stages reordered and one replaced) reports by stage name", T,
                      METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using A = Adapter<typename T::Space, typename T::Precision, typename T::Concurrency>;
     Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
     const MetricFunction metric = small_linear;
@@ -306,6 +307,7 @@ TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE(
       "the tutorial's operation (examples/operation) keeps the mesh valid and never lowers the worst tet", T,
       METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;

@@ -48,6 +48,7 @@ int for_each_closed_shell(const Mesh& mesh, std::size_t min_tets, std::size_t ma
 TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("edge refinement leaves no edge longer than sqrt 2 and a valid mesh", T,
                      METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
     set_uniform_metric(mesh, 0.15);
@@ -78,6 +79,7 @@ TEST_SUITE("invariant") {
 
 TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("a 2-3 flip then the 3-2 flip of its new edge restores the tets", T, METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     Mesh mesh = jittered_box(3, 0.2, 1);
@@ -110,6 +112,7 @@ TEST_SUITE("invariant") {
 
   TEST_CASE_TEMPLATE("reconnection under each criterion keeps the mesh valid - quality flips never lower the worst tet", T,
                      METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;
@@ -229,6 +232,7 @@ TEST_SUITE("invariant") {
   }
 
   TEST_CASE_TEMPLATE("boundary 2-2 flips swap diagonals inside one surface", T, METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     Mesh mesh = make_box({.nx = 2, .ny = 2, .nz = 2});
@@ -251,6 +255,7 @@ TEST_SUITE("invariant") {
   }
 
   TEST_CASE_TEMPLATE("edge collapse keeps corners and ridges and the volume", T, METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;
@@ -283,6 +288,7 @@ TEST_SUITE("invariant") {
 
   TEST_CASE_TEMPLATE("collapses that must lift their ball (any length) never lower the worst tet", T,
                      METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;
@@ -314,6 +320,7 @@ TEST_SUITE("invariant") {
   }
 
   TEST_CASE_TEMPLATE("smoothing never lowers the worst quality of a ball and never inverts", T, METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     Mesh mesh = jittered_box(3, 0.35, 3);
@@ -369,6 +376,7 @@ TEST_SUITE("invariant") {
   // smoothing finds no better place for the pinned vertex; a collapse can.
   TEST_CASE_TEMPLATE("the quality phase's repair rounds lift a tet that flips and smoothing leave", T,
                      METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;

@@ -74,12 +74,13 @@ Adapted adapt_linear(const std::string& c) {
   });
 }
 
-// The pipeline with every list shared out however short (the Speculative
-// alias runs lists under 8192 items on one thread, which at this size is
-// all of them): the parallel path under test.
+// The pipeline with every list shared out however short (by default
+// Speculative runs lists under 8192 items on one thread, which at this
+// size is all of them): the parallel path under test.
 Adapted adapt_linear_shared() {
   return adapt_linear_by([](Mesh& mesh, const AdaptOptions& o) {
-    return adapt<LogEuclidean, Filtered, SpeculativeThreads<>>(mesh, o);
+    const SpeculativeScope shared({.small_list = 0});
+    return adapt<LogEuclidean, Filtered, Speculative>(mesh, o);
   });
 }
 
@@ -169,9 +170,9 @@ TEST_SUITE("parallel") {
       for (auto& d : done) d = 0;
       for (auto& a : attempts) a = 0;
       const PassTally tally = [&] {
-        if (threads == 1) return SpeculativeThreads<1>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
-        if (threads == 2) return SpeculativeThreads<2>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
-        return SpeculativeThreads<8>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
+        if (threads == 1) return SpeculativeOn<1>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
+        if (threads == 2) return SpeculativeOn<2>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
+        return SpeculativeOn<8>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
       }();
       for (std::size_t i = 0; i < items.size(); ++i) REQUIRE(done[i] == 1);
       CHECK(tally.conflicts >= (items.size() + 2) / 3);
@@ -201,7 +202,7 @@ TEST_SUITE("parallel") {
     };
     // Room for a tenth of the items: the rest waits for growth.
     const PassRoom room{.max_vertices = 1, .max_tets = 2, .vertices_per_item = 0.1, .tets_per_item = 0.1};
-    const PassTally tally = SpeculativeThreads<8>::for_each(mesh, std::span<const std::uint32_t>(index), room, work);
+    const PassTally tally = SpeculativeOn<8>::for_each(mesh, std::span<const std::uint32_t>(index), room, work);
     CHECK(tally.conflicts == 0);
     CHECK(tally.rounds >= 2);  // items waited for the reserve to grow
     CHECK(std::set<VertexId>(made_v.begin(), made_v.end()).size() == index.size());
@@ -228,10 +229,10 @@ TEST_SUITE("parallel") {
       decltype(policy)::sort(got.begin(), got.end(), std::less<std::uint64_t>{});
       CHECK(got == expect);
     };
-    check(SpeculativeThreads<1>{});
-    check(SpeculativeThreads<2>{});
-    check(SpeculativeThreads<3>{});
-    check(SpeculativeThreads<8>{});
+    check(SpeculativeOn<1>{});
+    check(SpeculativeOn<2>{});
+    check(SpeculativeOn<3>{});
+    check(SpeculativeOn<8>{});
   }
 
   TEST_CASE("collect on 2, 3 and 8 threads lists what one thread lists, in the order of i; errors reach the caller") {
@@ -244,13 +245,13 @@ TEST_SUITE("parallel") {
     const std::size_t n = 100003;
     const auto expect = Serial::collect<std::uint32_t>(n, f);
     REQUIRE(expect.size() > 20000);
-    CHECK(SpeculativeThreads<2>::collect<std::uint32_t>(n, f) == expect);
-    CHECK(SpeculativeThreads<3>::collect<std::uint32_t>(n, f) == expect);
-    CHECK(SpeculativeThreads<8>::collect<std::uint32_t>(n, f) == expect);
+    CHECK(SpeculativeOn<2>::collect<std::uint32_t>(n, f) == expect);
+    CHECK(SpeculativeOn<3>::collect<std::uint32_t>(n, f) == expect);
+    CHECK(SpeculativeOn<8>::collect<std::uint32_t>(n, f) == expect);
     auto fails = [](std::size_t i, std::vector<std::uint32_t>&) {
       if (i == 77777) throw std::runtime_error("item 77777");
     };
-    CHECK_THROWS_WITH(SpeculativeThreads<2>::collect<std::uint32_t>(n, fails), "item 77777");
+    CHECK_THROWS_WITH(SpeculativeOn<2>::collect<std::uint32_t>(n, fails), "item 77777");
   }
 
   TEST_CASE("ASCII outputs formatted on 2 and 8 threads and on 3 reversed parts: the bytes of one thread") {
@@ -285,7 +286,7 @@ TEST_SUITE("parallel") {
       const std::string sol_text = io::format_sol(sol, io::Encoding::ascii, version);
       REQUIRE(mesh_text.size() > (std::size_t{4} << 20));
       for (const PartRunner& run :
-           {part_runner<SpeculativeThreads<2>>(1 << 20), reversed, part_runner<SpeculativeThreads<8>>(1 << 20)}) {
+           {part_runner<SpeculativeOn<2>>(1 << 20), reversed, part_runner<SpeculativeOn<8>>(1 << 20)}) {
         CAPTURE(run.parts);
         CHECK(io::format_mesh(m, io::Encoding::ascii, version, run) == mesh_text);
         CHECK(io::format_sol(sol, io::Encoding::ascii, version, run) == sol_text);
@@ -315,7 +316,7 @@ TEST_SUITE("parallel") {
       REQUIRE(one.count("orientation") > 3);
       REQUIRE(one.count("adjacency") > 3);
       for (const PartRunner& run :
-           {part_runner<SpeculativeThreads<2>>(1 << 20), reversed, part_runner<SpeculativeThreads<8>>(1 << 20)}) {
+           {part_runner<SpeculativeOn<2>>(1 << 20), reversed, part_runner<SpeculativeOn<8>>(1 << 20)}) {
         const ValidationReport parts = mesh.validate({.max_messages_per_check = cap, .run = run});
         CHECK(parts.counts() == one.counts());
         CHECK(parts.to_string() == one.to_string());
@@ -325,8 +326,8 @@ TEST_SUITE("parallel") {
 
   TEST_CASE("grow_array on 2 and 8 threads and on 3 reversed parts: old elements kept, new ones filled") {
     const PartRunner reversed = reversed_parts(3);
-    for (const PartRunner& run : {PartRunner{}, part_runner<SpeculativeThreads<2>>(1 << 20), reversed,
-                                  part_runner<SpeculativeThreads<8>>(1 << 20)}) {
+    for (const PartRunner& run : {PartRunner{}, part_runner<SpeculativeOn<2>>(1 << 20), reversed,
+                                  part_runner<SpeculativeOn<8>>(1 << 20)}) {
       MeshArray<std::uint32_t> a;
       for (std::uint32_t i = 0; i < 10001; ++i) a.push_back(3 * i);
       a.shrink_to_fit();
@@ -349,7 +350,7 @@ TEST_SUITE("parallel") {
     // (mesh_array.hpp); grow_array's fill must set every new one.
     using Adjacency = std::array<FaceRef, 4>;
     static_assert(sizeof(Adjacency) * 100000 < kLargeBlock && sizeof(Adjacency) * 1000000 > kLargeBlock);
-    for (const PartRunner& run : {PartRunner{}, part_runner<SpeculativeThreads<2>>(1 << 20)}) {
+    for (const PartRunner& run : {PartRunner{}, part_runner<SpeculativeOn<2>>(1 << 20)}) {
       MeshArray<Adjacency> a;
       grow_array(a, 100000, Adjacency{FaceRef(1, 2), FaceRef(), FaceRef(), FaceRef()}, 0, run);
       grow_array(a, 1000000, Adjacency{}, 1000000, run);  // from a small block to a large one
@@ -448,8 +449,8 @@ TEST_SUITE("parallel") {
     for (bool sorted : {false, true})
       for (std::size_t parts : {1u, 2u, 3u, 8u}) {
         check(Serial{}, parts, sorted);
-        check(SpeculativeThreads<2>{}, parts, sorted);
-        check(SpeculativeThreads<8>{}, parts, sorted);
+        check(SpeculativeOn<2>{}, parts, sorted);
+        check(SpeculativeOn<8>{}, parts, sorted);
       }
     // The policies' own part count: unique_edge_seeds on 2 and 8 threads
     // gives Serial's list.
@@ -457,8 +458,8 @@ TEST_SUITE("parallel") {
     for (std::size_t i = 0; i < n; ++i) seeds.push_back(static_cast<TetId>(i));
     std::vector<EdgeSeed> serial, two, eight;
     unique_edge_seeds<Serial>(std::span<const TetId>(seeds), vertices_of, capacity, serial);
-    unique_edge_seeds<SpeculativeThreads<2>>(std::span<const TetId>(seeds), vertices_of, capacity, two);
-    unique_edge_seeds<SpeculativeThreads<8>>(std::span<const TetId>(seeds), vertices_of, capacity, eight);
+    unique_edge_seeds<SpeculativeOn<2>>(std::span<const TetId>(seeds), vertices_of, capacity, two);
+    unique_edge_seeds<SpeculativeOn<8>>(std::span<const TetId>(seeds), vertices_of, capacity, eight);
     REQUIRE(serial.size() == two.size());
     REQUIRE(serial.size() == eight.size());
     for (std::size_t i = 0; i < serial.size(); ++i) {
@@ -484,15 +485,15 @@ TEST_SUITE("parallel") {
     std::sort(sorted.begin(), sorted.end());
     CHECK(sorted == unique_edges(mesh));
     for (std::size_t i = 1; i < expected.size(); ++i) REQUIRE(expected[i - 1][0] <= expected[i][0]);
-    CHECK(edges_with(SpeculativeThreads<2>{}) == expected);
-    CHECK(edges_with(SpeculativeThreads<8>{}) == expected);
+    CHECK(edges_with(SpeculativeOn<2>{}) == expected);
+    CHECK(edges_with(SpeculativeOn<8>{}) == expected);
     const Mesh::Epoch since = mesh.next_epoch();
     for (TetId t = 0; t < mesh.tet_capacity(); t += 7)
       if (mesh.tet_alive(t)) mesh.touch_tet(t);
     const auto marks = changed_vertices<Serial>(mesh, since);
     CHECK(std::count(marks.begin(), marks.end(), 1) > 0);
-    CHECK(changed_vertices<SpeculativeThreads<2>>(mesh, since) == marks);
-    CHECK(changed_vertices<SpeculativeThreads<8>>(mesh, since) == marks);
+    CHECK(changed_vertices<SpeculativeOn<2>>(mesh, since) == marks);
+    CHECK(changed_vertices<SpeculativeOn<8>>(mesh, since) == marks);
   }
 
   TEST_CASE("compact on 2 and 8 threads and on 3 reversed parts renumbers as on one thread: the same mesh to the bit") {
@@ -513,8 +514,8 @@ TEST_SUITE("parallel") {
     // Parts run in reverse order on this thread: no part may rely on an
     // earlier one having run.
     const PartRunner reversed = reversed_parts(3);
-    for (const PartRunner& run : {part_runner<SpeculativeThreads<2>>(one.tet_capacity()), reversed,
-                                  part_runner<SpeculativeThreads<8>>(one.tet_capacity())}) {
+    for (const PartRunner& run : {part_runner<SpeculativeOn<2>>(one.tet_capacity()), reversed,
+                                  part_runner<SpeculativeOn<8>>(one.tet_capacity())}) {
       Mesh other = coarsened();
       other.compact(run);
       REQUIRE(other.num_tets() == one.num_tets());
@@ -575,8 +576,8 @@ TEST_SUITE("parallel") {
           REQUIRE((list[i - 1].a < list[i].a || (list[i - 1].a == list[i].a && list[i - 1].b < list[i].b)));
       }
       CHECK(classes.size() >= 4);
-      CHECK(edges_beyond<LogEuclidean, SpeculativeThreads<2>>(mesh, bound, order) == list);
-      CHECK(edges_beyond<LogEuclidean, SpeculativeThreads<8>>(mesh, bound, order) == list);
+      CHECK(edges_beyond<LogEuclidean, SpeculativeOn<2>>(mesh, bound, order) == list);
+      CHECK(edges_beyond<LogEuclidean, SpeculativeOn<8>>(mesh, bound, order) == list);
       // With changed_since: the same list, less the edges with no end in a
       // changed ball, in the same order.
       auto limited = list;
@@ -584,7 +585,7 @@ TEST_SUITE("parallel") {
       REQUIRE(limited.size() > 10);
       REQUIRE(limited.size() < list.size());
       CHECK(edges_beyond<LogEuclidean, Serial>(mesh, bound, order, since) == limited);
-      CHECK(edges_beyond<LogEuclidean, SpeculativeThreads<2>>(mesh, bound, order, since) == limited);
+      CHECK(edges_beyond<LogEuclidean, SpeculativeOn<2>>(mesh, bound, order, since) == limited);
     }
   }
 
@@ -610,7 +611,7 @@ TEST_SUITE("parallel") {
     auto same_as_scan = [&](const Bound& b, Mesh::Epoch since, bool from_known) {
       const auto scan = edges_beyond<LogEuclidean, Serial>(mesh, b.length, b.order, since);
       CHECK(edges_beyond<LogEuclidean, Serial>(mesh, b.length, b.order, since, &known) == scan);
-      CHECK(edges_beyond<LogEuclidean, SpeculativeThreads<2>>(mesh, b.length, b.order, since, &known) == scan);
+      CHECK(edges_beyond<LogEuclidean, SpeculativeOn<2>>(mesh, b.length, b.order, since, &known) == scan);
       // Whether the list came from `known` (the same list either way).
       std::vector<EdgeCandidate> unused;
       const bool longer = b.order == EdgeOrder::longest_first;
@@ -699,7 +700,7 @@ TEST_SUITE("parallel") {
     }
   }
 
-  TEST_CASE("a list shorter than MinItems runs on one thread and splits what Serial splits") {
+  TEST_CASE("a list shorter than the small-list size runs on one thread and splits what Serial splits") {
     // Splits lock shells holding vertices made earlier in the pass, past
     // the vertex capacity the pass began with: the owner words must cover
     // them (they once did not, and such splits were dropped).
@@ -707,7 +708,8 @@ TEST_SUITE("parallel") {
     set_uniform_metric(a, 0.12);
     Mesh b = a;
     const auto s = refine_edges<LogEuclidean, Filtered, Serial>(a);
-    const auto p = refine_edges<LogEuclidean, Filtered, SpeculativeThreads<2, 1000000>>(b);
+    const SpeculativeScope small({.threads = 2, .small_list = 1000000});
+    const auto p = refine_edges<LogEuclidean, Filtered, Speculative>(b);
     CHECK(s.applied > 20);
     CHECK(p.applied == s.applied);
     CHECK(p.conflicts == 0);

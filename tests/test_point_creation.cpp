@@ -17,6 +17,7 @@ using namespace metrica::test;
 TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("centroid insertion keeps the mesh valid and puts points inside and on the boundary", T,
                      METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;
@@ -61,6 +62,7 @@ TEST_SUITE("invariant") {
 
   TEST_CASE_TEMPLATE("a tet split in four and a boundary face split in three conserve volume and area", T,
                      METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
     using P = typename T::Precision;
     Mesh mesh = make_box({.nx = 1, .ny = 1, .nz = 1});
     set_uniform_metric(mesh, 1.0);

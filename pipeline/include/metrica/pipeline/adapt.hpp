@@ -13,6 +13,7 @@
 #include <metrica/geometry/cad_geometry.hpp>
 #include <metrica/operators/edge_buckets.hpp>
 #include <metrica/pipeline/adapter.hpp>
+#include <metrica/pipeline/standard_stages.hpp>
 
 #include <algorithm>
 #include <functional>
@@ -334,5 +335,15 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const G& geometry = {
   a.on_cycle = options.on_cycle;
   return run_pipeline(a, standard_pipeline<Adapter<S, P, C, G>>(options));
 }
+
+// Compiled in the library (standard_stages.hpp).
+static_assert(Spaces::size == 3 && Precisions::size == 3 && Concurrencies::size == 2 && Geometries::size == 2,
+              "METRICA_STANDARD_STAGES_OF_SPACE lists 3 precisions, 2 concurrencies and 2 geometries per space "
+              "(standard_stages.hpp)");
+METRICA_STANDARD_STAGES_OF_SPACE(extern, 0)
+#if !METRICA_ADAPT_FIRST_SPACE_ONLY
+METRICA_STANDARD_STAGES_OF_SPACE(extern, 1)
+METRICA_STANDARD_STAGES_OF_SPACE(extern, 2)
+#endif
 
 }  // namespace metrica

@@ -34,8 +34,6 @@ bool space_compiled(std::string_view space);
 
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& policies = {});
 
-using Geometries = PolicyList<NoGeometry, CadGeometry>;
-
 // The Geometry policy object of `options`.
 template <Geometry G>
 G geometry_of(const AdaptOptions& options) {

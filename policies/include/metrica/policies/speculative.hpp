@@ -32,6 +32,7 @@
 #include <exception>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace metrica {
@@ -97,20 +98,49 @@ class SpeculativeLocks {
   boost::container::small_vector<VertexId, 128> held_;
 };
 
-// Threads: `Threads` when positive (tests pin 1, 2 and 8), else
-// thread_count() (--threads, OMP_NUM_THREADS, or one per core). A work
-// list shorter than `MinItems` runs on the calling thread, without pools,
-// while the mesh is small (under 16 MinItems tets: the first cycles, see
-// Speculative below) or the list very short (under MinItems / 16: tens of
-// items, whose fork, join and reserve cost more than their work).
-template <int Threads = 0, std::size_t MinItems = 0>
-struct SpeculativeThreads {
+// What a Speculative pass may use, read when a pass starts (set it from
+// the calling thread between passes, e.g. with SpeculativeScope):
+//  - threads: 0 for thread_count() (--threads, OMP_NUM_THREADS, or one per
+//    core), else that many;
+//  - small_list: a work list shorter than this runs on the calling thread,
+//    without pools, while the mesh is small (under 16 x small_list tets:
+//    the first cycles) or the list very short (under small_list / 16: tens
+//    of items, whose fork, join and reserve cost more than their work). In
+//    the first cycles a tenth of the items conflicted and their replays
+//    reordered the work; such runs never recovered the quality of one
+//    thread's (docs/benchmarks.md). 0 sends every list to the threads, as
+//    the tests do to force interleavings on small meshes.
+struct SpeculativeSettings {
+  static constexpr std::size_t kSmallList = 8192;
+  int threads = 0;
+  std::size_t small_list = kSmallList;
+};
+
+// The settings in force for the scope's lifetime, the previous ones
+// restored after.
+class SpeculativeScope {
+ public:
+  explicit SpeculativeScope(SpeculativeSettings s);
+  SpeculativeScope(const SpeculativeScope&) = delete;
+  SpeculativeScope& operator=(const SpeculativeScope&) = delete;
+  ~SpeculativeScope();
+
+ private:
+  SpeculativeSettings saved_;
+};
+
+// The speculative executor (the pipeline's default).
+struct Speculative {
   static constexpr std::string_view name = "speculative";
 
   using OwnerTable = SpeculativeOwnerTable;
   using Locks = SpeculativeLocks;
 
-  static int threads() { return Threads > 0 ? Threads : thread_count(); }
+  static SpeculativeSettings& settings();
+  static int threads() { return settings().threads > 0 ? settings().threads : thread_count(); }
+  // "speculative on N threads, lists under M on one thread while the mesh
+  // is small" (adapt -v).
+  static std::string describe();
 
   // The owner words, at least n: kept by the calling thread from pass to
   // pass (every word is 0 again when a pass ends), so a pass neither
@@ -197,7 +227,8 @@ struct SpeculativeThreads {
     PassTally tally;
     if (items.empty()) return tally;
     Stopwatch clock;
-    if (items.size() < MinItems && (items.size() < MinItems / 16 || mesh.num_tets() < 16 * MinItems)) {
+    const std::size_t small = settings().small_list;
+    if (items.size() < small && (items.size() < small / 16 || mesh.num_tets() < 16 * small)) {
       Locks locks(nullptr, 1, true);
       for (const Item& item : items) {
         if (work(item, 0, locks) == Attempt::conflict)  // one thread: never
@@ -219,7 +250,7 @@ struct SpeculativeThreads {
     };
     const auto [v0, t0] = room_for(items.size(), nt);
     // The arrays grow on the pass's threads (Mesh::begin_parallel).
-    const PartRunner grow_run = part_runner<SpeculativeThreads>(mesh.tet_capacity());
+    const PartRunner grow_run = part_runner<Speculative>(mesh.tet_capacity());
     mesh.begin_parallel(v0, t0, grow_run);
     std::vector<Mesh::AllocationPool> pools(static_cast<std::size_t>(nt));
     struct alignas(64) PerThread {
@@ -306,14 +337,6 @@ struct SpeculativeThreads {
     return tally;
   }
 };
-
-// The policy of the pipeline. Lists under 8192 items run on one thread
-// while the mesh is small: in the first cycles a tenth of the items
-// conflicted and their replays reordered the work, and such runs never
-// recovered the quality of one thread's. On a large mesh a short list is
-// spread thin and rarely conflicts, so it runs on every thread (figures:
-// docs/benchmarks.md).
-using Speculative = SpeculativeThreads<0, 8192>;
 
 static_assert(Concurrency<Speculative>);
 
