@@ -31,21 +31,25 @@ std::string stats_text(const char* name, const OperatorStats& s) {
   return fmt::format("{} {}/{} ({:.2f} s{})", name, count_text(s.applied), count_text(s.tried), s.seconds, conflicts);
 }
 
-// Attempts, applied, conflicts (locks released, item replayed later),
-// replays, the items left to one thread and, on several threads, the
-// share of the parallel loops' thread time spent working (the rest is
-// waiting at a loop's end for the last thread), per operator.
-void print_parallel_stats(const AdaptReport& r, int threads) {
+// Per operator: items tried = applied + rejected + deferred, the
+// candidates they weighed; on Speculative also conflicts (locks released,
+// item replayed later), replays, the items left to one thread and, on
+// several threads, the share of the parallel loops' thread time spent
+// working (the rest is waiting at a loop's end for the last thread).
+void print_operator_stats(const AdaptReport& r, bool serial, int threads) {
   for (const auto& [name, s] : r.ops) {
-    const std::string busy = threads > 1 && s.thread_seconds > 0.0
-                                 ? fmt::format(" busy {:.1f}%", 100.0 * s.busy_seconds / s.thread_seconds)
-                                 : "";
-    fmt::print(
-        "  {:<8} tried {:>10} applied {:>10} conflicts {:>8} ({:.2f}%) replays {:>8} one-thread tail {:>6}{} | "
-        "{:.2f} s\n",
-        name, count_text(s.tried), count_text(s.applied), count_text(s.conflicts),
-        s.tried > 0 ? 100.0 * double(s.conflicts) / double(s.tried + s.conflicts) : 0.0, count_text(s.replays),
-        count_text(s.serial_tail), busy, s.seconds);
+    std::string text = fmt::format("  {:<8} tried {:>10} applied {:>10} rejected {:>10} deferred {:>6} candidates {:>10}",
+                                   name, count_text(s.tried), count_text(s.applied), count_text(s.rejected),
+                                   count_text(s.deferred), count_text(s.candidates));
+    if (!serial) {
+      const std::string busy = threads > 1 && s.thread_seconds > 0.0
+                                   ? fmt::format(" busy {:.1f}%", 100.0 * s.busy_seconds / s.thread_seconds)
+                                   : "";
+      text += fmt::format(" conflicts {:>8} ({:.2f}%) replays {:>8} one-thread tail {:>6}{}", count_text(s.conflicts),
+                          s.tried > 0 ? 100.0 * double(s.conflicts) / double(s.tried + s.conflicts) : 0.0,
+                          count_text(s.replays), count_text(s.serial_tail), busy);
+    }
+    fmt::print("{} | {:.2f} s\n", text, s.seconds);
   }
 }
 
@@ -220,13 +224,16 @@ int run_adapt(const std::vector<std::string>& args) {
       fmt::print("{}adapting {} vertices, {} tets ({} space, {} predicates, {} points, {})\n",
                  iterations > 1 ? fmt::format("iteration {}: ", it + 1) : "", count_text(mesh.num_vertices()),
                  count_text(mesh.num_tets()), policies.space, policies.precision, to_string(ao.points),
-                 serial ? std::string("serial") : fmt::format("speculative, {} threads", thread_count()));
+                 serial                                       ? std::string("serial")
+                 : log::level() >= log::Level::verbose ? Speculative::describe()
+                                                       : fmt::format("speculative, {} threads", thread_count()));
     const auto report = adapt(mesh, ao, policies);
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
                  count_text(report.ops.get("collapse").applied), count_text(report.ops.get("split").applied),
                  count_text(report.ops.get("flip").applied), count_text(report.ops.get("smooth").applied));
-    if (talk && !serial) print_parallel_stats(report, thread_count());
+    if (talk && (!serial || log::level() >= log::Level::verbose))
+      print_operator_stats(report, serial, thread_count());
   }
   // Flat boundaries keep the volume to round-off; on a curved discrete
   // boundary, collapses may flatten it within their normal-deviation bound

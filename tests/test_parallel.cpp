@@ -726,4 +726,20 @@ TEST_SUITE("parallel") {
     CHECK(da.vertices == db.vertices);
     CHECK(da.tets == db.tets);
   }
+
+  TEST_CASE("operator counts add up on every executor: tried = applied + rejected + deferred - none deferred on one thread") {
+    auto check = [](const AdaptReport& r, bool serial) {
+      REQUIRE(!r.ops.empty());
+      for (const auto& [name, s] : r.ops) {
+        CAPTURE(name);
+        CHECK(s.tried == s.applied + s.rejected + s.deferred);
+        CHECK(s.candidates >= s.tried);
+        if (serial) CHECK(s.deferred == 0);
+        if (serial) CHECK(s.conflicts == 0);
+      }
+      CHECK(r.ops.get("flip").candidates > r.ops.get("flip").tried);  // flips weigh several configurations
+    };
+    check(adapt_linear("serial").report, true);
+    check(adapt_linear_shared().report, false);
+  }
 }

@@ -152,13 +152,13 @@ OperatorStats run_pass(Mesh& mesh, const Op& op, std::span<const typename Op::It
       case Prepared::gone:
         return Attempt::done;
       case Prepared::deferred:
+        ++st.tried;
         ++st.deferred;
         return Attempt::done;
       case Prepared::ready:
         break;
     }
     const Decision<typename Op::Plan> d = op.decide(view_only, item, x.scratch);
-    st.tried += static_cast<std::size_t>(d.tries());
     if (d) {
       op.apply(mesh, item, d.plan(), x.scratch);
       ++st.applied;
@@ -166,7 +166,11 @@ OperatorStats run_pass(Mesh& mesh, const Op& op, std::span<const typename Op::It
       ++st.rejected;
     } else if (d.why() == Refusal::deferred) {
       ++st.deferred;
+    } else {
+      return Attempt::done;  // not applicable: not tried
     }
+    ++st.tried;
+    st.candidates += static_cast<std::size_t>(d.tries());
     return Attempt::done;
   };
   stats.add(C::for_each(mesh, items, op.room(), work));

@@ -13,8 +13,13 @@
 
 namespace metrica {
 
+// Items: tried = applied + rejected + deferred (an item that no longer
+// exists or to which the operation does not apply is not tried);
+// candidates: the configurations the tried items weighed (a flip weighs
+// several per item); conflicts: items replayed because another thread
+// held their cavity (Speculative only).
 struct OperatorStats {
-  std::size_t tried = 0, applied = 0, rejected = 0, deferred = 0, conflicts = 0;
+  std::size_t tried = 0, applied = 0, rejected = 0, deferred = 0, candidates = 0, conflicts = 0;
   // Speculative: items replayed in a later round, items left to one thread.
   std::size_t replays = 0, serial_tail = 0;
   double seconds = 0.0;
@@ -30,6 +35,7 @@ struct OperatorStats {
     applied += o.applied;
     rejected += o.rejected;
     deferred += o.deferred;
+    candidates += o.candidates;
   }
   void add(const PassTally& t) {
     conflicts += t.conflicts;

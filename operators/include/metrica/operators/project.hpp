@@ -107,9 +107,11 @@ OperatorStats collapse_off_model(Mesh& mesh, std::span<const VertexId> off, cons
     vertex_ball(mesh, v, s.ball);
     vertex_neighbours(mesh, s.ball, v, s.neighbours);
     const VertexList around = s.neighbours;
+    ++stats.tried;
+    bool collapsed = false;
     for (VertexId u : around) {
       if (!mesh.has_geo_params() || !mesh.geo_param(u).valid()) continue;  // not on the boundary
-      ++stats.tried;
+      ++stats.candidates;
       vertex_ball(mesh, v, s.ball);
       vertex_neighbours(mesh, s.ball, v, s.neighbours);
       vertex_ball(mesh, u, s.ball_b);
@@ -117,9 +119,10 @@ OperatorStats collapse_off_model(Mesh& mesh, std::span<const VertexId> off, cons
       const auto d = decide_collapse<S, P, ShapeOnly>(mesh, v, u, s, o, nullptr, nullptr, geometry);
       if (!d) continue;
       apply_collapse(mesh, d.plan(), s);
-      ++stats.applied;
+      collapsed = true;
       break;
     }
+    ++(collapsed ? stats.applied : stats.rejected);
   }
   stats.seconds = clock.seconds();
   return stats;

@@ -170,12 +170,14 @@ struct CentroidInsertion {
   PassRoom room() const { return {.vertices_per_item = 1.0, .tets_per_item = 4.0}; }
   Found seed(const Mesh& mesh, const Item& c, Scratch& x, VertexList& hold) const {
     x.seen = mesh.peek_tet(c.tet);
-    if (std::find(x.seen.begin(), x.seen.end(), kNoId) != x.seen.end()) return Found::deferred;
+    // A tet removed or changed in this pass is gone as listed: the next
+    // pass lists the tets that replaced it.
+    if (std::find(x.seen.begin(), x.seen.end(), kNoId) != x.seen.end()) return Found::gone;
     hold.insert(hold.end(), x.seen.begin(), x.seen.end());
     return Found::cavity;
   }
   Found find(const Mesh& mesh, const Item& c, Scratch& x, VertexList& hold) const {
-    if (mesh.tet(c.tet) != x.seen || mesh.changed_since(c.tet, start)) return Found::deferred;
+    if (mesh.tet(c.tet) != x.seen || mesh.changed_since(c.tet, start)) return Found::gone;
     if (c.a != kNoId) {
       edge_shell_from(mesh, c.a, c.b, c.tet, x.shell);
       append_vertices(mesh, x.shell.tets, hold);

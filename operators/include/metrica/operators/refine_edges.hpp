@@ -102,7 +102,7 @@ struct EdgeSplit {
       if (mesh.vertex_stamp(v) < pass_epoch) continue;
       const auto& mv = S::vertex_metric(mesh, v);
       if (std::sqrt(metric_norm2(mv, p - mesh.point(v))) < options.min_new_distance)
-        return Refusal::deferred;  // too close to a point of this pass: next pass
+        return Refusal::rejected;  // too close to a point of this pass (the next pass lists it again)
     }
     if (!split_is_valid<P>(mesh, x.shell, c.a, c.b, p)) return Refusal::rejected;
     if (!split_accepted<S, Criterion>(mesh, x.shell, c.a, c.b, p, options.quality_floor)) return Refusal::rejected;
