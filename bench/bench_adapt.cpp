@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     o.metric = &metric;
     cycles.clear();
     o.on_cycle = [&](const CycleReport& c) { cycles.push_back(c); };
-    last = adapt(mesh, o, policies);
+    last = adapt_by_name(mesh, o, policies);
     tets = mesh.num_tets();
   });
   const auto& c = last.cycles.back();

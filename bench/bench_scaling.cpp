@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
       AdaptOptions o;
       o.metric = &metric;
       Stopwatch clock;
-      AdaptReport rep = adapt(mesh, o, {.concurrency = c.concurrency});
+      AdaptReport rep = adapt_by_name(mesh, o, {.concurrency = c.concurrency});
       times[k].emplace_back(clock.seconds(), std::move(rep));
       run_seconds[k].push_back(times[k].back().first);
       Run& r = results[k];

@@ -227,7 +227,7 @@ int run_adapt(const std::vector<std::string>& args) {
                  serial                                       ? std::string("serial")
                  : log::level() >= log::Level::verbose ? Speculative::describe()
                                                        : fmt::format("speculative, {} threads", thread_count()));
-    const auto report = adapt(mesh, ao, policies);
+    const auto report = adapt_by_name(mesh, ao, policies);
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
                  count_text(report.ops.get("collapse").applied), count_text(report.ops.get("split").applied),

@@ -32,17 +32,21 @@ void check_policy_choice(const PolicyChoice& c) {
   check_name<Concurrencies>("concurrency", c.concurrency);
 }
 
-bool space_compiled(std::string_view space) {
-  return !METRICA_ADAPT_FIRST_SPACE_ONLY || space == Spaces::at<0>::name;
+std::string not_compiled_message(std::string_view what, std::string_view name, std::string_view compiled) {
+  return fmt::format("{} '{}': this build compiles the pipeline for the {} '{}' only "
+                     "(METRICA_DEFAULT_POLICIES_ONLY, a sanitizer build)",
+                     what, name, what, compiled);
 }
 
-AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& p) {
+bool policies_compiled(const PolicyChoice& p) {
+  return !METRICA_DEFAULT_POLICIES_ONLY || (p.space == Spaces::at<0>::name && p.precision == Precisions::at<0>::name);
+}
+
+AdaptReport adapt_by_name(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& p) {
   return with_policy<Spaces>("space", p.space, [&]<class S>() {
     return with_policy<Concurrencies>("concurrency", p.concurrency, [&]<class C>() -> AdaptReport {
-      if constexpr (METRICA_ADAPT_FIRST_SPACE_ONLY && !std::is_same_v<S, Spaces::at<0>>) {
-        throw InputError(fmt::format("space '{}': this build compiles the pipeline for the space '{}' only "
-                                     "(METRICA_ADAPT_FIRST_SPACE_ONLY, a sanitizer build)",
-                                     S::name, Spaces::at<0>::name));
+      if constexpr (METRICA_DEFAULT_POLICIES_ONLY && !std::is_same_v<S, Spaces::at<0>>) {
+        throw InputError(not_compiled_message("space", S::name, Spaces::at<0>::name));
       } else {
         if (options.geometry != nullptr) return adapt_instance<S, C, CadGeometry>(mesh, options, p.precision);
         return adapt_instance<S, C, NoGeometry>(mesh, options, p.precision);

@@ -1,15 +1,22 @@
 // One (space, concurrency, geometry) triple of the policy lists, compiled
 // with METRICA_ADAPT_UNIT = its index (space-major, geometry last): the
 // standard stages and the pipeline under every precision for that triple.
+#include <metrica/error.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
+
+#include <type_traits>
 
 namespace metrica {
 
 template <MetricSpace S, Concurrency C, Geometry G>
 AdaptReport adapt_instance(Mesh& mesh, const AdaptOptions& options, std::string_view precision) {
   const G geometry = geometry_of<G>(options);
-  return with_policy<Precisions>("precision", precision,
-                                 [&]<class P>() { return adapt<S, P, C, G>(mesh, options, geometry); });
+  return with_policy<Precisions>("precision", precision, [&]<class P>() -> AdaptReport {
+    if constexpr (METRICA_DEFAULT_POLICIES_ONLY && !std::is_same_v<P, Precisions::at<0>>)
+      throw InputError(not_compiled_message("precision", P::name, Precisions::at<0>::name));
+    else
+      return adapt<S, P, C, G>(mesh, options, geometry);
+  });
 }
 
 constexpr std::size_t kUnit = METRICA_ADAPT_UNIT;
@@ -21,9 +28,12 @@ using UnitGeometry = Geometries::at<kUnit % Geometries::size>;
 
 // The standard stages of the triple (declared in standard_stages.hpp).
 static_assert(Precisions::size == 3, "one line per precision below");
+static_assert(!METRICA_DEFAULT_POLICIES_ONLY || kUnit < kPerSpace, "the default space's units only");
 METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<0>, UnitConcurrency, UnitGeometry)
+#if !METRICA_DEFAULT_POLICIES_ONLY
 METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<1>, UnitConcurrency, UnitGeometry)
 METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<2>, UnitConcurrency, UnitGeometry)
+#endif
 
 template AdaptReport adapt_instance<UnitSpace, UnitConcurrency, UnitGeometry>(Mesh&, const AdaptOptions&,
                                                                                std::string_view);

@@ -165,7 +165,16 @@ struct ExecutorOf {
 
 // Every Space and Precision under Serial; the Speculative policy with 1,
 // 2 and 8 threads (8 on a 2-core machine forces interleavings). A test
-// body opens with `const ExecutorOf<T> executor;`.
+// body opens with `const ExecutorOf<T> executor;`. The sanitizer builds
+// compile the pipeline for the default space and precision only
+// (METRICA_DEFAULT_POLICIES_ONLY): there, those under each executor.
+#if METRICA_DEFAULT_POLICIES_ONLY
+#define METRICA_POLICY_COMBINATIONS                                                                                \
+  metrica::test::Policies<LogEuclidean, Filtered, Serial>,                                                         \
+      metrica::test::Policies<LogEuclidean, Filtered, Speculative, 1>,                                            \
+      metrica::test::Policies<LogEuclidean, Filtered, Speculative, 2>,                                            \
+      metrica::test::Policies<LogEuclidean, Filtered, Speculative, 8>
+#else
 #define METRICA_POLICY_COMBINATIONS                                                                                \
   metrica::test::Policies<LogEuclidean, Filtered, Serial>, metrica::test::Policies<Anisotropic, Filtered, Serial>, \
       metrica::test::Policies<Isotropic, Filtered, Serial>, metrica::test::Policies<LogEuclidean, Exact, Serial>,  \
@@ -173,3 +182,4 @@ struct ExecutorOf {
       metrica::test::Policies<LogEuclidean, Filtered, Speculative, 1>,                                            \
       metrica::test::Policies<LogEuclidean, Filtered, Speculative, 2>,                                            \
       metrica::test::Policies<Anisotropic, Filtered, Speculative, 8>
+#endif

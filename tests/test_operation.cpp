@@ -161,8 +161,12 @@ struct SpacePrecision {
 
 }  // namespace
 
+#if METRICA_DEFAULT_POLICIES_ONLY
+#define METRICA_SPACE_PRECISION SpacePrecision<LogEuclidean, Filtered>
+#else
 #define METRICA_SPACE_PRECISION \
   SpacePrecision<LogEuclidean, Filtered>, SpacePrecision<Anisotropic, Exact>, SpacePrecision<Isotropic, Fast>
+#endif
 
 TEST_SUITE("property") {
   TEST_CASE_TEMPLATE("a decided split or centroid insertion never inverts - applied it keeps areas and ridges", T,

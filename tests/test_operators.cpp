@@ -354,11 +354,11 @@ TEST_SUITE("property") {
   TEST_CASE("adapting a box to a constant isotropic metric puts 95% of the edges in range") {
     for (std::string space : {"log-euclidean", "isotropic"}) {
       CAPTURE(space);
-      if (!space_compiled(space)) continue;  // a sanitizer build
+      if (!policies_compiled({.space = space})) continue;  // a sanitizer build
       Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
       set_uniform_metric(mesh, 0.12);
       AdaptOptions o;
-      const auto report = adapt(mesh, o, {.space = space, .concurrency = "serial"});
+      const auto report = adapt_by_name(mesh, o, {.space = space, .concurrency = "serial"});
       require_valid(mesh, 1.0);
       CHECK(report.cycles.back().conformity >= 0.95);
       CHECK(report.cycles.back().min_quality >= 0.3);
@@ -419,7 +419,7 @@ TEST_SUITE("regression") {
     set_metric_function(mesh, metric);
     AdaptOptions o;
     o.metric = &metric;
-    const auto report = adapt(mesh, o, {.concurrency = "serial"});
+    const auto report = adapt_by_name(mesh, o, {.concurrency = "serial"});
     require_valid(mesh, 1.0);
     const auto& last = report.cycles.back();
     INFO("vertices " << last.vertices << " conformity " << last.conformity << " min Q " << last.min_quality);

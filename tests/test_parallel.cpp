@@ -70,7 +70,7 @@ Adapted adapt_linear_by(Run&& run) {
 
 Adapted adapt_linear(const std::string& c) {
   return adapt_linear_by([c](Mesh& mesh, const AdaptOptions& o) {
-    return adapt(mesh, o, {.concurrency = c});
+    return adapt_by_name(mesh, o, {.concurrency = c});
   });
 }
 

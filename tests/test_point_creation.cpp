@@ -136,7 +136,7 @@ TEST_SUITE("regression") {
     set_uniform_metric(mesh, 0.15);
     AdaptOptions o;
     o.points = PointRule::centroid;
-    const auto report = adapt(mesh, o, {.concurrency = "serial"});
+    const auto report = adapt_by_name(mesh, o, {.concurrency = "serial"});
     require_valid(mesh, 1.0);
     const auto& last = report.cycles.back();
     INFO("conformity " << last.conformity << " min Q " << last.min_quality);

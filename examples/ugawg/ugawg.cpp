@@ -80,7 +80,7 @@ int main(int argc, char** argv) try {
       o.metric = &metric;
       o.points = rule;
       Stopwatch clock;
-      adapt(mesh, o, policies);
+      adapt_by_name(mesh, o, policies);
       const double seconds = clock.seconds();
       const auto r = quality_report(mesh, policies.space);
       fmt::print("  {:>4} {:>9} {:>10} {:>8.2f} {:>8.2f}% {:>7.3f} {:>7.3f} {:>8.3f} {:>8.1f}\n", it, r.vertices, r.tets,

@@ -340,8 +340,10 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const G& geometry = {
 static_assert(Spaces::size == 3 && Precisions::size == 3 && Concurrencies::size == 2 && Geometries::size == 2,
               "METRICA_STANDARD_STAGES_OF_SPACE lists 3 precisions, 2 concurrencies and 2 geometries per space "
               "(standard_stages.hpp)");
+#if METRICA_DEFAULT_POLICIES_ONLY
+METRICA_STANDARD_STAGES_OF_DEFAULTS(extern)
+#else
 METRICA_STANDARD_STAGES_OF_SPACE(extern, 0)
-#if !METRICA_ADAPT_FIRST_SPACE_ONLY
 METRICA_STANDARD_STAGES_OF_SPACE(extern, 1)
 METRICA_STANDARD_STAGES_OF_SPACE(extern, 2)
 #endif

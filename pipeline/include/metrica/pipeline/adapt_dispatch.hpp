@@ -28,11 +28,17 @@ struct PolicyChoice {
 
 // InputError naming the choices when a name is not in its list.
 void check_policy_choice(const PolicyChoice& choice);
-// False for a space whose pipeline this build leaves out
-// (METRICA_ADAPT_FIRST_SPACE_ONLY, the sanitizer builds).
-bool space_compiled(std::string_view space);
+// False for a choice whose pipeline this build leaves out
+// (METRICA_DEFAULT_POLICIES_ONLY, the sanitizer builds).
+bool policies_compiled(const PolicyChoice& choice);
+// "space 'isotropic': this build compiles the pipeline for the space
+// 'log-euclidean' only (...)".
+std::string not_compiled_message(std::string_view what, std::string_view name, std::string_view compiled);
 
-AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& policies = {});
+// The standard adaptation with its policies chosen by name (the CLI's
+// --space, --precision, --concurrency; AdaptOptions::geometry chooses the
+// Geometry): adapt<S, P, C, G> for the named policies.
+AdaptReport adapt_by_name(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& policies = {});
 
 // The Geometry policy object of `options`.
 template <Geometry G>

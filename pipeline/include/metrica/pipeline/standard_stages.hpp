@@ -15,10 +15,11 @@
 #include <metrica/policy_list.hpp>
 #include <metrica/predicates/precision.hpp>
 
-// 1 in the sanitizer builds, which compile the first space only
-// (pipeline/CMakeLists.txt sets it for every user of the library).
-#ifndef METRICA_ADAPT_FIRST_SPACE_ONLY
-#define METRICA_ADAPT_FIRST_SPACE_ONLY 0
+// 1 in the sanitizer builds, which compile the default space and
+// precision only (pipeline/CMakeLists.txt sets it for every user of the
+// library).
+#ifndef METRICA_DEFAULT_POLICIES_ONLY
+#define METRICA_DEFAULT_POLICIES_ONLY 0
 #endif
 
 namespace metrica {
@@ -54,3 +55,6 @@ using Geometries = PolicyList<NoGeometry, CadGeometry>;
   METRICA_STANDARD_STAGES_AT(kind, s, 1, 1, 0) METRICA_STANDARD_STAGES_AT(kind, s, 1, 1, 1)              \
   METRICA_STANDARD_STAGES_AT(kind, s, 2, 0, 0) METRICA_STANDARD_STAGES_AT(kind, s, 2, 0, 1)              \
   METRICA_STANDARD_STAGES_AT(kind, s, 2, 1, 0) METRICA_STANDARD_STAGES_AT(kind, s, 2, 1, 1)
+#define METRICA_STANDARD_STAGES_OF_DEFAULTS(kind)                                                        \
+  METRICA_STANDARD_STAGES_AT(kind, 0, 0, 0, 0) METRICA_STANDARD_STAGES_AT(kind, 0, 0, 0, 1)              \
+  METRICA_STANDARD_STAGES_AT(kind, 0, 0, 1, 0) METRICA_STANDARD_STAGES_AT(kind, 0, 0, 1, 1)
