@@ -1,7 +1,10 @@
 #include "cli.hpp"
 
+#include <metrica/io/atomic_file.hpp>
+
 #include <metrica/error.hpp>
 #include <metrica/input_checks.hpp>
+#include <metrica/io/atomic_file.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/output_set.hpp>
 #include <metrica/log.hpp>
@@ -76,10 +79,20 @@ bool Options::parse(const std::vector<std::string>& args) {
     set_thread_count(n);
   }
   if (vm_.count("format-version")) in_range("format-version", 1, 4);
-  // Outputs: a known extension (usage), a file that can be written (input).
+  // Outputs: a known extension (usage), a file that can be written (input);
+  // "-" is standard output (in the output's first format), for one output
+  // at most, and then what the command prints goes to standard error.
+  const std::string* to_standard_output = nullptr;
   for (const auto& out : outputs_) {
     if (!vm_.count(out.name)) continue;
     const auto path = vm_[out.name].as<std::string>();
+    if (io::is_standard_output(path)) {
+      if (to_standard_output != nullptr)
+        throw UsageError(fmt::format("{}: --{} and --{} are both standard output ('-'); give one of them a file",
+                                     command_, *to_standard_output, out.name));
+      to_standard_output = &out.name;
+      continue;
+    }
     if (!out.formats.empty() &&
         std::find(out.formats.begin(), out.formats.end(), io::format_of(path)) == out.formats.end()) {
       std::string list;
@@ -88,6 +101,7 @@ bool Options::parse(const std::vector<std::string>& args) {
     }
     io::writable_target(path);
   }
+  if (to_standard_output != nullptr && !dry_run()) io::divert_standard_output();
   return true;
 }
 

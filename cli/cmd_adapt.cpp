@@ -64,14 +64,6 @@ void print_cycle(const CycleReport& c) {
   std::fflush(stdout);
 }
 
-std::vector<Sym6> live_metrics(const Mesh& mesh) {
-  std::vector<Sym6> out;
-  out.reserve(mesh.num_vertices());
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-    if (mesh.vertex_alive(v)) out.push_back(mesh.metric(v));
-  return out;
-}
-
 }  // namespace
 
 int run_adapt(const std::vector<std::string>& args) {
@@ -263,10 +255,10 @@ int run_adapt(const std::vector<std::string>& args) {
     data.version = input_version;
     if (model) complete_geometry_records(data, *model);
     io::write_mesh_file(output, data, o.format_version(), sweeps);
-    if (o.has("vtu")) io::write_mesh_file(o.get<std::string>("vtu"), data);
+    if (o.has("vtu")) io::write_mesh_file(o.get<std::string>("vtu"), data, 0, {}, io::FileFormat::vtu);
   }
   if (o.has("metric-out")) {
-    auto sol = metric_field_to_sol(live_metrics(mesh));
+    auto sol = metric_sol(mesh);
     sol.version = input_version;
     io::write_sol(o.get<std::string>("metric-out"), sol, o.format_version(), sweeps);
   }

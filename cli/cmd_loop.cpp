@@ -128,10 +128,7 @@ int run_loop(const std::vector<std::string>& args) {
       auto data = extract_mesh_data(m);
       if (model) complete_geometry_records(data, *model);
       io::write_mesh_file(stem + ".meshb", data, o.format_version());
-      std::vector<Sym6> metrics;
-      for (VertexId v = 0; v < m.vertex_capacity(); ++v)
-        if (m.vertex_alive(v)) metrics.push_back(m.metric(v));
-      io::write_sol(stem + ".solb", metric_field_to_sol(metrics), o.format_version());
+      io::write_sol(stem + ".solb", metric_sol(m), o.format_version());
     }
   };
   const auto rows = adaptive_loop(mesh, lo);

@@ -23,6 +23,9 @@ void print_usage(std::FILE* out) {
   for (const auto& c : commands()) fmt::print(out, "  {:<12} {}\n", c.name, c.summary);
   fmt::print(out,
              "\nRun 'metrica <command> --help' for a command's options.\n"
+             "Any output FILE may be '-' (or /dev/stdout): standard output, written when the run succeeded,\n"
+             "as text (a mesh as ASCII .mesh, --vtu as VTU, a metric or field as ASCII .sol, a report as\n"
+             "CSV); what the command prints then goes to standard error. One output at most.\n"
              "Exit status: 0 success, 1 invalid input or failed run, 2 bad usage.\n");
 }
 

@@ -227,4 +227,12 @@ void assign_metric(Mesh& mesh, const std::vector<Sym6>& metrics) {
   mesh.clear_quality_cache();  // every tet's quality changed
 }
 
+io::SolData metric_sol(const Mesh& mesh) {
+  std::vector<Sym6> live;
+  live.reserve(mesh.num_vertices());
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v)) live.push_back(mesh.metric(v));
+  return metric_field_to_sol(live);
+}
+
 }  // namespace metrica

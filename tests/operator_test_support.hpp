@@ -13,6 +13,7 @@
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/criterion.hpp>
+#include <metrica/operators/testing.hpp>
 #include <metrica/pipeline/adapt.hpp>  // the standard stages, compiled in the library
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/predicates/precision.hpp>
@@ -66,12 +67,8 @@ double longest(const Mesh& mesh) {
 // A box whose interior vertices are moved at random by up to `amount` of
 // the spacing: tets of every shape, flips and smoothing have work to do.
 inline Mesh jittered_box(int n, double amount, std::uint64_t stream) {
-  Mesh mesh = make_box({.nx = n, .ny = n, .nz = n});
   auto r = test::rng(stream);
-  std::uniform_real_distribution<double> u(-amount / n, amount / n);
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-    if (mesh.vertex_class(v) == VertexClass::interior) mesh.point(v) += test::draw_point(u, r);
-  return mesh;
+  return metrica::jittered_box(n, amount, r);
 }
 
 // Accepts every valid configuration: exercises the topology alone.
@@ -93,34 +90,6 @@ inline std::vector<TetVertices> sorted_tets(const Mesh& mesh) {
   std::sort(out.begin(), out.end());
   return out;
 }
-
-template <class S>
-double worst_quality(const Mesh& mesh) {
-  double q = 1.0;
-  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
-    if (mesh.tet_alive(t)) q = std::min(q, S::mean_ratio(mesh, mesh.tet(t)));
-  return q;
-}
-
-// Area of the boundary faces of each surface id.
-inline std::map<SurfaceId, double> surface_areas(const Mesh& mesh) {
-  std::map<SurfaceId, double> area;
-  for_each_boundary_face(mesh, [&](TetId t, int f) {
-    const auto v = face_vertices(mesh.tet(t), f);
-    area[mesh.surface_id(t, f)] +=
-        0.5 * (mesh.point(v[1]) - mesh.point(v[0])).cross(mesh.point(v[2]) - mesh.point(v[0])).norm();
-  });
-  return area;
-}
-
-// A policy combination; Speculative ones with their thread count.
-template <class S, class P, class C, int Threads = 0>
-struct Policies {
-  using Space = S;
-  using Precision = P;
-  using Concurrency = C;
-  static constexpr int threads = Threads;
-};
 
 // Speculative pinned to N threads with every list sent to them, as a type:
 // for the sweeps and executors tested one by one (each call runs under its
@@ -154,13 +123,6 @@ struct SpeculativeOn {
   }
 };
 
-// Speculative on T's threads with every list sent to them (no small-list
-// rule: the test meshes are small), for the test's lifetime.
-template <class T>
-struct ExecutorOf {
-  SpeculativeScope scope{{.threads = T::threads, .small_list = 0}};
-};
-
 }  // namespace metrica::test
 
 // Every Space and Precision under Serial; the Speculative policy with 1,
@@ -170,16 +132,16 @@ struct ExecutorOf {
 // (METRICA_DEFAULT_POLICIES_ONLY): there, those under each executor.
 #if METRICA_DEFAULT_POLICIES_ONLY
 #define METRICA_POLICY_COMBINATIONS                                                                                \
-  metrica::test::Policies<LogEuclidean, Filtered, Serial>,                                                         \
-      metrica::test::Policies<LogEuclidean, Filtered, Speculative, 1>,                                            \
-      metrica::test::Policies<LogEuclidean, Filtered, Speculative, 2>,                                            \
-      metrica::test::Policies<LogEuclidean, Filtered, Speculative, 8>
+  metrica::Policies<LogEuclidean, Filtered, Serial>,                                                         \
+      metrica::Policies<LogEuclidean, Filtered, Speculative, 1>,                                            \
+      metrica::Policies<LogEuclidean, Filtered, Speculative, 2>,                                            \
+      metrica::Policies<LogEuclidean, Filtered, Speculative, 8>
 #else
 #define METRICA_POLICY_COMBINATIONS                                                                                \
-  metrica::test::Policies<LogEuclidean, Filtered, Serial>, metrica::test::Policies<Anisotropic, Filtered, Serial>, \
-      metrica::test::Policies<Isotropic, Filtered, Serial>, metrica::test::Policies<LogEuclidean, Exact, Serial>,  \
-      metrica::test::Policies<LogEuclidean, Fast, Serial>,                                                        \
-      metrica::test::Policies<LogEuclidean, Filtered, Speculative, 1>,                                            \
-      metrica::test::Policies<LogEuclidean, Filtered, Speculative, 2>,                                            \
-      metrica::test::Policies<Anisotropic, Filtered, Speculative, 8>
+  metrica::Policies<LogEuclidean, Filtered, Serial>, metrica::Policies<Anisotropic, Filtered, Serial>, \
+      metrica::Policies<Isotropic, Filtered, Serial>, metrica::Policies<LogEuclidean, Exact, Serial>,  \
+      metrica::Policies<LogEuclidean, Fast, Serial>,                                                        \
+      metrica::Policies<LogEuclidean, Filtered, Speculative, 1>,                                            \
+      metrica::Policies<LogEuclidean, Filtered, Speculative, 2>,                                            \
+      metrica::Policies<Anisotropic, Filtered, Speculative, 8>
 #endif

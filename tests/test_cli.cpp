@@ -9,6 +9,7 @@
 
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <sys/wait.h>
@@ -131,6 +132,43 @@ TEST_SUITE("regression") {
     CHECK(wrong.code == 1);
     CHECK(has(wrong, "729 entries but the mesh has 64 vertices"));
     CHECK_FALSE(std::filesystem::exists(dir / "z.solb"));
+  }
+
+  TEST_CASE("- is standard output for every output: the bytes of the file - progress on standard error") {
+    test::TempDir dir;
+    const std::string cube = test::ugawg("cube-linear-00.meshb"), metric = test::ugawg("cube-linear-00.solb");
+    // stdout and stderr to files of their own.
+    auto run = [&](const std::string& args) {
+      const std::string cmd = std::string(METRICA_CLI) + " " + args + " >" + (dir / "out") + " 2>" + (dir / "err");
+      const int status = std::system(cmd.c_str());
+      return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    };
+    auto slurp = [&](const std::string& name) {
+      std::ifstream in(dir / name, std::ios::binary);
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    for (const std::string& target : {std::string("-"), std::string("/dev/stdout")}) {
+      CAPTURE(target);
+      REQUIRE(run("quality " + cube + " -m " + metric + " --csv " + target) == 0);
+      REQUIRE(metrica_cli("quality " + cube + " -m " + metric + " --csv " + (dir / "q.csv") + " -q").code == 0);
+      CHECK(slurp("out") == slurp("q.csv"));
+      CHECK(slurp("err").find("mean ratio histogram") != std::string::npos);  // the report, beside the data
+    }
+    // A mesh: ASCII .mesh, the same as the file; a metric: ASCII .sol.
+    REQUIRE(run("convert " + cube + " -") == 0);
+    REQUIRE(metrica_cli("convert " + cube + " " + (dir / "c.mesh")).code == 0);
+    CHECK(slurp("out") == slurp("c.mesh"));
+    REQUIRE(run("adapt " + cube + " -m " + metric + " --concurrency serial --cycles 2 --quality-passes 1 -o " +
+                (dir / "a.meshb") + " --metric-out -") == 0);
+    CHECK(slurp("out").rfind("MeshVersionFormatted", 0) == 0);
+    CHECK(slurp("out").find("SolAtVertices") != std::string::npos);
+    CHECK(slurp("err").find("in range") != std::string::npos);
+    // Two outputs on standard output: usage error, nothing written.
+    CHECK(run("adapt " + cube + " -m " + metric + " -o - --metric-out -") == 2);
+    CHECK(slurp("err").find("both standard output") != std::string::npos);
+    // A failed run writes nothing to standard output.
+    CHECK(run("quality " + cube + " -m " + (dir / "missing.solb") + " --csv -") == 1);
+    CHECK(slurp("out").empty());
   }
 
   TEST_CASE("adapt writes a valid mesh and its metric - quality reads them back") {

@@ -279,7 +279,7 @@ TEST_SUITE("unit") {
 TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("splits on curves and surfaces of a CAD model put the new vertices on it", T,
                      METRICA_POLICY_COMBINATIONS) {
-    const test::ExecutorOf<T> executor;
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;
@@ -305,7 +305,7 @@ TEST_SUITE("invariant") {
 
   TEST_CASE_TEMPLATE("centroid insertion on boundary faces and ridges of a CAD model stays on it", T,
                      METRICA_POLICY_COMBINATIONS) {
-    const test::ExecutorOf<T> executor;
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;
@@ -325,7 +325,7 @@ TEST_SUITE("invariant") {
 
   TEST_CASE_TEMPLATE("collapse - flips and smoothing on a CAD model keep the boundary on it", T,
                      METRICA_POLICY_COMBINATIONS) {
-    const test::ExecutorOf<T> executor;
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;
@@ -359,7 +359,7 @@ TEST_SUITE("invariant") {
 TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("boundary 2-2 flips toward the model lower the facets' deviation and keep the mesh valid", T,
                      METRICA_POLICY_COMBINATIONS) {
-    const test::ExecutorOf<T> executor;
+    const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
     using C = typename T::Concurrency;

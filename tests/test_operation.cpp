@@ -1,5 +1,6 @@
 // The operation protocol, the pass runner and the pipeline object:
-//   - each operation's decide, property-tested without applying: a plan
+//   - each operation's decide, property-tested without applying
+//     (check_plans, operators/testing.hpp): a plan
 //     never inverts a tet and never drops below the shape floor; applied on
 //     a copy, it keeps the mesh valid, the boundary areas per surface id and
 //     the ridges;
@@ -25,61 +26,14 @@ using namespace metrica::test;
 
 namespace {
 
-// Total length of the ridge edges (the box's twelve edges: 12).
-double ridge_length(const Mesh& mesh) {
-  double l = 0.0;
-  for (const auto& [a, b] : unique_edges(mesh))
-    if (mesh.is_ridge(a, b)) l += (mesh.point(b) - mesh.point(a)).norm();
-  return l;
-}
-
-// Every item of `items` through decide; each plan previewed (all tets
-// positive with exact predicates, none below min(floor, the mesh's worst
-// tet before)) and the first `applied_checks` plans applied on a copy
-// (valid, volume, areas per surface id, ridge length kept). Returns the
+// check_plans (operators/testing.hpp) with its finding reported; the
 // number of plans.
 template <class S, Operation Op>
-int check_plans(const Mesh& mesh, const Op& op, const std::vector<typename Op::Item>& items, double floor,
-                int applied_checks = 25) {
-  typename Op::Scratch s;
-  PlannedTets planned;
-  const double worst_before = worst_quality<S>(mesh);
-  const auto areas = surface_areas(mesh);
-  const double ridges = ridge_length(mesh);
-  int plans = 0;
-  for (const auto& item : items) {
-    const auto d = decide_item(mesh, op, item, s);
-    if (!d) continue;
-    ++plans;
-    op.preview(mesh, item, d.plan(), s, planned);
-    REQUIRE(!planned.empty());
-    for (const PlannedTet& t : planned) {
-      const auto& x = t.points;
-      CHECK(Exact::orient3d(x[0], x[1], x[2], x[3]) > 0);
-    }
-    if (floor > 0.0) {
-      // The new tets' mean ratio, in the metric of the tets they come
-      // from: the preview's vertices (the new vertex's metric is not in
-      // the mesh yet, so its tets are skipped).
-      for (const PlannedTet& t : planned) {
-        if (std::find(t.vertices.begin(), t.vertices.end(), kNoId) != t.vertices.end()) continue;
-        CHECK(S::mean_ratio(mesh, t.vertices, t.points) >= std::min(floor, worst_before) * (1 - 1e-9));
-      }
-    }
-    if (plans <= applied_checks) {
-      Mesh copy = mesh;
-      typename Op::Scratch s2;
-      const auto d2 = decide_item(copy, op, item, s2);
-      REQUIRE(static_cast<bool>(d2));
-      op.apply(copy, item, d2.plan(), s2);
-      require_valid(copy, 1.0);
-      const auto after = surface_areas(copy);
-      REQUIRE(after.size() == areas.size());
-      for (const auto& [id, area] : areas) CHECK(after.at(id) == doctest::Approx(area).epsilon(1e-9));
-      CHECK(ridge_length(copy) == doctest::Approx(ridges).epsilon(1e-9));
-    }
-  }
-  return plans;
+int plans_checked(const Mesh& mesh, const Op& op, const std::vector<typename Op::Item>& items, double floor) {
+  const PlanCheck r = check_plans<S>(mesh, op, std::span<const typename Op::Item>(items), floor);
+  INFO(r.problem);
+  CHECK(r.ok());
+  return r.plans;
 }
 
 template <class S>
@@ -177,12 +131,12 @@ TEST_SUITE("property") {
     require_valid(mesh, 1.0);
     set_uniform_metric(mesh, 0.12);
     const auto long_edges = edges_beyond<S>(mesh, kUnitBand.hi, EdgeOrder::longest_first);
-    CHECK(check_plans<S>(mesh, EdgeSplit<S, P>{{}, mesh.next_epoch()}, long_edges, 0.0) > 0);
+    CHECK(plans_checked<S>(mesh, EdgeSplit<S, P>{{}, mesh.next_epoch()}, long_edges, 0.0) > 0);
     // With a shape floor (children measured in their parent's metric).
-    CHECK(check_plans<S>(mesh, EdgeSplit<S, P>{{.quality_floor = 0.2}, mesh.next_epoch()}, long_edges, 0.0) > 0);
+    CHECK(plans_checked<S>(mesh, EdgeSplit<S, P>{{.quality_floor = 0.2}, mesh.next_epoch()}, long_edges, 0.0) > 0);
     std::vector<std::uint32_t> of_tet;
     const auto candidates = centroid_candidates<S>(mesh, {}, of_tet);
-    CHECK(check_plans<S>(mesh, CentroidInsertion<S, P>{{}, mesh.next_epoch()}, candidates, 0.0) > 0);
+    CHECK(plans_checked<S>(mesh, CentroidInsertion<S, P>{{}, mesh.next_epoch()}, candidates, 0.0) > 0);
   }
 
   TEST_CASE_TEMPLATE("a decided collapse never inverts nor drops below its floor - applied it keeps areas and ridges",
@@ -194,8 +148,8 @@ TEST_SUITE("property") {
     set_uniform_metric(mesh, 0.5);
     const auto short_edges = edges_beyond<S>(mesh, kUnitBand.lo, EdgeOrder::shortest_first);
     const CollapseOptions o;
-    CHECK(check_plans<S>(mesh, Collapse<S, P>{o}, short_edges, o.quality_floor) > 0);
-    CHECK(check_plans<S>(mesh, Collapse<S, P, MinQuality>{o}, short_edges, o.quality_floor) >= 0);
+    CHECK(plans_checked<S>(mesh, Collapse<S, P>{o}, short_edges, o.quality_floor) > 0);
+    CHECK(plans_checked<S>(mesh, Collapse<S, P, MinQuality>{o}, short_edges, o.quality_floor) >= 0);
   }
 
   TEST_CASE_TEMPLATE("decided flips and smoothing moves never invert nor drop below the floor under every criterion", T,
@@ -208,18 +162,18 @@ TEST_SUITE("property") {
     const FlipOptions fo;
     const auto edges = all_edge_seeds<S>(mesh);
     const auto tets = all_tets(mesh);
-    CHECK(check_plans<S>(mesh, EdgeRemoval<S, P, MinQuality>{fo}, edges, fo.min_quality) > 0);
-    CHECK(check_plans<S>(mesh, EdgeRemoval<S, P, MaxMinEdgeWeight>{fo}, edges, fo.min_quality) > 0);
-    check_plans<S>(mesh, EdgeRemoval<S, P, MetricDelaunay>{fo}, edges, fo.min_quality);
-    check_plans<S>(mesh, EdgeRemoval<S, P, PreferNew>{fo}, edges, fo.min_quality);
-    CHECK(check_plans<S>(mesh, FaceFlip<S, P, MinQuality>{fo}, tets, fo.min_quality) > 0);
-    check_plans<S>(mesh, FaceFlip<S, P, MaxMinEdgeWeight>{fo}, tets, fo.min_quality);
-    check_plans<S>(mesh, FaceFlip<S, P, MetricDelaunay>{fo}, tets, fo.min_quality);
-    CHECK(check_plans<S>(mesh, FaceFlip<S, P, PreferNew>{fo}, tets, fo.min_quality) > 0);
+    CHECK(plans_checked<S>(mesh, EdgeRemoval<S, P, MinQuality>{fo}, edges, fo.min_quality) > 0);
+    CHECK(plans_checked<S>(mesh, EdgeRemoval<S, P, MaxMinEdgeWeight>{fo}, edges, fo.min_quality) > 0);
+    plans_checked<S>(mesh, EdgeRemoval<S, P, MetricDelaunay>{fo}, edges, fo.min_quality);
+    plans_checked<S>(mesh, EdgeRemoval<S, P, PreferNew>{fo}, edges, fo.min_quality);
+    CHECK(plans_checked<S>(mesh, FaceFlip<S, P, MinQuality>{fo}, tets, fo.min_quality) > 0);
+    plans_checked<S>(mesh, FaceFlip<S, P, MaxMinEdgeWeight>{fo}, tets, fo.min_quality);
+    plans_checked<S>(mesh, FaceFlip<S, P, MetricDelaunay>{fo}, tets, fo.min_quality);
+    CHECK(plans_checked<S>(mesh, FaceFlip<S, P, PreferNew>{fo}, tets, fo.min_quality) > 0);
     const auto vertices = all_vertices(mesh);
     const SmoothOptions so{.below = 1.0};
-    CHECK(check_plans<S>(mesh, Smoothing<S, P>{so}, vertices, 0.0) > 0);
-    CHECK(check_plans<S>(mesh, Smoothing<S, P, MaxMinEdgeWeight>{so}, vertices, so.min_quality) > 0);
+    CHECK(plans_checked<S>(mesh, Smoothing<S, P>{so}, vertices, 0.0) > 0);
+    CHECK(plans_checked<S>(mesh, Smoothing<S, P, MaxMinEdgeWeight>{so}, vertices, so.min_quality) > 0);
   }
 
   TEST_CASE_TEMPLATE("the 2-3 flip keeps the shape floor under every criterion", T, METRICA_SPACE_PRECISION) {
@@ -282,17 +236,20 @@ TEST_SUITE("invariant") {
     A adapter(mesh, &metric);
     Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
     p.max_cycles = 6;
-    // Split before collapse, edge-weight flips, and smoothing replaced by a
-    // stage of our own that runs the smoothing operation over every vertex.
+    // Split before collapse, metric Delaunay flips under a key of their
+    // own, and smoothing replaced by a stage of our own that runs the
+    // smoothing operation over every vertex. (A criterion of no standard
+    // stage, such as MaxMinEdgeWeight, compiles in the program that uses
+    // it: examples/compose and examples/consumer do.)
     int custom_runs = 0;
     p.cycle = {{"split", [](A& a) { return a.split({}); }},
                {"collapse", [](A& a) { return a.collapse({}); }},
-               {"flip", [](A& a) { return a.template flips<MaxMinEdgeWeight>({}, "edge-weight"); }},
+               {"flip", [](A& a) { return a.template flips<MetricDelaunay>({}, "delaunay-cycle"); }},
                {"my-smooth", [&custom_runs](A& a) {
                   ++custom_runs;
                   const std::vector<VertexId> vertices = all_vertices(a.mesh());
                   return a.run(
-                      Smoothing<typename A::Space, typename A::Exactness>{{.below = 1.0, .metric = a.metric()}},
+                      Smoothing<typename A::Space, typename A::Precision>{{.below = 1.0, .metric = a.metric()}},
                       std::span<const VertexId>(vertices));
                 }}};
     const AdaptReport& r = run_pipeline(adapter, p);
@@ -303,7 +260,7 @@ TEST_SUITE("invariant") {
     CHECK(r.ops.get("smooth").tried > 0);  // the standard quality phase
     CHECK(r.cycles.front().ops.begin()->first == "split");
     CHECK(r.cycles.back().min_quality > 0.1);
-    CHECK(adapter.since("edge-weight") > 0);
+    CHECK(adapter.since("delaunay-cycle") > 0);
   }
 }
 
@@ -319,11 +276,34 @@ TEST_SUITE("invariant") {
     set_uniform_metric(mesh, 0.3);
     const example::LaplacianMove<S, P> op;
     // Its plans, property-tested without applying them.
-    CHECK(check_plans<S>(mesh, op, all_vertices(mesh), 0.0) > 0);
+    CHECK(plans_checked<S>(mesh, op, all_vertices(mesh), 0.0) > 0);
     const double before = worst_quality<S>(mesh);
     const OperatorStats stats = run_pass<C>(mesh, op, all_vertices(mesh));
     CHECK(stats.applied > 0);
     require_valid(mesh, 1.0);
     CHECK(worst_quality<S>(mesh) >= before);
   }
+}
+
+// docs/writing-an-operator.md, step 3, as written there: the public
+// testing tools under PolicyCombinations.
+TEST_SUITE("invariant") {
+TEST_CASE_TEMPLATE_DEFINE("a Laplacian move never inverts under every policy (the tutorial's test)", T, laplacian) {
+  using S = typename T::Space;
+  using P = typename T::Precision;
+  const ExecutorOf<T> executor;
+  std::mt19937_64 rng(7);
+  Mesh mesh = jittered_box(4, 0.3, rng);
+  set_uniform_metric(mesh, 0.3);
+  std::vector<VertexId> vertices;
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) vertices.push_back(v);
+  const PlanCheck plans =
+      check_plans<S>(mesh, example::LaplacianMove<S, P>{}, std::span<const VertexId>(vertices), 0.0);
+  INFO(plans.problem);
+  CHECK(plans.ok());
+  CHECK(plans.plans > 0);
+  run_pass<typename T::Concurrency>(mesh, example::LaplacianMove<S, P>{}, vertices);
+  CHECK(mesh.validate().ok());
+}
+TEST_CASE_TEMPLATE_APPLY(laplacian, PolicyCombinations);
 }

@@ -730,7 +730,8 @@ TEST_SUITE("parallel") {
   TEST_CASE("operator counts add up on every executor: tried = applied + rejected + deferred - none deferred on one thread") {
     auto check = [](const AdaptReport& r, bool serial) {
       REQUIRE(!r.ops.empty());
-      for (const auto& [name, s] : r.ops) {
+      for (const auto& [stage, s] : r.ops) {
+        const std::string& name = stage;  // clang cannot capture a structured binding
         CAPTURE(name);
         CHECK(s.tried == s.applied + s.rejected + s.deferred);
         CHECK(s.candidates >= s.tried);

@@ -30,9 +30,39 @@ void sync_folder(const std::string& folder) {
   ::close(fd);
 }
 
+// The descriptor of the standard output for "-" (1 until diverted).
+int standard_output_fd = STDOUT_FILENO;
+
 }  // namespace
 
+void divert_standard_output() {
+  if (standard_output_fd != STDOUT_FILENO) return;
+  std::fflush(stdout);
+  const int kept = ::dup(STDOUT_FILENO);
+  if (kept < 0) throw IoError(fmt::format("standard output: cannot keep it: {}", std::strerror(errno)));
+  if (::dup2(STDERR_FILENO, STDOUT_FILENO) < 0) {
+    const int err = errno;
+    ::close(kept);
+    throw IoError(fmt::format("standard output: cannot send progress to standard error: {}", std::strerror(err)));
+  }
+  standard_output_fd = kept;
+}
+
+void write_standard_output(std::string_view bytes) {
+  std::fflush(stdout);
+  while (!bytes.empty()) {
+    const ssize_t n = ::write(standard_output_fd, bytes.data(), bytes.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw IoError(fmt::format("standard output: write failed: {}", std::strerror(errno)));
+    bytes.remove_prefix(static_cast<std::size_t>(n));
+  }
+}
+
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), target_(writable_target(path_)) {
+  if (is_standard_output(path_)) {
+    to_standard_output_ = true;
+    return;
+  }
   const int fd = create_temporary(folder_of(target_), tmp_path_);
   if (fd < 0)
     throw IoError(fmt::format("{}: cannot create a temporary file beside it: {}", path_, std::strerror(errno)));
@@ -59,17 +89,32 @@ AtomicFile::~AtomicFile() {
 
 void AtomicFile::write(const void* data, std::size_t size) {
   if (size == 0) return;
+  if (to_standard_output_) {
+    bytes_.append(static_cast<const char*>(data), size);
+    return;
+  }
   if (std::fwrite(data, 1, size, file_) != size)
     throw IoError(fmt::format("{}: write failed: {}", path_, std::strerror(errno)));
 }
 
 void AtomicFile::write_at(std::uint64_t offset, const void* data, std::size_t size) {
+  if (to_standard_output_) {
+    if (offset + size > bytes_.size()) throw IoError(fmt::format("{}: write past the end", path_));
+    bytes_.replace(static_cast<std::size_t>(offset), size, static_cast<const char*>(data), size);
+    return;
+  }
   const bool ok = std::fflush(file_) == 0 && ::fseeko(file_, static_cast<off_t>(offset), SEEK_SET) == 0 &&
                   std::fwrite(data, 1, size, file_) == size && ::fseeko(file_, 0, SEEK_END) == 0;
   if (!ok) throw IoError(fmt::format("{}: write failed: {}", path_, std::strerror(errno)));
 }
 
 void AtomicFile::commit() {
+  if (to_standard_output_) {
+    to_standard_output_ = false;
+    if (OutputSet::stage_bytes(std::move(bytes_))) return;
+    write_standard_output(bytes_);
+    return;
+  }
   std::FILE* f = file_;
   file_ = nullptr;
   int err = 0;

@@ -1,4 +1,5 @@
 #include <metrica/error.hpp>
+#include <metrica/io/atomic_file.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/io/su2.hpp>
@@ -43,8 +44,9 @@ MeshData read_mesh_file(const std::string& path) {
   return read_meshb(path);
 }
 
-void write_mesh_file(const std::string& path, const MeshData& data, int version, const PartRunner& run) {
-  switch (format_of(path)) {
+void write_mesh_file(const std::string& path, const MeshData& data, int version, const PartRunner& run,
+                     FileFormat standard_output_format) {
+  switch (is_standard_output(path) ? standard_output_format : format_of(path)) {
     case FileFormat::mesh:
     case FileFormat::meshb:
       write_meshb(path, data, version, run);

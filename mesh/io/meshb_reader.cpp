@@ -3,6 +3,7 @@
 // Both encodings share the per-keyword record parsing (a Source gives
 // integers and reals); they differ only in how keywords are found: binary
 // files chain keywords by absolute offsets, ASCII files name them.
+#include <metrica/io/atomic_file.hpp>
 #include <metrica/io/byte_reader.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/io/meshb_keywords.hpp>
@@ -381,6 +382,7 @@ bool ends_with(const std::string& s, std::string_view suffix) {
 }  // namespace
 
 Encoding encoding_of(const std::string& path, std::string_view ascii_ext, std::string_view binary_ext) {
+  if (is_standard_output(path)) return Encoding::ascii;
   if (ends_with(path, binary_ext)) return Encoding::binary;
   if (ends_with(path, ascii_ext)) return Encoding::ascii;
   throw IoError(fmt::format("{}: unknown extension (expected {} or {})", path, ascii_ext, binary_ext));

@@ -104,6 +104,7 @@ std::string folder_of(const std::string& path) {
 
 std::string writable_target(const std::string& path) {
   if (path.empty()) throw IoError("an output file name is empty");
+  if (is_standard_output(path)) return path;
   std::string target = path;
   struct stat st {};
   // Follow symlinks (at most 40, as the kernel does): the link stays, its
@@ -168,6 +169,14 @@ bool OutputSet::stage(const std::string& temporary, const std::string& target) {
   return true;
 }
 
+bool OutputSet::stage_bytes(std::string&& bytes) {
+  std::lock_guard lock(set_mutex);
+  if (!open_set) return false;
+  open_set->standard_output_ = std::move(bytes);
+  open_set->has_standard_output_ = true;
+  return true;
+}
+
 void OutputSet::commit() {
   {
     std::lock_guard lock(set_mutex);
@@ -177,6 +186,7 @@ void OutputSet::commit() {
   std::size_t i = 0;
   try {
     for (; i < staged_.size(); ++i) rename_into_place(staged_[i].temporary, staged_[i].target, staged_[i].target);
+    if (has_standard_output_) write_standard_output(standard_output_);
   } catch (...) {
     for (std::size_t j = i + 1; j < staged_.size(); ++j) {
       ::unlink(staged_[j].temporary.c_str());

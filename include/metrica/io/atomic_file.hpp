@@ -5,6 +5,10 @@
 // replaced file's permissions (else 0666 less the umask) and is fsynced
 // before the rename. Within an open OutputSet the rename waits for the
 // set's commit (output_set.hpp).
+//
+// The path "-" (or /dev/stdout) is the standard output: the bytes are kept in memory and
+// written out on commit (or on the set's commit), so that standard output
+// too gets all of a successful run or nothing.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +17,15 @@
 #include <string_view>
 
 namespace metrica::io {
+
+// "-" (or /dev/stdout, whose target a temporary cannot be renamed onto):
+// standard output.
+inline bool is_standard_output(std::string_view path) { return path == "-" || path == "/dev/stdout"; }
+
+// Keeps the process's standard output for the outputs named "-" and sends
+// what the program prints from now on to standard error (a command that
+// writes its result to standard output keeps it free of progress lines).
+void divert_standard_output();
 
 class AtomicFile {
  public:
@@ -35,7 +48,13 @@ class AtomicFile {
   std::string target_;  // the file replaced (symlinks followed)
   std::string tmp_path_;
   std::FILE* file_ = nullptr;
+  std::string bytes_;  // standard output: everything written, until commit
+  bool to_standard_output_ = false;
 };
+
+// Writes `bytes` to the standard output kept by divert_standard_output()
+// (else the process's). Throws IoError when the write fails.
+void write_standard_output(std::string_view bytes);
 
 // Writes `bytes` to `path` atomically.
 void write_file_atomically(const std::string& path, std::string_view bytes);

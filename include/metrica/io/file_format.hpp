@@ -19,6 +19,8 @@ MeshData read_mesh_file(const std::string& path);
 
 // .mesh, .meshb (libMeshb `version`, 0 = keep data.version), .vtu, .su2;
 // a .mesh's rows formatted on run's parts.
-void write_mesh_file(const std::string& path, const MeshData& data, int version = 0, const PartRunner& run = {});
+// "-" writes standard_output_format (ASCII .mesh unless said) to standard output.
+void write_mesh_file(const std::string& path, const MeshData& data, int version = 0, const PartRunner& run = {},
+                     FileFormat standard_output_format = FileFormat::mesh);
 
 }  // namespace metrica::io

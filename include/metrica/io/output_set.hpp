@@ -1,7 +1,9 @@
 // Every output of a run as one transaction: files are written to
 // temporaries beside their targets and renamed over them together, only
 // when the whole run succeeded, so that a failed, killed or interrupted run
-// never leaves a half-written file or a mix of old and new outputs.
+// never leaves a half-written file or a mix of old and new outputs. What
+// goes to standard output ("-") is held in memory and written on commit,
+// after the files.
 //
 // While an OutputSet is open, AtomicFile::commit() stages its finished
 // temporary into the set instead of renaming it; OutputSet::commit() renames
@@ -18,7 +20,8 @@ namespace metrica::io {
 // symlink is followed (its target is replaced, the link kept); an existing
 // target must be a regular file with a write permission bit (a read-only
 // file, a folder, a FIFO or a device is refused); its folder must exist and
-// be writable. Throws IoError naming the path and the reason.
+// be writable. Throws IoError naming the path and the reason. "-" (standard
+// output) is returned as it is.
 std::string writable_target(const std::string& path);
 
 class OutputSet {
@@ -35,12 +38,17 @@ class OutputSet {
 
   // Called by AtomicFile::commit(): false when no set is open.
   static bool stage(const std::string& temporary, const std::string& target);
+  // The bytes for standard output (a later call replaces them); false when
+  // no set is open.
+  static bool stage_bytes(std::string&& bytes);
 
  private:
   struct Staged {
     std::string temporary, target;
   };
   std::vector<Staged> staged_;
+  std::string standard_output_;
+  bool has_standard_output_ = false;
   bool committed_ = false;
 };
 

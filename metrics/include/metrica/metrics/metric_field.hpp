@@ -53,6 +53,10 @@ std::vector<SelectedField> select_fields(const io::SolData& sol, std::size_t ver
                                          const std::string& source);
 
 io::SolData metric_field_to_sol(const std::vector<Sym6>& metrics);
+// The metric stored at the mesh's live vertices, in the order
+// extract_mesh_data() writes them (vertex ids ascending, removed vertices
+// skipped): the .sol/.solb that goes with that mesh file.
+io::SolData metric_sol(const Mesh& mesh);
 
 std::vector<Sym6> analytic_metric_field(AnalyticMetric m, const std::vector<Point>& points);
 

@@ -15,7 +15,7 @@
 
 #include <metrica/mesh.hpp>
 
-#include <boost/container/small_vector.hpp>
+#include <metrica/small_vector.hpp>
 
 #include <algorithm>
 #include <cstdint>

@@ -48,7 +48,7 @@ struct Projection {
     if (step.norm() <= options.tolerance) return Refusal::not_applicable;
     for (int k = 0; k <= kBacktrackSteps; ++k, step *= 0.5) {
       const Point q = x + step;
-      if (ball_positive_at<P>(mesh, v, s.ball, q)) return Plan{q};
+      if (ball_positive_at<P>(mesh, v, s.ball, q)) return Plan{q, GeoParam{}};  // the vertex keeps its parameters
     }
     return Refusal::rejected;
   }

@@ -7,7 +7,7 @@
 #include <metrica/mesh.hpp>
 #include <metrica/policies/concurrency.hpp>
 
-#include <boost/container/small_vector.hpp>
+#include <metrica/small_vector.hpp>
 
 #include <algorithm>
 #include <array>

@@ -211,7 +211,7 @@ const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
 template <class A>
 Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   using S = typename A::Space;
-  using C = typename A::Threads;
+  using C = typename A::Concurrency;
   Pipeline<A> p;
   p.max_cycles = o.max_cycles;
   p.min_change = o.min_change;
@@ -247,7 +247,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   p.cycle.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(flips, "flip"); }});
   // On a model: the vertices a split left off it (their tets would have
   // inverted) try again after the reconnection around them.
-  constexpr bool on_model = A::Model::on_model;
+  constexpr bool on_model = A::Geometry::on_model;
   if constexpr (on_model) p.cycle.push_back({"project", [](A& a) { return a.project(); }});
   if constexpr (on_model) p.cycle.push_back({"swap", [](A& a) { return a.swap(); }});
   p.cycle.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
@@ -280,7 +280,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
                         lift.changed_since = a.mesh().next_epoch();
                         touch_poor_tets<S, C>(a.mesh(), below);
                         const OperatorStats stats =
-                            collapse_edges<S, typename A::Exactness, C>(a.mesh(), lift, a.geometry());
+                            collapse_edges<S, typename A::Precision, C>(a.mesh(), lift, a.geometry());
                         const Mesh::Epoch start = a.mesh().next_epoch();
                         touch_around_poor_tets<S, C>(a.mesh(), below);
                         a.restart_all(start);
@@ -318,7 +318,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
                                for (TetId t : ball) a.mesh().touch_tet(t);
                              }
                              if (round == 3 && !off.empty())  // the last resort
-                               stats += collapse_off_model<S, typename A::Exactness>(a.mesh(), off, a.geometry());
+                               stats += collapse_off_model<S, typename A::Precision>(a.mesh(), off, a.geometry());
                              a.template flips<MinQuality>(around, "flip");
                              a.smooth(polish_smooth);
                              if (off.empty()) break;

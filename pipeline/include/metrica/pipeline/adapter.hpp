@@ -132,9 +132,9 @@ template <MetricSpace S, Precision P, Concurrency C, Geometry G = NoGeometry>
 class Adapter {
  public:
   using Space = S;
-  using Exactness = P;
-  using Threads = C;
-  using Model = G;
+  using Precision = P;
+  using Concurrency = C;
+  using Geometry = G;
 
   // `metric`: when set, new and moved vertices take it (else the Space
   // interpolates). `geometry`: where boundary vertices go. The quality

@@ -22,7 +22,7 @@
 #include <metrica/policies/threads.hpp>
 #include <metrica/policy_list.hpp>
 
-#include <boost/container/small_vector.hpp>
+#include <metrica/small_vector.hpp>
 
 #include <omp.h>
 
