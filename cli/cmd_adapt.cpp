@@ -38,7 +38,8 @@ std::string stats_text(const char* name, const OperatorStats& s) {
 // working (the rest is waiting at a loop's end for the last thread).
 void print_operator_stats(const AdaptReport& r, bool serial, int threads) {
   for (const auto& [name, s] : r.ops) {
-    std::string text = fmt::format("  {:<8} tried {:>10} applied {:>10} rejected {:>10} deferred {:>6} candidates {:>10}",
+    std::string text = fmt::format("  {:<8} tried {:>10} applied {:>10} rejected {:>10} deferred {:>6} "
+                                   "candidates {:>10}",
                                    name, count_text(s.tried), count_text(s.applied), count_text(s.rejected),
                                    count_text(s.deferred), count_text(s.candidates));
     if (!serial) {

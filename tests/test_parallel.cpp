@@ -169,11 +169,8 @@ TEST_SUITE("parallel") {
       CAPTURE(threads);
       for (auto& d : done) d = 0;
       for (auto& a : attempts) a = 0;
-      const PassTally tally = [&] {
-        if (threads == 1) return SpeculativeOn<1>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
-        if (threads == 2) return SpeculativeOn<2>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
-        return SpeculativeOn<8>::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
-      }();
+      const SpeculativeScope pinned({.threads = threads, .small_list = 0});
+      const PassTally tally = Speculative::for_each(mesh, std::span<const std::uint32_t>(index), PassRoom{}, work);
       for (std::size_t i = 0; i < items.size(); ++i) REQUIRE(done[i] == 1);
       CHECK(tally.conflicts >= (items.size() + 2) / 3);
       CHECK(tally.replays == tally.conflicts);
@@ -727,7 +724,8 @@ TEST_SUITE("parallel") {
     CHECK(da.tets == db.tets);
   }
 
-  TEST_CASE("operator counts add up on every executor: tried = applied + rejected + deferred - none deferred on one thread") {
+  TEST_CASE(
+      "operator counts add up on every executor: tried = applied + rejected + deferred - none deferred on one thread") {
     auto check = [](const AdaptReport& r, bool serial) {
       REQUIRE(!r.ops.empty());
       for (const auto& [stage, s] : r.ops) {
