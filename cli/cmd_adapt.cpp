@@ -223,8 +223,10 @@ int run_adapt(const std::vector<std::string>& args) {
     const auto report = adapt_by_name(mesh, ao, policies);
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
-                 count_text(report.ops.get("collapse").applied), count_text(report.ops.get("split").applied),
-                 count_text(report.ops.get("flip").applied), count_text(report.ops.get("smooth").applied));
+                 count_text(report.ops.get("collapse").applied + report.ops.get("lift").applied),
+                 count_text(report.ops.get("split").applied),
+                 count_text(report.ops.get("flip").applied + report.ops.get("delaunay").applied),
+                 count_text(report.ops.get("smooth").applied));
     if (talk && (!serial || log::level() >= log::Level::verbose))
       print_operator_stats(report, serial, thread_count());
   }

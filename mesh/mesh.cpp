@@ -81,6 +81,7 @@ VertexId Mesh::add_vertex(const Point& p, int ref) {
     return v;
   }
   ++live_vertices_;
+  ++vertex_changes_;
   if (!free_vertices_.empty()) {
     const VertexId v = free_vertices_.back();
     free_vertices_.pop_back();
@@ -112,6 +113,7 @@ void Mesh::remove_vertex(VertexId v) {
   }
   free_vertices_.push_back(v);
   --live_vertices_;
+  ++vertex_changes_;
 }
 
 void Mesh::set_required(VertexId v, bool required) {
@@ -273,6 +275,8 @@ void Mesh::end_parallel(std::span<AllocationPool> pools) {
     free_vertices_.insert(free_vertices_.end(), p.removed_vertices.begin(), p.removed_vertices.end());
     free_tets_.insert(free_tets_.end(), p.tets.begin(), p.tets.end());
     live_vertices_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(live_vertices_) + p.vertex_delta);
+    // created = delta + removed
+    vertex_changes_ += static_cast<std::uint64_t>(p.vertex_delta + 2 * static_cast<std::ptrdiff_t>(p.removed_vertices.size()));
     live_tets_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(live_tets_) + p.tet_delta);
     p = AllocationPool{};
   }

@@ -1,4 +1,4 @@
-// The operation protocol, the pass runner and the pipeline object:
+// The operation protocol and the pass runner:
 //   - each operation's decide, property-tested without applying
 //     (check_plans, operators/testing.hpp): a plan
 //     never inverts a tet and never drops below the shape floor; applied on
@@ -6,8 +6,7 @@
 //     the ridges;
 //   - the shape floor of 2-3 flips under every criterion;
 //   - a toy executor (items in reverse order) adapts a box with no
-//     operator edited;
-//   - custom pipelines (stages reordered, one replaced).
+//     operator edited.
 #include "laplacian_move.hpp"  // examples/operation: the tutorial's operation
 #include "operator_test_support.hpp"
 
@@ -224,43 +223,6 @@ TEST_SUITE("invariant") {
     CHECK(r.ops.get("collapse").applied > 0);
     CHECK(last.conformity > 0.85);
     CHECK(last.min_quality > 0.2);
-  }
-
-  TEST_CASE_TEMPLATE("a custom pipeline (stages reordered and one replaced) reports by stage name", T,
-                     METRICA_POLICY_COMBINATIONS) {
-    const ExecutorOf<T> executor;
-    using A = Adapter<typename T::Space, typename T::Precision, typename T::Concurrency>;
-    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
-    const MetricFunction metric = small_linear;
-    set_metric_function(mesh, metric);
-    A adapter(mesh, &metric);
-    Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
-    p.max_cycles = 6;
-    // Split before collapse, metric Delaunay flips under a key of their
-    // own, and smoothing replaced by a stage of our own that runs the
-    // smoothing operation over every vertex. (A criterion of no standard
-    // stage, such as MaxMinEdgeWeight, compiles in the program that uses
-    // it: examples/compose and examples/consumer do.)
-    int custom_runs = 0;
-    p.cycle = {{"split", [](A& a) { return a.split({}); }},
-               {"collapse", [](A& a) { return a.collapse({}); }},
-               {"flip", [](A& a) { return a.template flips<MetricDelaunay>({}, "delaunay-cycle"); }},
-               {"my-smooth", [&custom_runs](A& a) {
-                  ++custom_runs;
-                  const std::vector<VertexId> vertices = all_vertices(a.mesh());
-                  return a.run(
-                      Smoothing<typename A::Space, typename A::Precision>{{.below = 1.0, .metric = a.metric()}},
-                      std::span<const VertexId>(vertices));
-                }}};
-    const AdaptReport& r = run_pipeline(adapter, p);
-    require_valid(mesh, 1.0);
-    CHECK(custom_runs > 0);
-    CHECK(r.ops.get("my-smooth").applied > 0);
-    CHECK(r.ops.get("split").applied > 0);
-    CHECK(r.ops.get("smooth").tried > 0);  // the standard quality phase
-    CHECK(r.cycles.front().ops.begin()->first == "split");
-    CHECK(r.cycles.back().min_quality > 0.1);
-    CHECK(adapter.since("delaunay-cycle") > 0);
   }
 }
 

@@ -1,6 +1,6 @@
 // A custom pipeline on Adapter (policies bound once): a box adapted to UGAWG polar-2 with the seed's
 // reconnection (metric Delaunay, then max-min edge-weight flips each cycle; the standard quality
-// phase), each pass incremental under its key. Swap a policy, a criterion or a stage and compare.
+// phase), each pass incremental under its stage's name. Swap a policy, a criterion or a stage and compare.
 //   build/examples/compose/compose_pipeline [cycles]
 #include <metrica/box.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
@@ -25,8 +25,8 @@ int main(int argc, char** argv) {
   p.max_cycles = argc > 1 ? std::atoi(argv[1]) : 8;
   p.cycle = {{"collapse", [](A& a) { return a.collapse({}); }},
              {"split", [](A& a) { return a.split({}); }},
-             {"flip", [](A& a) { return a.flips<MetricDelaunay>({}, "delaunay"); }},
-             {"flip", [](A& a) { return a.flips<MaxMinEdgeWeight>({}, "edge-weight"); }},
+             {"delaunay", [](A& a) { return a.flips<MetricDelaunay>({}); }},
+             {"edge-weight", [](A& a) { return a.flips<MaxMinEdgeWeight>({}); }},
              {"smooth", [](A& a) { return a.smooth({.below = 0.3}); }}};
   run_pipeline(adapter, p);
   const auto check = mesh.validate();

@@ -18,7 +18,7 @@ int main() {
   Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
   p.cycle = {{"split", [](A& a) { return a.split({}); }},
              {"collapse", [](A& a) { return a.collapse({}); }},
-             {"flip", [](A& a) { return a.flips<MaxMinEdgeWeight>({}, "edge-weight"); }},
+             {"edge-weight", [](A& a) { return a.flips<MaxMinEdgeWeight>({}); }},
              {"smooth", [](A& a) { return a.smooth({.below = 0.3}); }}};
   const AdaptReport& r = run_pipeline(adapter, p);
   const bool ok = mesh.validate().ok();

@@ -43,6 +43,10 @@ class Mesh {
   std::size_t vertex_capacity() const { return points_.size(); }
   std::size_t tet_capacity() const { return tets_.size(); }
   std::size_t num_vertices() const { return live_vertices_; }
+  // Vertices created plus vertices removed since the mesh was made (a
+  // parallel pass's are added at its end): what a cycle changed, whatever
+  // its stages are called, is the difference of two readings.
+  std::uint64_t vertex_changes() const { return vertex_changes_; }
   std::size_t num_tets() const { return live_tets_; }
 
   bool vertex_alive(VertexId v) const { return (vertex_flags_[v] & kAlive) != 0; }
@@ -285,6 +289,7 @@ class Mesh {
   MeshArray<VertexId> free_vertices_;
   MeshArray<TetId> free_tets_;
   std::size_t live_vertices_ = 0;
+  std::uint64_t vertex_changes_ = 0;
   std::size_t live_tets_ = 0;
 
   std::unordered_set<std::uint64_t> ridges_;

@@ -73,6 +73,10 @@ struct AdaptOptions {
   // next, and slow climbs need several).
   double repair_below = 0.3;
   int repair_rounds = 8;
+  // On a model, the closing stage's rounds (projection, then flips and
+  // smoothing around the vertices still off the model); the last round
+  // collapses those it leaves onto a boundary neighbour.
+  int closing_rounds = 4;
   // When set, new and moved vertices take this metric (analytic cases).
   const MetricFunction* metric = nullptr;
   // When set, boundary vertices are placed on this model (CadGeometry);
@@ -129,8 +133,9 @@ struct Pipeline {
   // Run once at the end (e.g. the last vertices onto the model).
   Stages<A> closing;
   int max_cycles = 15;
-  // Stop cycling when a cycle's "collapse" and "split" stages change fewer
-  // than this share of the vertices, or, once the mesh is nearly a unit
+  // Stop cycling when a cycle creates and removes fewer vertices than this
+  // share of the vertices (Mesh::vertex_changes: whatever its stages are
+  // called and do), or, once the mesh is nearly a unit
   // mesh (near_unit_conformity), when a cycle raises the share in the band
   // by less than min_conformity_gain.
   double min_change = 0.002;
@@ -152,8 +157,9 @@ const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
     Stopwatch clock;
     CycleReport c;
     c.cycle = cycle;
+    const std::uint64_t changes_before = a.mesh().vertex_changes();
     run_stages(a, p.cycle, c);
-    const std::size_t changed = c.ops.get("collapse").applied + c.ops.get("split").applied;
+    const std::uint64_t changed = a.mesh().vertex_changes() - changes_before;
     a.finish(c, clock);
     if (static_cast<double>(changed) < p.min_change * static_cast<double>(a.mesh().num_vertices())) break;
     if (previous_conformity >= p.near_unit_conformity && c.conformity - previous_conformity < p.min_conformity_gain)
@@ -242,9 +248,9 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
     p.cycle.push_back({"split", [=](A& a) { return a.insert_centroids(refine); }});
     // A centroid leaves its tet's long edge in place; metric Delaunay flips
     // remove it (the seed pairs the rule with them).
-    p.cycle.push_back({"flip", [=](A& a) { return a.template flips<MetricDelaunay>(delaunay, "delaunay"); }});
+    p.cycle.push_back({"delaunay", [=](A& a) { return a.template flips<MetricDelaunay>(delaunay); }});
   }
-  p.cycle.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(flips, "flip"); }});
+  p.cycle.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(flips); }});
   // On a model: the vertices a split left off it (their tets would have
   // inverted) try again after the reconnection around them.
   constexpr bool on_model = A::Geometry::on_model;
@@ -260,7 +266,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
     if (o.polish_below > flips.seed_below) a.forget("flip");
     if (o.quality_phase_smooth_below > smooth.below) a.forget("smooth");
   };
-  p.polish.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips, "flip"); }});
+  p.polish.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips); }});
   if constexpr (on_model) p.polish.push_back({"project", [](A& a) { return a.project(); }});
   if constexpr (on_model) p.polish.push_back({"swap", [](A& a) { return a.swap(); }});
   p.polish.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
@@ -272,19 +278,15 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   // then every incremental pass restarts from the balls of the poor tets'
   // vertices.
   const double below = o.repair_below;
-  p.repair.push_back({"collapse", [=](A& a) {
+  p.repair.push_back({"lift", [=](A& a) {
                         CollapseOptions lift = collapse;
                         lift.min_length = std::numeric_limits<double>::infinity();
                         lift.require_gain = true;
-                        lift.metric = a.metric();
-                        lift.changed_since = a.mesh().next_epoch();
+                        a.mark("lift");
                         touch_poor_tets<S, C>(a.mesh(), below);
-                        const OperatorStats stats =
-                            collapse_edges<S, typename A::Precision, C>(a.mesh(), lift, a.geometry());
-                        const Mesh::Epoch start = a.mesh().next_epoch();
+                        const OperatorStats stats = a.collapse(lift);
+                        a.restart_all(a.mark("repair"));
                         touch_around_poor_tets<S, C>(a.mesh(), below);
-                        a.restart_all(start);
-                        a.set_since("repair", start);
                         return stats;
                       }});
   p.repair.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
@@ -293,10 +295,10 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
                         r.changed_since = a.since("repair");
                         return a.split(r);
                       }});
-  p.repair.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips, "flip"); }});
+  p.repair.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips); }});
   p.repair.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   p.repair.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
-  p.repair.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips, "flip"); }});
+  p.repair.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips); }});
   if constexpr (on_model) p.repair.push_back({"project", [](A& a) { return a.project(); }});
   p.repair.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
   // On a model, the vertices still off it (their ball would invert) go
@@ -305,11 +307,11 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   // not for quality). Those the last round leaves are collapsed onto a
   // boundary neighbour.
   if constexpr (on_model)
-    p.closing.push_back({"project", [=](A& a) {
+    p.closing.push_back({"project", [=, rounds = o.closing_rounds](A& a) {
                            OperatorStats stats;
                            ReconnectOptions around = polish_flips;
                            around.seed_below = 1.0;
-                           for (int round = 0; round < 4; ++round) {
+                           for (int round = 1; round <= rounds; ++round) {
                              stats += a.project();
                              const auto off = vertices_off_model<C>(a.mesh(), a.geometry(), ProjectionOptions{}.tolerance);
                              TetList ball;
@@ -317,10 +319,11 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
                                vertex_ball(a.mesh(), v, ball);
                                for (TetId t : ball) a.mesh().touch_tet(t);
                              }
-                             if (round == 3 && !off.empty())  // the last resort
+                             if (round == rounds && !off.empty())  // the last resort
                                stats += collapse_off_model<S, typename A::Precision>(a.mesh(), off, a.geometry());
+                             // The flips and smoothing of the quality phase, going on from their epochs.
                              a.template flips<MinQuality>(around, "flip");
-                             a.smooth(polish_smooth);
+                             a.smooth(polish_smooth, "smooth");
                              if (off.empty()) break;
                            }
                            return stats;

@@ -150,43 +150,81 @@ class Adapter {
   const MetricFunction* metric() const { return metric_; }
   const G& geometry() const { return geometry_; }
 
-  // Epochs of the incremental passes, by key: the epoch at which the pass
-  // last started (0: never, so it sees everything).
-  Mesh::Epoch since(const std::string& key) const {
-    const auto it = epochs_.find(key);
-    return it == epochs_.end() ? 0 : it->second;
+  // Epochs of the incremental passes, by stage name: the epoch at which
+  // the stage's pass last started (0: never, so it sees everything; after
+  // restart_all, that epoch).
+  // Stages of one name share their epoch (the cycle's two collapses; the
+  // quality phase's flips go on from the cycles').
+  Mesh::Epoch since(std::string_view stage) const {
+    const auto it = epochs_.find(stage);
+    return it == epochs_.end() ? restarted_ : it->second;
   }
-  void forget(const std::string& key) { epochs_[key] = 0; }
-  void set_since(const std::string& key, Mesh::Epoch epoch) { epochs_[key] = epoch; }
-  // Every incremental pass sees only what changed since `epoch`.
+  // The stage's next pass sees everything.
+  void forget(std::string_view stage) { epochs_[std::string(stage)] = 0; }
+  // Starts a new epoch as `stage`'s: what is touched from now on is what
+  // the stage's next pass sees (a pass seeded from chosen tets).
+  Mesh::Epoch mark(std::string_view stage) {
+    const Mesh::Epoch e = mesh_.next_epoch();
+    epochs_[std::string(stage)] = e;
+    return e;
+  }
+  // Every stage's next pass, of a stage that ran or not, sees only what
+  // changed since `epoch`.
   void restart_all(Mesh::Epoch epoch) {
     for (auto& [k, e] : epochs_) e = epoch;
+    restarted_ = epoch;
   }
-
-  // An incremental pass: `pass(mesh, options)` with options.changed_since
-  // set to when the pass under `key` last started, then recorded.
-  template <class Options, class Pass>
-  OperatorStats incremental(const std::string& key, Options options, Pass&& pass) {
-    options.changed_since = since(key);
-    const Mesh::Epoch start = mesh_.next_epoch();
-    OperatorStats stats = pass(mesh_, options);
-    epochs_[key] = start;
+  // The stage running now (empty outside run_stages): the default key of
+  // the passes it runs.
+  const std::string& stage() const { return stage_; }
+  // Runs `f(*this)` as stage `name`.
+  template <class F>
+  OperatorStats run_stage(const std::string& name, F&& f) {
+    stage_ = name;
+    OperatorStats stats = f(*this);
+    stage_.clear();
     return stats;
   }
 
-  // Any operation over a work list, on the adapter's executor.
+  // An incremental pass: `pass(mesh, options)` with options.changed_since
+  // set to when the pass of stage `key` last started, then recorded.
+  template <class Options, class Pass>
+  OperatorStats incremental(std::string_view key, Options options, Pass&& pass) {
+    options.changed_since = since(key);
+    const Mesh::Epoch start = mesh_.next_epoch();
+    OperatorStats stats = pass(mesh_, options);
+    epochs_[std::string(key)] = start;
+    return stats;
+  }
+
+  // Any operation over a work list, on the adapter's executor, with the
+  // adapter's metric (options.metric, when the operation has one and it is
+  // not set) and geometry (the member `geometry`, when it has one).
   template <Operation Op>
-  OperatorStats run(const Op& op, std::span<const typename Op::Item> items) {
+  OperatorStats run(Op op, std::span<const typename Op::Item> items) {
+    if constexpr (requires { op.options.metric; })
+      if (op.options.metric == nullptr) op.options.metric = metric_;
+    if constexpr (requires { op.geometry; }) {
+      static_assert(std::same_as<std::remove_cvref_t<decltype(op.geometry)>, G>,
+                    "the operation's Geometry must be the adapter's");
+      op.geometry = geometry_;
+    }
     return run_pass<C>(mesh_, op, items);
+  }
+  template <Operation Op, class List>
+  OperatorStats run(Op op, const List& items) {
+    return run(std::move(op), std::span<const typename Op::Item>(items.data(), items.size()));
   }
 
   // The standard passes. Collapse, flips and smoothing are incremental
-  // under `key`; splits see the whole mesh unless o.changed_since says.
+  // under `key`: by default the running stage's name (outside a stage, the
+  // operation's); another stage's name shares that stage's epoch. Splits
+  // see the whole mesh unless o.changed_since says.
   template <class Criterion = ShapeOnly>
-  OperatorStats collapse(CollapseOptions o, const std::string& key = "collapse") {
+  OperatorStats collapse(CollapseOptions o, std::string_view key = {}) {
     o.metric = metric_;
     o.known = &out_of_band_;
-    return incremental(key, o, [this](Mesh& m, const CollapseOptions& x) {
+    return incremental(key_or(key, "collapse"), o, [this](Mesh& m, const CollapseOptions& x) {
       return collapse_edges<S, P, C, Criterion>(m, x, geometry_);
     });
   }
@@ -202,15 +240,15 @@ class Adapter {
     return refine_centroids<S, P, C, Criterion>(mesh_, o, geometry_);
   }
   template <class Criterion = MinQuality>
-  OperatorStats flips(const ReconnectOptions& o, const std::string& key) {
-    return incremental(key, o, [this](Mesh& m, const ReconnectOptions& x) {
+  OperatorStats flips(const ReconnectOptions& o, std::string_view key = {}) {
+    return incremental(key_or(key, "flip"), o, [this](Mesh& m, const ReconnectOptions& x) {
       return reconnect<S, P, C, Criterion>(m, x, geometry_);
     });
   }
   template <class Criterion = MinQuality>
-  OperatorStats smooth(SmoothOptions o, const std::string& key = "smooth") {
+  OperatorStats smooth(SmoothOptions o, std::string_view key = {}) {
     o.metric = metric_;
-    return incremental(key, o, [this](Mesh& m, const SmoothOptions& x) {
+    return incremental(key_or(key, "smooth"), o, [this](Mesh& m, const SmoothOptions& x) {
       return smooth_vertices<S, P, C, Criterion>(m, x, geometry_);
     });
   }
@@ -244,17 +282,24 @@ class Adapter {
   std::function<void(const CycleReport&)> on_cycle;
 
  private:
+  std::string_view key_or(std::string_view key, std::string_view operation) const {
+    return !key.empty() ? key : !stage_.empty() ? std::string_view(stage_) : operation;
+  }
+
   Mesh& mesh_;
   const MetricFunction* metric_;
   G geometry_;
   std::map<std::string, Mesh::Epoch, std::less<>> epochs_;
+  std::string stage_;
+  Mesh::Epoch restarted_ = 0;
   AdaptReport report_;
   // The edges outside the unit band at the last cycle's end, for the next
   // cycle's work lists (edges_beyond).
   OutOfBandEdges out_of_band_;
 };
 
-// A stage of a pipeline: a name (its key in the reports) and what it does.
+// A stage of a pipeline: a name (its key in the reports and the key of
+// its incremental passes' epoch) and what it does.
 template <class A>
 struct Stage {
   std::string name;
@@ -267,7 +312,7 @@ using Stages = std::vector<Stage<A>>;
 // Runs the stages in order, each one's stats added to c.ops[stage name].
 template <class A>
 void run_stages(A& adapter, const Stages<A>& stages, CycleReport& c) {
-  for (const Stage<A>& s : stages) c.ops[s.name] += s.run(adapter);
+  for (const Stage<A>& s : stages) c.ops[s.name] += adapter.run_stage(s.name, s.run);
 }
 
 }  // namespace metrica

@@ -1,0 +1,142 @@
+// The pipeline object and the pass runner of pipelines:
+//   - custom pipelines (stages reordered, one replaced) report by stage
+//     name, and a stage's name is the key of its passes' epoch;
+//   - the cycles stop for the stated reason (the mesh's own vertex
+//     changes), whatever the stages are called;
+//   - Adapter::run binds the adapter's metric and geometry.
+#include "operator_test_support.hpp"
+
+#include <metrica/box.hpp>
+#include <metrica/pipeline/adapt.hpp>
+
+#include <doctest/doctest.h>
+
+#include <string>
+#include <vector>
+
+using namespace metrica;
+using namespace metrica::test;
+
+namespace {
+
+std::vector<VertexId> all_vertices(const Mesh& mesh) {
+  std::vector<VertexId> v;
+  for (VertexId i = 0; i < mesh.vertex_capacity(); ++i)
+    if (mesh.vertex_alive(i)) v.push_back(i);
+  return v;
+}
+
+// The standard pipeline with every stage of the cycles renamed.
+template <class A>
+Pipeline<A> renamed_cycle(const AdaptOptions& o) {
+  Pipeline<A> p = standard_pipeline<A>(o);
+  for (Stage<A>& s : p.cycle) s.name = "my-" + s.name;
+  return p;
+}
+
+}  // namespace
+
+TEST_SUITE("invariant") {
+  TEST_CASE_TEMPLATE("a custom pipeline (stages reordered and one replaced) reports by stage name", T,
+                     METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
+    using A = Adapter<typename T::Space, typename T::Precision, typename T::Concurrency>;
+    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+    const MetricFunction metric = small_linear;
+    set_metric_function(mesh, metric);
+    A adapter(mesh, &metric);
+    Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
+    p.max_cycles = 6;
+    // Split before collapse, metric Delaunay flips under a key of their
+    // own, and smoothing replaced by a stage of our own that runs the
+    // smoothing operation over every vertex. (A criterion of no standard
+    // stage, such as MaxMinEdgeWeight, compiles in the program that uses
+    // it: examples/compose and examples/consumer do.)
+    int custom_runs = 0;
+    p.cycle = {{"split", [](A& a) { return a.split({}); }},
+               {"collapse", [](A& a) { return a.collapse({}); }},
+               {"delaunay-cycle", [](A& a) { return a.template flips<MetricDelaunay>({}); }},
+               {"my-smooth", [&custom_runs](A& a) {
+                  ++custom_runs;
+                  const std::vector<VertexId> vertices = all_vertices(a.mesh());
+                  return a.run(
+                      Smoothing<typename A::Space, typename A::Precision>{{.below = 1.0}},
+                      std::span<const VertexId>(vertices));
+                }}};
+    const AdaptReport& r = run_pipeline(adapter, p);
+    require_valid(mesh, 1.0);
+    CHECK(custom_runs > 0);
+    CHECK(r.ops.get("my-smooth").applied > 0);
+    CHECK(r.ops.get("split").applied > 0);
+    CHECK(r.ops.get("smooth").tried > 0);  // the standard quality phase
+    CHECK(r.cycles.front().ops.begin()->first == "split");
+    CHECK(r.cycles.back().min_quality > 0.1);
+    CHECK(adapter.since("delaunay-cycle") > 0);
+  }
+
+  TEST_CASE("renamed stages: the cycles stop for the same reason, after the same number of cycles") {
+    using A = Adapter<LogEuclidean, Filtered, Serial>;
+    const MetricFunction metric = small_linear;
+    auto run = [&](bool renamed) {
+      Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+      set_metric_function(mesh, metric);
+      A adapter(mesh, &metric);
+      AdaptOptions o;
+      o.quality_passes = 0;
+      o.repair_rounds = 0;
+      const AdaptReport r =
+          run_pipeline(adapter, renamed ? renamed_cycle<A>(o) : standard_pipeline<A>(o));
+      return std::pair{r.cycles.size(), mesh.num_tets()};
+    };
+    const auto [standard_cycles, standard_tets] = run(false);
+    const auto [renamed_cycles, renamed_tets] = run(true);
+    CHECK(standard_cycles > 2);
+    CHECK(renamed_cycles == standard_cycles);
+    CHECK(renamed_tets == standard_tets);
+  }
+
+  TEST_CASE("a cycle that creates and removes no vertex is the last one; one that does goes on") {
+    using A = Adapter<LogEuclidean, Filtered, Serial>;
+    const MetricFunction metric = small_linear;
+    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+    set_metric_function(mesh, metric);
+    A adapter(mesh, &metric);
+    Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
+    p.quality_passes = 0;
+    p.repair.clear();
+    p.cycle = {{"reconnect", [](A& a) { return a.flips({}); }}, {"relax", [](A& a) { return a.smooth({}); }}};
+    CHECK(run_pipeline(adapter, p).cycles.size() == 1);
+    const std::uint64_t before = mesh.vertex_changes();
+    p.cycle = {{"refine", [](A& a) { return a.split({}); }}};
+    p.max_cycles = 3;
+    A second(mesh, &metric);
+    const AdaptReport& r = run_pipeline(second, p);
+    CHECK(r.cycles.size() > 1);
+    CHECK(mesh.vertex_changes() - before >= r.ops.get("refine").applied);
+  }
+
+  TEST_CASE("stages of one name share their epoch; another name starts from everything") {
+    using A = Adapter<LogEuclidean, Filtered, Serial>;
+    const MetricFunction metric = small_linear;
+    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+    set_metric_function(mesh, metric);
+    A adapter(mesh, &metric);
+    CycleReport c;
+    const Stages<A> stages = {{"flip", [](A& a) { return a.flips({.seed_below = 1.0}); }},
+                              {"flip", [](A& a) { return a.flips({.seed_below = 1.0}); }},
+                              {"other", [](A& a) { return a.flips({.seed_below = 1.0}); }}};
+    // Each stage records its start; the second "flip" sees only what the
+    // first changed, "other" (never ran) every tet.
+    std::vector<Mesh::Epoch> started;
+    for (const Stage<A>& s : stages) {
+      CHECK(adapter.since(s.name) <= mesh.epoch());
+      adapter.run_stage(s.name, s.run);
+      started.push_back(adapter.since(s.name));
+      CHECK(adapter.stage().empty());
+    }
+    CHECK(started[1] > started[0]);
+    CHECK(adapter.since("never-ran") == 0);
+    adapter.restart_all(mesh.next_epoch());
+    CHECK(adapter.since("never-ran") == mesh.epoch());
+  }
+}
