@@ -90,6 +90,9 @@ int run_adapt(const std::vector<std::string>& args) {
             "  metrica adapt cube.meshb --analytic polar-2 --points centroid -o polar2.meshb\n"
             "  metrica adapt cube.meshb --analytic linear --threads 2 -o linear.meshb\n"
             "  metrica adapt cube-cylinder.meshb --geometry cube-cylinder.step --analytic polar-2 -o cc.meshb");
+  // The defaults shown and used are the library's.
+  const AdaptOptions d;
+  const auto text = [](double x) { return fmt::format("{}", x); };
   o.input("mesh (.mesh, .meshb)");
   o.output("adapted mesh (.mesh, .meshb, .vtu, .su2)",
            {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2});
@@ -104,23 +107,28 @@ int run_adapt(const std::vector<std::string>& args) {
       "concurrency", po::value<std::string>()->default_value("speculative")->value_name("C"),
       "speculative (every operator on --threads threads, lock-free per-vertex try-locks) or serial "
       "(one thread, the same output to the bit on every run)")(
-      "points", po::value<std::string>()->default_value("edge")->value_name("RULE"),
+      "points", po::value<std::string>()->default_value(to_string(d.points))->value_name("RULE"),
       "point creation: edge (split long edges at their metric midpoint) or centroid (the centroids "
       "of tets with a long edge, moved to a boundary face or ridge they encroach)")(
-      "cycles", po::value<int>()->default_value(15)->value_name("N"), "most adaptation cycles per adaptation")(
-      "quality-passes", po::value<int>()->default_value(4)->value_name("N"), "flip + smooth passes at the end")(
-      "repair-rounds", po::value<int>()->default_value(8)->value_name("N"),
+      "cycles", po::value<int>()->default_value(d.max_cycles)->value_name("N"), "most adaptation cycles per adaptation")(
+      "quality-passes", po::value<int>()->default_value(d.quality_passes)->value_name("N"),
+      "flip + smooth passes at the end")(
+      "repair-rounds", po::value<int>()->default_value(d.repair_rounds)->value_name("N"),
       "after the quality passes, at most N rounds of collapse, split, flips and smoothing around the tets "
       "still below --repair-below (none after two in a row that leave the worst tet)")(
-      "repair-below", po::value<double>()->default_value(0.3, "0.3")->value_name("Q"),
+      "repair-below", po::value<double>()->default_value(d.repair_below, text(d.repair_below))->value_name("Q"),
       "mean ratio below which a tet left by the quality passes gets repair rounds")(
-      "max-length", po::value<double>()->value_name("L"), "split edges longer than L (default sqrt 2)")(
-      "min-length", po::value<double>()->value_name("L"), "collapse edges shorter than L (default 1/sqrt 2)")(
+      "max-length", po::value<double>()->value_name("L"),
+      fmt::format("split edges longer than L (default {:.4g}: sqrt 2)", d.refine.max_length).c_str())(
+      "min-length", po::value<double>()->value_name("L"),
+      fmt::format("collapse edges shorter than L (default {:.4g}: 1/sqrt 2)", d.collapse.min_length).c_str())(
       "collapse-max-length", po::value<double>()->value_name("L"),
-      "a collapse may not make an edge longer than L (default 1.5)")(
-      "quality-floor", po::value<double>()->default_value(0.1, "0.1")->value_name("Q"),
+      fmt::format("a collapse may not make an edge longer than L (default {})", text(d.collapse.max_new_length))
+          .c_str())(
+      "quality-floor",
+      po::value<double>()->default_value(d.collapse.quality_floor, text(d.collapse.quality_floor))->value_name("Q"),
       "a collapse may not make a tet worse than Q (unless the ball was already worse)")(
-      "smooth-below", po::value<double>()->default_value(0.3, "0.3")->value_name("Q"),
+      "smooth-below", po::value<double>()->default_value(d.smooth.below, text(d.smooth.below))->value_name("Q"),
       "smooth the vertices of tets with mean ratio below Q during the cycles")(
       "hmin", po::value<double>()->value_name("H"), "clamp the metric's sizes to at least H")(
       "hmax", po::value<double>()->value_name("H"), "clamp the metric's sizes to at most H")(

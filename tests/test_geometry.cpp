@@ -69,6 +69,7 @@ struct ShiftedGeometry {
     return true;
   }
   double facet_deviation(const Mesh&, VertexId, VertexId, VertexId, SurfaceId) const { return 0.0; }
+  bool places(const Mesh&, VertexId) const { return true; }
 };
 static_assert(Geometry<ShiftedGeometry>);
 
@@ -251,8 +252,11 @@ TEST_SUITE("unit") {
     const BoundaryPoint none = place_boundary_vertex(g, param, straight, within(0.01));
     CHECK(none.p.x() == 0.0);
     CHECK(none.geo == param);  // the parameters stay: the projection pass tries again
-    // Without a model: the straight point, no parameters.
-    const BoundaryPoint flat = place_boundary_vertex(NoGeometry{}, param, straight, within(2.0));
+    // Without a model (the parameters are what NoGeometry gives): the
+    // straight point, no parameters.
+    const NoGeometry none_model;
+    const BoundaryPoint flat =
+        place_boundary_vertex(none_model, none_model.boundary_vertex(mesh, {}, {}, 1), straight, within(2.0));
     CHECK(flat.p == straight);
     CHECK(!flat.geo.valid());
   }

@@ -29,6 +29,34 @@ using namespace metrica;
 using namespace metrica::test;
 
 namespace {
+
+// What one flip decided and, when it said yes, applied on the mesh
+// (outside a pass: the shell in s, nothing held).
+enum class FlipResult { applied, rejected, not_applicable };
+
+template <class Plan>
+FlipResult outcome(const Decision<Plan>& d) {
+  if (d) return FlipResult::applied;
+  return d.why() == Refusal::not_applicable ? FlipResult::not_applicable : FlipResult::rejected;
+}
+
+template <MetricSpace S, Precision P, class Criterion>
+FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const FlipOptions& o) {
+  const auto d = decide_edge_removal<S, P, Criterion>(mesh, a, b, s, o);
+  if (d) apply_edge_removal<Criterion>(mesh, d.plan(), s);
+  return outcome(d);
+}
+
+template <MetricSpace S, Precision P, class Criterion>
+FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptions& o = {}) {
+  const auto d = decide_flip23<S, P, Criterion>(mesh, t, face, s, o);
+  if (d) apply_flip23<Criterion>(mesh, d.plan(), s);
+  return outcome(d);
+}
+
+}  // namespace
+
+namespace {
 // Calls f(a, b) for every edge ab of `mesh` with a closed shell of
 // min_tets to max_tets tets, the shell in s.shell; returns the calls.
 template <class F>

@@ -13,6 +13,7 @@
 #include <metrica/geometry/model.hpp>
 
 #include <cmath>
+#include <numbers>
 
 namespace metrica {
 
@@ -21,7 +22,7 @@ struct CadGeometry {
   static constexpr std::string_view name = "cad";
   const CadModel* model = nullptr;
   // 1 - cos 8 degrees.
-  double max_deviation = 1.0 - std::cos(8.0 * 3.14159265358979323846 / 180.0);
+  double max_deviation = 1.0 - std::cos(8.0 * std::numbers::pi / 180.0);
 
   GeoParam boundary_vertex(const Mesh& mesh, std::span<const VertexId> parents, std::span<const double> weights,
                            SurfaceId surface) const;
@@ -31,6 +32,9 @@ struct CadGeometry {
   // 1 - |cos| between the facet's normal and the model's at its centroid
   // (0 when its vertices have no parameters).
   double facet_deviation(const Mesh& mesh, VertexId p, VertexId q, VertexId r, SurfaceId surface) const;
+  // Every boundary vertex is the model's (one it cannot place, having no
+  // parameters, stays where it is).
+  bool places(const Mesh&, VertexId) const { return true; }
 };
 static_assert(Geometry<CadGeometry>);
 

@@ -1,9 +1,10 @@
 // The geometry policy: where boundary vertices live.
 //
-// The operations that create, move or remove boundary vertices (split and
-// centroid insertion on the boundary, collapse, boundary 2-2 flips,
-// smoothing) ask a Geometry, beside the Space, Precision and Concurrency
-// policies, the three questions that depend on the model:
+// Every operation holds a Geometry, beside the Space, Precision and
+// Concurrency policies; those that create, move or remove boundary
+// vertices (split and centroid insertion on the boundary, collapse,
+// boundary 2-2 flips, smoothing, projection) ask it, and only through
+// this concept, the questions that depend on the model:
 //
 //   boundary_vertex(mesh, parents, weights, surface)
 //       the entity and parameters of a new boundary vertex made from
@@ -15,7 +16,13 @@
 //       may a reconnection leave boundary facet pqr on `surface` where
 //       facets of normal `old_normal` were (2-2 flip, collapse)?
 //   facet_deviation(mesh, p, q, r, surface)
-//       how far facet pqr turns from the surface (0: along it).
+//       how far facet pqr turns from the surface (0: along it);
+//   places(mesh, v)       is boundary vertex v's place the model's (its
+//                         moves follow the model, and it belongs on it)?
+//
+// `on_model` (a constant) is for pipelines, not operations: whether the
+// stages that only a model gives work to (projection, boundary swap)
+// belong in the pipeline.
 //
 // NoGeometry keeps the first faceting: new vertices stay where the
 // operation puts them, and a boundary facet must keep the plane of the
@@ -40,6 +47,7 @@ concept Geometry = requires(const G& g, const Mesh& mesh, std::span<const Vertex
   { g.point(param) } -> std::same_as<Point>;
   { g.facet_fits(mesh, VertexId{}, VertexId{}, VertexId{}, surface, normal, 0.0) } -> std::same_as<bool>;
   { g.facet_deviation(mesh, VertexId{}, VertexId{}, VertexId{}, surface) } -> std::same_as<double>;
+  { g.places(mesh, VertexId{}) } -> std::same_as<bool>;
 };
 
 struct NoGeometry {
@@ -54,6 +62,7 @@ struct NoGeometry {
     return normal_deviation(face_normal(mesh, p, q, r), old_normal) <= tolerance;
   }
   double facet_deviation(const Mesh&, VertexId, VertexId, VertexId, SurfaceId) const { return 0.0; }
+  bool places(const Mesh&, VertexId) const { return false; }
 };
 static_assert(Geometry<NoGeometry>);
 

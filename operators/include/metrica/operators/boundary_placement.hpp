@@ -25,15 +25,11 @@ inline constexpr int kBacktrackSteps = 5;
 template <Geometry G, class Accepts>
 BoundaryPoint place_boundary_vertex(const G& geometry, const GeoParam& param, const Point& straight,
                                     Accepts&& accepts) {
-  if constexpr (!G::on_model) {
-    return {straight, {}};
-  } else {
-    if (!param.valid()) return {straight, {}};
-    Eigen::Vector3d step = geometry.point(param) - straight;
-    for (int k = 0; k <= kBacktrackSteps; ++k, step *= 0.5)
-      if (accepts(Point(straight + step))) return {Point(straight + step), param};
-    return {straight, param};
-  }
+  if (!param.valid()) return {straight, {}};
+  Eigen::Vector3d step = geometry.point(param) - straight;
+  for (int k = 0; k <= kBacktrackSteps; ++k, step *= 0.5)
+    if (accepts(Point(straight + step))) return {Point(straight + step), param};
+  return {straight, param};
 }
 
 // The surface of boundary edge ab (an open shell): the surface id of the
@@ -53,14 +49,10 @@ inline SurfaceId edge_surface(const Mesh& mesh, const Shell& shell, VertexId a, 
 // edge or without a model.
 template <Geometry G>
 GeoParam edge_vertex_param(const G& geometry, const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, double t) {
-  if constexpr (!G::on_model) {
-    return {};
-  } else {
-    if (shell.closed) return {};
-    const std::array<VertexId, 2> ends{a, b};
-    const std::array<double, 2> w{1.0 - t, t};
-    return geometry.boundary_vertex(mesh, ends, w, mesh.is_ridge(a, b) ? 0 : edge_surface(mesh, shell, a, b));
-  }
+  if (shell.closed) return {};
+  const std::array<VertexId, 2> ends{a, b};
+  const std::array<double, 2> w{1.0 - t, t};
+  return geometry.boundary_vertex(mesh, ends, w, mesh.is_ridge(a, b) ? 0 : edge_surface(mesh, shell, a, b));
 }
 
 }  // namespace metrica

@@ -112,10 +112,8 @@ template <MetricSpace S, Precision P, Concurrency C, Geometry G>
 OperatorStats swap_toward_model(Mesh& mesh, const BoundarySwapOptions& o, const G& geometry) {
   Stopwatch clock;
   OperatorStats stats;
-  if constexpr (G::on_model) {
-    const std::vector<EdgeSeed> edges = boundary_edge_seeds(mesh);
-    stats = run_pass<C>(mesh, BoundarySwap<S, P, G>{o, geometry}, edges);
-  }
+  const std::vector<EdgeSeed> edges = boundary_edge_seeds(mesh);
+  stats = run_pass<C>(mesh, BoundarySwap<S, P, G>{o, geometry}, edges);
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -62,8 +62,8 @@ struct CavityPlan {
 
 namespace detail {
 // Groups plan.entries by triple into plan.matches, through an
-// open-addressing table (linear in the faces; sorting the triples costs
-// 3% of an adaptation). False when a triple appears more than twice.
+// open-addressing table (linear in the faces, no sort of the triples).
+// False when a triple appears more than twice.
 inline bool match_faces(CavityPlan& plan) {
   const std::size_t n = plan.entries.size();
   std::size_t slots = 64;

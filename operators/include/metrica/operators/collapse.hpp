@@ -18,15 +18,17 @@
 #pragma once
 
 #include <metrica/operators/cavity.hpp>
+#include <metrica/operators/criterion.hpp>
 #include <metrica/operators/edge_queue.hpp>
-#include <metrica/operators/flips.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/refine_edges.hpp>
+#include <metrica/operators/shell.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 namespace metrica {
@@ -41,7 +43,7 @@ struct CollapseOptions {
   double max_new_length = 1.5;
   double quality_floor = 0.1;
   // Largest 1 - cos between a boundary face's normal before and after.
-  double max_normal_deviation = 1.0 - std::cos(2.0 * 3.14159265358979323846 / 180.0);
+  double max_normal_deviation = 1.0 - std::cos(2.0 * std::numbers::pi / 180.0);
   // When set, a collapse must raise the worst tet of the ball (both balls
   // for a merge at the midpoint): the repair rounds collapse edges of any
   // length at a poor tet, and only to lift it.
@@ -192,7 +194,7 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
       if (o.require_gain && q <= worst_old()) return Refusal::rejected;
       if (!shape.admits(q, worst_old)) return Refusal::rejected;
     }
-  if constexpr (!kIndifferent<Criterion>) {
+  if constexpr (!CriterionTraits<Criterion>::indifferent) {
     double old_score = min_score_of<Criterion, S>(mesh, view(s.ball));
     if (moved != nullptr) old_score = std::min(old_score, min_score_of<Criterion, S>(mesh, view(s.ball_b)));
     const double bar = Criterion::bar(old_score);
@@ -223,15 +225,6 @@ inline void apply_collapse(Mesh& mesh, const CollapsePlan& plan, CollapseScratch
   }
 }
 
-// Decide and apply on one edge (the balls in s, their vertices held).
-template <MetricSpace S, Precision P, class Criterion = ShapeOnly>
-FlipResult collapse_edge(Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s, const CollapseOptions& o,
-                         const Point* moved = nullptr, const VertexMetric* moved_metric = nullptr) {
-  const auto d = decide_collapse<S, P, Criterion>(mesh, a, b, s, o, moved, moved_metric);
-  if (!d) return flip_result(d.why());
-  apply_collapse(mesh, d.plan(), s);
-  return FlipResult::applied;
-}
 
 // The collapse of a short edge as an operation: it tries to remove the
 // end of lower class (interior before surface before ridge), then the
@@ -295,7 +288,7 @@ struct Collapse {
         const std::array<VertexId, 2> ends{from, to};
         const std::array<double, 2> w{1.0 - t, t};
         const VertexMetric m = new_vertex_metric<S>(mesh, options.metric, ends, w, p);
-        d = decide_collapse<S, P, Criterion>(mesh, from, to, s, options, &p, &m);
+        d = decide_collapse<S, P, Criterion>(mesh, from, to, s, options, &p, &m, geometry);
       }
       if (d) return d;
       rejected = rejected || d.why() == Refusal::rejected;

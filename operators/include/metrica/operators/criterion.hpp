@@ -8,7 +8,12 @@
 //   static double tet_score_at<S>(mesh, tet vertices, points);   with moved points
 //   static double tet_score_of<S>(mesh, live tet id);            may be cached
 //   static double bar(double reference);   a candidate's smallest score must exceed it
-//   static constexpr bool measures_shape;  its score orders tets as the mean ratio does
+//
+// and states its traits as static constexpr bool members (CriterionTraits:
+// false when absent): measures_shape (its score orders tets as the mean
+// ratio does, so the shape floor is implied), indifferent (it never
+// refuses: no score need be computed), score_is_mean_ratio_cubed (a new
+// tet's score gives the quality cache its mean ratio);
 //
 // lets an operation score the old configuration once, reuse a tet's score
 // across candidates and stop scoring a candidate as soon as it cannot win.
@@ -56,7 +61,6 @@ concept ScoredCriterion = requires(const Mesh& mesh, const TetVertices& tet, con
   { C::template tet_score_at<Isotropic>(mesh, tet, points) } -> std::same_as<double>;
   { C::template tet_score_of<Isotropic>(mesh, id) } -> std::same_as<double>;
   { C::bar(0.0) } -> std::same_as<double>;
-  { C::measures_shape } -> std::convertible_to<bool>;
 };
 
 // A criterion that compares whole configurations (flips only).
@@ -68,9 +72,29 @@ concept ConfigurationCriterion = requires(const Mesh& mesh, std::span<const TetV
 template <class C>
 concept Criterion = ScoredCriterion<C> || ConfigurationCriterion<C>;
 
-// True when the criterion never refuses (its scores need not be computed).
+// The traits a criterion states (criterion.hpp's header), false when it
+// does not state them.
 template <class C>
-inline constexpr bool kIndifferent = false;
+struct CriterionTraits {
+  static constexpr bool measures_shape = [] {
+    if constexpr (requires { C::measures_shape; })
+      return static_cast<bool>(C::measures_shape);
+    else
+      return false;
+  }();
+  static constexpr bool indifferent = [] {
+    if constexpr (requires { C::indifferent; })
+      return static_cast<bool>(C::indifferent);
+    else
+      return false;
+  }();
+  static constexpr bool score_is_mean_ratio_cubed = [] {
+    if constexpr (requires { C::score_is_mean_ratio_cubed; })
+      return static_cast<bool>(C::score_is_mean_ratio_cubed);
+    else
+      return false;
+  }();
+};
 
 // The smallest score of `ids` (live tets) and of `tets` (new ones); the
 // latter stops at the first tet at or below `floor`.
@@ -95,9 +119,8 @@ struct MinQuality {
   static constexpr std::string_view name = "quality";
   static constexpr bool measures_shape = true;
   // The score is Q^3: the same order and the same worst tet as Q, without
-  // a cube root per tet (cbrt was 2.4% of an adaptation, most of it on the
-  // candidate tets of edge removals). A relative margin m on Q is about 3m
-  // on Q^3.
+  // a cube root per tet (most of them on the candidate tets of edge
+  // removals). A relative margin m on Q is about 3m on Q^3.
   template <MetricSpace S>
   static double tet_score(const Mesh& mesh, const TetVertices& t) {
     return S::mean_ratio_cubed(mesh, t);
@@ -118,7 +141,6 @@ struct MinQuality {
 
 struct MaxMinEdgeWeight {
   static constexpr std::string_view name = "edge-weight";
-  static constexpr bool measures_shape = false;
   template <MetricSpace S>
   static double tet_score_at(const Mesh& mesh, const TetVertices& t, const TetPoints& p) {
     return min_edge_weight(p, S::tet_metric(mesh, t));
@@ -136,7 +158,7 @@ struct MaxMinEdgeWeight {
 
 struct ShapeOnly {
   static constexpr std::string_view name = "shape";
-  static constexpr bool measures_shape = false;
+  static constexpr bool indifferent = true;
   template <MetricSpace S>
   static double tet_score(const Mesh&, const TetVertices&) {
     return 0.0;
@@ -151,28 +173,8 @@ struct ShapeOnly {
   }
   static double bar(double) { return -std::numeric_limits<double>::infinity(); }
 };
-template <>
-inline constexpr bool kIndifferent<ShapeOnly> = true;
 
 static_assert(ScoredCriterion<MinQuality> && ScoredCriterion<MaxMinEdgeWeight> && ScoredCriterion<ShapeOnly>);
-
-// Does the criterion's score say "mean ratio cubed" (so the quality cache
-// can take a new tet's score)?
-template <class C>
-constexpr bool score_is_mean_ratio_cubed() {
-  if constexpr (requires { C::score_is_mean_ratio_cubed; })
-    return C::score_is_mean_ratio_cubed;
-  else
-    return false;
-}
-
-template <class C>
-constexpr bool criterion_measures_shape() {
-  if constexpr (requires { C::measures_shape; })
-    return C::measures_shape;
-  else
-    return false;
-}
 
 // The shape floor every criterion gets: a new configuration may not have a
 // tet below min(floor, the worst old tet) in mean ratio. Without it, metric
@@ -220,7 +222,7 @@ class WorstOld {
 template <MetricSpace S, class Criterion>
 bool keeps_shape(const Mesh& mesh, std::span<const TetId> old_tets, std::span<const TetVertices> new_tets,
                  double floor) {
-  if constexpr (criterion_measures_shape<Criterion>()) {
+  if constexpr (CriterionTraits<Criterion>::measures_shape) {
     return true;
   } else {
     const ShapeFloor shape(floor);
@@ -237,7 +239,7 @@ bool keeps_shape(const Mesh& mesh, std::span<const TetId> old_tets, std::span<co
 // Without a score per new tet, or under other criteria: nothing.
 template <class Criterion>
 void cache_new_qualities(const Mesh& mesh, std::span<const TetId> created, std::span<const double> scores) {
-  if constexpr (score_is_mean_ratio_cubed<Criterion>()) {
+  if constexpr (CriterionTraits<Criterion>::score_is_mean_ratio_cubed) {
     if (scores.size() != created.size()) return;
     for (std::size_t i = 0; i < created.size(); ++i) mesh.cache_quality(created[i], std::cbrt(scores[i]));
   }

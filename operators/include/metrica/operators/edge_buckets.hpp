@@ -16,10 +16,9 @@
 //      each part counting what it kept;
 //   5. `sizes` learns those counts, on the calling thread, so that the
 //      caller can size its output once; then the slices are handed to
-//      `visit`, all in parallel. Lists grown by push_back instead took
-//      as long on two threads as on one at 4.4M tets (their
-//      reallocations and first touches of new memory): the flips' edge
-//      seeds, 1.95 s on both.
+//      `visit`, all in parallel (lists grown by push_back instead would
+//      serialise on their reallocations and first touches of new
+//      memory).
 // Linear in the edges, no comparison sort; 4 bytes of counters per vertex
 // and part.
 #pragma once

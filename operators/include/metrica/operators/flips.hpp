@@ -104,9 +104,6 @@ inline void tet_vertices_of(const Mesh& mesh, std::span<const TetId> ids, NewTet
   for (TetId t : ids) out.emplace_back(mesh.tet(t));
 }
 
-// What a flip attempt found, for the pass's statistics.
-enum class FlipResult { applied, rejected, not_applicable };
-
 // Scratch space of one worker, reused across calls (no allocation).
 struct FlipScratch {
   TetList ball;
@@ -190,7 +187,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
   double best_score = 0.0;
   if constexpr (scored) {
     best_score = min_score_of<Criterion, S>(mesh, view(shell.tets));
-    if constexpr (score_is_mean_ratio_cubed<Criterion>()) {
+    if constexpr (CriterionTraits<Criterion>::score_is_mean_ratio_cubed) {
       const double good = o.good_shell[std::min(m, o.good_shell.size() - 1)];
       if (best_score >= good * good * good) return Refusal::not_applicable;
     }
@@ -336,28 +333,6 @@ inline void preview_tets(const Mesh& mesh, std::span<const TetVertices> tets, Pl
   for (const auto& t : tets) out.push_back({t, detail::tet_points(mesh, t)});
 }
 
-inline FlipResult flip_result(Refusal why) {
-  return why == Refusal::not_applicable ? FlipResult::not_applicable : FlipResult::rejected;
-}
-
-// Decide and, when it says yes, apply, on one edge (shell in s.shell, the
-// vertices held): the removal outside a pass.
-template <MetricSpace S, Precision P, class Criterion>
-FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const FlipOptions& o) {
-  const auto d = decide_edge_removal<S, P, Criterion>(mesh, a, b, s, o);
-  if (!d) return flip_result(d.why());
-  apply_edge_removal<Criterion>(mesh, d.plan(), s);
-  return FlipResult::applied;
-}
-
-template <MetricSpace S, Precision P, class Criterion>
-FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptions& o = {}) {
-  const auto d = decide_flip23<S, P, Criterion>(mesh, t, face, s, o);
-  if (!d) return flip_result(d.why());
-  apply_flip23<Criterion>(mesh, d.plan(), s);
-  return FlipResult::applied;
-}
-
 // The seed of an operation on an edge: its two ends, held before the
 // shell is walked (the edge removal, the boundary swap).
 inline Found hold_edge_ends(const EdgeSeed& e, VertexList& hold) {
@@ -415,8 +390,9 @@ struct FaceFlipScratch : FlipScratch {
 
 // The 2-3 flip as an operation: an item is a tet, whose faces are tried
 // in order (those whose tets are both at or above face_flip_below are
-// skipped) until one flips.
-template <MetricSpace S, Precision P, class Criterion>
+// skipped) until one flips. It flips inner faces only: the Geometry is
+// held like every operation's, and never asked.
+template <MetricSpace S, Precision P, class Criterion, Geometry G = NoGeometry>
 struct FaceFlip {
   using Item = TetId;
   using Scratch = FaceFlipScratch;
@@ -424,6 +400,7 @@ struct FaceFlip {
   static constexpr std::string_view name = "flip23";
   FlipOptions options;
   double face_flip_below = 1.0;
+  G geometry{};
 
   PassRoom room() const { return {.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 0.05}; }
   Found seed(const Mesh& mesh, TetId t, Scratch& s, VertexList& hold) const {

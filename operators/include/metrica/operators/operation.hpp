@@ -9,10 +9,17 @@
 //                                     peeked: Mesh::peek_tet);
 //   find(mesh, item, scratch, out)    with the seed held: is the item still
 //                                     there, and the rest of its cavity;
-//   decide(mesh, item, scratch)       pure: reads the cavity, writes
-//                                     nothing to the mesh (but its quality
-//                                     cache), returns a plan or a refusal;
+//   decide(mesh, item, scratch)       reads the cavity, returns a plan or
+//                                     a refusal; writes nothing to the
+//                                     mesh but its quality cache (the
+//                                     held cavity's mean ratios);
 //   apply(mesh, item, plan, scratch)  writes the plan.
+//
+// A plan is valid with the scratch it was decided with, until the next
+// seed, find or decide on that scratch: larger configurations (the best
+// triangulation of a shell, a collapse's balls, a split's shell) stay in
+// the scratch and the plan refers to them. run_pass applies each plan
+// right after its decide, with the same scratch.
 //
 // preview(mesh, item, plan, scratch, out) lists the tets a plan would
 // make, at their final points, so a plan is checked (orientation, shape

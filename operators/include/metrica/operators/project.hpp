@@ -63,16 +63,12 @@ struct Projection {
 // The boundary vertices farther than o.tolerance from their entity's point.
 template <Concurrency C, Geometry G>
 std::vector<VertexId> vertices_off_model(const Mesh& mesh, const G& geometry, double tolerance) {
-  if constexpr (!G::on_model) {
-    return {};
-  } else {
-    if (!mesh.has_geo_params()) return {};
-    return C::template collect<VertexId>(mesh.vertex_capacity(), [&](std::size_t i, std::vector<VertexId>& part) {
-      const auto v = static_cast<VertexId>(i);
-      if (!mesh.vertex_alive(v) || !mesh.geo_param(v).valid()) return;
-      if ((geometry.point(mesh.geo_param(v)) - mesh.point(v)).norm() > tolerance) part.emplace_back(v);
-    });
-  }
+  if (!mesh.has_geo_params()) return {};
+  return C::template collect<VertexId>(mesh.vertex_capacity(), [&](std::size_t i, std::vector<VertexId>& part) {
+    const auto v = static_cast<VertexId>(i);
+    if (!mesh.vertex_alive(v) || !mesh.geo_param(v).valid() || !geometry.places(mesh, v)) return;
+    if ((geometry.point(mesh.geo_param(v)) - mesh.point(v)).norm() > tolerance) part.emplace_back(v);
+  });
 }
 
 // The projection pass: every boundary vertex off the model.

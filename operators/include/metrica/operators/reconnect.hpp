@@ -32,9 +32,8 @@ struct ReconnectOptions {
   bool face_flips = true;
   // A face is tried for a 2-3 flip only when the worse of its two tets is
   // below this mean ratio (1: every face). Under MinQuality few faces
-  // between fair tets flip: on a 224k-tet linear run, 2.7M of 4.0M face
-  // tries had both tets at Q >= 0.6 and 833 of them flipped; the 2.7M
-  // tries were ~1.5 s of a 13 s adaptation.
+  // between fair tets flip (docs/benchmarks.md, "Figures behind the
+  // code").
   double face_flip_below = 1.0;
 };
 
@@ -43,7 +42,7 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}, const G& geo
   Stopwatch clock;
   OperatorStats stats;
   const EdgeRemoval<S, P, Criterion, G> removal{o.flips, geometry};
-  const FaceFlip<S, P, Criterion> face_flip{o.flips, o.face_flip_below};
+  const FaceFlip<S, P, Criterion, G> face_flip{o.flips, o.face_flip_below, geometry};
   std::vector<TetId> seeds;
   MeshArray<EdgeSeed> edges;
   Mesh::Epoch since = o.changed_since;

@@ -207,9 +207,8 @@ struct CentroidInsertion {
     std::fill(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(k), 1.0 / static_cast<double>(k));
     const std::span<const VertexId> parents(ids.data(), k);
     const std::span<const double> weights(w.data(), k);
-    GeoParam param;
-    if constexpr (G::on_model)
-      if (c.face >= 0) param = geometry.boundary_vertex(mesh, parents, weights, mesh.surface_id(c.tet, c.face));
+    const GeoParam param =
+        c.face >= 0 ? geometry.boundary_vertex(mesh, parents, weights, mesh.surface_id(c.tet, c.face)) : GeoParam{};
     const BoundaryPoint at = place_boundary_vertex(
         geometry, param, c.p, [&](const Point& q) { return cell_split_is_valid<P>(mesh, c.tet, c.face, q); });
     if (!cell_split_is_valid<P>(mesh, c.tet, c.face, at.p)) return Refusal::rejected;

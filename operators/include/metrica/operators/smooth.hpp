@@ -22,9 +22,10 @@
 #pragma once
 
 #include <metrica/geometry/model.hpp>
-#include <metrica/operators/flips.hpp>
+#include <metrica/operators/criterion.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
+#include <metrica/operators/shell.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
@@ -216,7 +217,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
       const Point c = (mesh.point(f[0]) + mesh.point(f[1]) + mesh.point(f[2])) / 3.0;
       s.trials.emplace_back(x + 0.25 * (c - x));
     }
-  } else if (G::on_model) {
+  } else if (geometry.places(mesh, v)) {
     if (!boundary_trials_on_model(mesh, v, s, geometry)) return Refusal::not_applicable;
   } else if (cls == VertexClass::surface) {
     // Its boundary faces, which must be coplanar; trials towards the
@@ -278,7 +279,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     return pts;
   };
   auto all_positive_at = [&](const Point& p) { return ball_positive_at<P>(mesh, v, s.ball, p); };
-  if constexpr (score_is_mean_ratio_cubed<Criterion>()) {
+  if constexpr (CriterionTraits<Criterion>::score_is_mean_ratio_cubed) {
     // The smallest mean ratio (cubed) of the ball with v at p, from the
     // terms; stops at the first tet at or below floor3 (that trial cannot
     // win), tested without a division. It starts from the tet that stopped
@@ -435,14 +436,6 @@ inline void apply_smoothing(Mesh& mesh, VertexId v, const SmoothPlan& plan, cons
   }
 }
 
-// Decide and apply on one vertex (its cavity in s, held).
-template <MetricSpace S, Precision P, class Criterion = MinQuality>
-FlipResult smooth_vertex(Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o) {
-  const auto d = decide_smoothing<S, P, Criterion>(mesh, v, s, o);
-  if (!d) return flip_result(d.why());
-  apply_smoothing(mesh, v, d.plan(), s, o);
-  return FlipResult::applied;
-}
 
 // Vertex smoothing as an operation.
 template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G = NoGeometry>

@@ -70,14 +70,14 @@ inline void preview_cell_split(const Mesh& mesh, TetId t, int face, const Point&
 // and beat t under Criterion (unless it is indifferent), in t's metric.
 template <MetricSpace S, class Criterion>
 bool cell_split_accepted(const Mesh& mesh, TetId t, int face, const Point& p, double floor) {
-  if (floor <= 0.0 && kIndifferent<Criterion>) return true;
+  if (floor <= 0.0 && CriterionTraits<Criterion>::indifferent) return true;
   const ShapeFloor shape(floor);
   const std::array<TetId, 1> parent{t};
   WorstOld<S> worst_old(mesh, parent);
-  const double bar = kIndifferent<Criterion> ? 0.0 : Criterion::bar(Criterion::template tet_score_of<S>(mesh, t));
+  const double bar = CriterionTraits<Criterion>::indifferent ? 0.0 : Criterion::bar(Criterion::template tet_score_of<S>(mesh, t));
   return all_cell_children(mesh, t, face, p, [&](const TetVertices&, const TetPoints& x) {
     if (floor > 0.0 && !shape.admits(S::mean_ratio(mesh, mesh.tet(t), x), worst_old)) return false;
-    return kIndifferent<Criterion> || Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) > bar;
+    return CriterionTraits<Criterion>::indifferent || Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) > bar;
   });
 }
 

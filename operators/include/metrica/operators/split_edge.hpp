@@ -67,7 +67,7 @@ bool split_accepted(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b
         }))
       return false;
   }
-  if constexpr (!kIndifferent<Criterion>) {
+  if constexpr (!CriterionTraits<Criterion>::indifferent) {
     const double bar = Criterion::bar(min_score_of<Criterion, S>(mesh, view(shell.tets)));
     return all_split_children(mesh, shell, a, b, p, [&](TetId t, const TetVertices&, const TetPoints& x) {
       return Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) > bar;

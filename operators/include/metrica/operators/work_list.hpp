@@ -2,8 +2,7 @@
 // try by id and wants each once in id order (after compact() that is
 // space order, the seed's buckets for locality). Ids are bounded by the
 // mesh's capacity, so marks or buckets order them in linear time
-// (std::sort of smoothing's list was 1.5% of an adaptation; smoothing
-// now lists its vertices from marks, smooth.hpp).
+// (smoothing lists its vertices from marks, smooth.hpp).
 #pragma once
 
 #include <metrica/ids.hpp>
@@ -30,8 +29,8 @@ struct EdgeSeed {
 // 6 edges of every tet by key and keeping the first of each run gives.
 // `vertices_of(t)` gives tet t's vertices, each below `capacity`. Edge
 // buckets (edge_buckets.hpp) on C's threads, the same list for any number
-// of threads: linear time where std::sort of the 6 keys per tet (about
-// five repeats of each edge) was 4% of an adaptation.
+// of threads, in linear time (no sort of the 6 keys per tet, about five
+// repeats of each edge).
 //
 // The buckets hold only the higher vertex of each edge (4 bytes per tet
 // edge, not 8 with its tet), and they are made for a range of lower ends

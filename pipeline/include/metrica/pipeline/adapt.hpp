@@ -28,13 +28,16 @@ namespace metrica {
 // the tets with a long edge with the encroachment rules (the seed's).
 enum class PointRule { edge, centroid };
 
-// The settings of the standard pipeline. The figures behind each default
-// are in docs/benchmarks.md ("Why the defaults").
-struct AdaptOptions {
+// When a pipeline stops cycling, how many quality passes it runs and when
+// it repairs: the rules of run_pipeline, shared by Pipeline and
+// AdaptOptions (the standard pipeline's defaults, stated here once). The
+// figures behind each default are in docs/benchmarks.md ("Why the
+// defaults").
+struct PipelineRules {
   int max_cycles = 15;
-  PointRule points = PointRule::edge;
-  // Stop cycling when a cycle splits and collapses fewer than this share
-  // of the vertices ...
+  // Stop cycling when a cycle creates and removes fewer vertices than this
+  // share of the vertices (Mesh::vertex_changes: whatever its stages are
+  // called and do) ...
   double min_change = 0.002;
   // ... or, once at least near_unit_conformity of the edges are in the
   // unit band, when a cycle raises that share by less than
@@ -44,6 +47,19 @@ struct AdaptOptions {
   double min_conformity_gain = 0.005;
   double near_unit_conformity = 0.9;
   int quality_passes = 4;
+  // Repair rounds while the worst tet is below repair_below, at most
+  // repair_rounds, none after two in a row that leave the worst tet where
+  // it was (one round can prepare the next, and slow climbs need several).
+  double repair_below = 0.3;
+  int repair_rounds = 8;
+};
+
+// The settings of the standard pipeline: its rules, and what its stages
+// do. Every default of the library, the command (metrica adapt's option
+// defaults are read from AdaptOptions{}) and the docs is stated here or in
+// the operations' options it holds.
+struct AdaptOptions : PipelineRules {
+  PointRule points = PointRule::edge;
   RefineOptions refine;
   CollapseOptions collapse;
   // Flips: one sweep per cycle from the changed tets below Q 0.7 (all tets
@@ -62,17 +78,13 @@ struct AdaptOptions {
   // Smoothing in the quality phase: every vertex (UGAWG linear: min Q 0.64
   // against 0.40 with 0.4).
   double quality_phase_smooth_below = 1.0;
-  // Repair: tets still below repair_below after the quality passes are
-  // held by what flips and smoothing cannot change (a short edge whose
-  // collapse was refused, a long ridge edge a split skipped, a surface
-  // vertex nearly on a ridge in the metric). A round first collapses edges
-  // of any length at the poor tets' vertices where that lifts the worst
-  // tet of the ball, then runs the cycle's operators around the poor tets,
-  // then one quality pass; at most repair_rounds rounds, none after two in
-  // a row that left the worst tet where it was (one round can prepare the
-  // next, and slow climbs need several).
-  double repair_below = 0.3;
-  int repair_rounds = 8;
+  // Repair (PipelineRules::repair_below, repair_rounds): tets still below
+  // repair_below after the quality passes are held by what flips and
+  // smoothing cannot change (a short edge whose collapse was refused, a
+  // long ridge edge a split skipped, a surface vertex nearly on a ridge in
+  // the metric). A round first collapses edges of any length at the poor
+  // tets' vertices where that lifts the worst tet of the ball, then runs
+  // the cycle's operators around the poor tets, then one quality pass.
   // On a model, the closing stage's rounds (projection, then flips and
   // smoothing around the vertices still off the model); the last round
   // collapses those it leaves onto a boundary neighbour.
@@ -123,7 +135,7 @@ void touch_around_poor_tets(Mesh& mesh, double below) {
 // A pipeline: the stages of one adaptation cycle, of one pass of the
 // quality phase and of one repair round, and when to stop.
 template <class A>
-struct Pipeline {
+struct Pipeline : PipelineRules {
   Stages<A> cycle;
   // At the start of the quality phase (e.g. forget the epochs of passes
   // whose thresholds grow), then its passes.
@@ -132,20 +144,6 @@ struct Pipeline {
   Stages<A> repair;
   // Run once at the end (e.g. the last vertices onto the model).
   Stages<A> closing;
-  int max_cycles = 15;
-  // Stop cycling when a cycle creates and removes fewer vertices than this
-  // share of the vertices (Mesh::vertex_changes: whatever its stages are
-  // called and do), or, once the mesh is nearly a unit
-  // mesh (near_unit_conformity), when a cycle raises the share in the band
-  // by less than min_conformity_gain.
-  double min_change = 0.002;
-  double min_conformity_gain = 0.005;
-  double near_unit_conformity = 0.9;
-  int quality_passes = 4;
-  // Repair rounds while the worst tet is below repair_below, at most
-  // repair_rounds, none after two in a row that leave the worst tet.
-  double repair_below = 0.3;
-  int repair_rounds = 8;
 };
 
 // Runs a pipeline: cycles, the quality phase, repair rounds.
@@ -219,13 +217,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   using S = typename A::Space;
   using C = typename A::Concurrency;
   Pipeline<A> p;
-  p.max_cycles = o.max_cycles;
-  p.min_change = o.min_change;
-  p.min_conformity_gain = o.min_conformity_gain;
-  p.near_unit_conformity = o.near_unit_conformity;
-  p.quality_passes = o.quality_passes;
-  p.repair_below = o.repair_below;
-  p.repair_rounds = o.repair_rounds;
+  static_cast<PipelineRules&>(p) = o;
   const CollapseOptions collapse = o.collapse;
   const RefineOptions refine = o.refine;
   const ReconnectOptions flips = o.reconnect;
