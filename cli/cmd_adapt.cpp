@@ -65,32 +65,9 @@ void print_cycle(const CycleReport& c) {
   std::fflush(stdout);
 }
 
-}  // namespace
-
-int run_adapt(const std::vector<std::string>& args) {
-  Options o("adapt", "[-i] MESH (-m METRIC | --analytic NAME) [-o] OUTPUT [options]",
-            "Adapts a tetrahedral mesh to a metric: cycles of edge collapse, edge split, flips and vertex\n"
-            "smoothing until the mesh is a unit mesh (edge lengths near 1 in the metric), then a quality\n"
-            "phase of flips and smoothing, and repair rounds around any tet still below --repair-below.\n"
-            "Prints one line per cycle, pass and round (vertices, tets, applied/tried per operator with\n"
-            "its time, share of edges in [1/sqrt2, sqrt2], worst mean ratio) and ends with the UGAWG\n"
-            "quality report. With --analytic, new vertices take the exact metric, and\n"
-            "--iterations N repeats the adaptation N times, re-evaluating the metric on the new mesh each\n"
-            "time (the UGAWG loop). The output is checked with validate() before it is written.\n"
-            "By default every operator runs on all cores (--threads N to choose, --concurrency serial\n"
-            "for one thread and an output that is the same to the bit on every run).\n"
-            "With --geometry MODEL (.step, .iges, .brep, .geo: any file gmsh opens) new boundary vertices\n"
-            "are placed on the CAD model, not on the input's facets: the mesh's surface ids must be the\n"
-            "model's surface tags, and each boundary vertex is associated with its model vertex, curve\n"
-            "or surface (from the input's VerticesOnGeometric* records when present, else by\n"
-            "projection); the output .meshb carries the association for the next run.\n\n"
-            "Examples:\n"
-            "  metrica adapt cube-linear-00.meshb -m cube-linear-00.solb -o adapted.meshb\n"
-            "  metrica adapt cube.meshb --analytic polar-1 --iterations 5 -o polar1.meshb --vtu polar1.vtu\n"
-            "  metrica adapt cube.meshb --analytic polar-2 --points centroid -o polar2.meshb\n"
-            "  metrica adapt cube.meshb --analytic linear --threads 2 -o linear.meshb\n"
-            "  metrica adapt cube-cylinder.meshb --geometry cube-cylinder.step --analytic polar-2 -o cc.meshb");
-  // The defaults shown and used are the library's.
+// The command's options; the defaults shown and used are the library's
+// (AdaptOptions{}).
+void declare_options(Options& o) {
   const AdaptOptions d;
   const auto text = [](double x) { return fmt::format("{}", x); };
   o.input("mesh (.mesh, .meshb)");
@@ -139,18 +116,10 @@ int run_adapt(const std::vector<std::string>& args) {
   o.output_option("vtu", "also write the adapted mesh for ParaView (.vtu)", {io::FileFormat::vtu});
   o.format_version("libMeshb version to write (default: the input's)");
   max_tets_option(o);
-  if (!o.parse(args)) return kOk;
-  const auto input = o.required("input", "the input mesh (-i)");
-  const auto output = o.required("output", "the output mesh (-o)");
-  if (o.has("metric") == o.has("analytic")) throw UsageError("adapt: give one of -m METRIC or --analytic NAME");
-  const int iterations = o.in_range("iterations", 1, 1000);
-  if (iterations > 1 && !o.has("analytic"))
-    throw UsageError("adapt: --iterations needs --analytic (a metric file holds values at the input's vertices only)");
-  const PolicyChoice policies{o.get<std::string>("space"), o.get<std::string>("precision"),
-                              o.get<std::string>("concurrency")};
-  o.as_usage([&] { check_policy_choice(policies); });
-  const bool serial = policies.concurrency == Serial::name;
+}
 
+// The adaptation's settings from the command line (checked).
+AdaptOptions adapt_options_from(const Options& o) {
   AdaptOptions ao;
   ao.max_cycles = o.in_range("cycles", 0, 1000);
   ao.points = *o.named("points", point_rule_from_name);
@@ -165,6 +134,115 @@ int run_adapt(const std::vector<std::string>& args) {
   if (!(ao.refine.max_length > ao.collapse.min_length))
     throw UsageError(fmt::format("adapt: need --min-length < --max-length (got {} and {})", ao.collapse.min_length,
                                  ao.refine.max_length));
+  return ao;
+}
+
+// The metric at the mesh's vertices: the analytic metric evaluated there,
+// or the file's values (the input's vertices), clamped to the size bounds
+// and checked.
+std::vector<Sym6> metric_at_vertices(const Options& o, const Mesh& mesh, const std::optional<AnalyticMetric>& analytic,
+                                     const MetricBounds& bounds, std::size_t input_vertices) {
+  std::vector<Sym6> field;
+  if (analytic) {
+    std::vector<Point> points(mesh.vertex_capacity(), Point::Zero());
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+      if (mesh.vertex_alive(v)) points[v] = mesh.point(v);
+    field = analytic_metric_field(*analytic, points);
+  } else {
+    const auto path = o.get<std::string>("metric");
+    field = metric_field_from_sol(io::read_sol(path), input_vertices, path);
+  }
+  clamp_metrics(field, bounds);
+  const std::string source = analytic ? fmt::format("metric '{}'", to_string(*analytic)) : o.get<std::string>("metric");
+  check_metric_field(field, source);
+  return field;
+}
+
+// The adapted mesh is valid (and, without a model, of the input's volume
+// within 1e-4) and, on a model, on it; else InputError and nothing is
+// written.
+void check_adapted(const Mesh& mesh, const CadModel* model, double volume, const PartRunner& sweeps, bool talk) {
+  // Flat boundaries keep the volume to round-off; on a curved discrete
+  // boundary, collapses may flatten it within their normal-deviation bound
+  // (2 degrees), which changes the volume by a few 1e-6 (cube-cylinder).
+  // On a model the volume moves from the input's facets to the model's.
+  ValidateOptions vo;
+  vo.run = sweeps;
+  if (!model) {
+    vo.expected_volume = volume;
+    vo.volume_tolerance = 1e-4;
+  }
+  const auto check = mesh.validate(vo);
+  if (!check.ok())
+    throw InputError(fmt::format("adapt: the adapted mesh is invalid; nothing written\n{}", check.to_string()));
+  if (log::level() >= log::Level::verbose) {
+    const double adapted = mesh.volume();
+    log::info("volume {:.17g}, relative change {:.3g}", adapted, std::abs(adapted - volume) / volume);
+  }
+  if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
+  if (model) require_on_model(mesh, *model, "adapt");
+}
+
+// The mesh (and --vtu, --metric-out) written, each to a temporary renamed
+// when the whole run succeeded.
+void write_outputs(const Options& o, const Mesh& mesh, const CadModel* model, const std::string& output,
+                   int input_version, const PartRunner& sweeps) {
+  {
+    // The writers' copy of the mesh (25 bytes per tet) is dropped before
+    // anything else is built beside the mesh: at the end of a run the
+    // copy and the report's edge buckets together were the peak.
+    auto data = extract_mesh_data(mesh);
+    data.version = input_version;
+    if (model) complete_geometry_records(data, *model);
+    io::write_mesh_file(output, data, o.format_version(), sweeps);
+    if (o.has("vtu")) io::write_mesh_file(o.get<std::string>("vtu"), data, 0, {}, io::FileFormat::vtu);
+  }
+  if (o.has("metric-out")) {
+    auto sol = metric_sol(mesh);
+    sol.version = input_version;
+    io::write_sol(o.get<std::string>("metric-out"), sol, o.format_version(), sweeps);
+  }
+}
+
+}  // namespace
+
+int run_adapt(const std::vector<std::string>& args) {
+  Options o("adapt", "[-i] MESH (-m METRIC | --analytic NAME) [-o] OUTPUT [options]",
+            "Adapts a tetrahedral mesh to a metric: cycles of edge collapse, edge split, flips and vertex\n"
+            "smoothing until the mesh is a unit mesh (edge lengths near 1 in the metric), then a quality\n"
+            "phase of flips and smoothing, and repair rounds around any tet still below --repair-below.\n"
+            "Prints one line per cycle, pass and round (vertices, tets, applied/tried per operator with\n"
+            "its time, share of edges in [1/sqrt2, sqrt2], worst mean ratio) and ends with the UGAWG\n"
+            "quality report. With --analytic, new vertices take the exact metric, and\n"
+            "--iterations N repeats the adaptation N times, re-evaluating the metric on the new mesh each\n"
+            "time (the UGAWG loop). The output is checked with validate() before it is written.\n"
+            "By default every operator runs on all cores (--threads N to choose, --concurrency serial\n"
+            "for one thread and an output that is the same to the bit on every run).\n"
+            "With --geometry MODEL (.step, .iges, .brep, .geo: any file gmsh opens) new boundary vertices\n"
+            "are placed on the CAD model, not on the input's facets: the mesh's surface ids must be the\n"
+            "model's surface tags, and each boundary vertex is associated with its model vertex, curve\n"
+            "or surface (from the input's VerticesOnGeometric* records when present, else by\n"
+            "projection); the output .meshb carries the association for the next run.\n\n"
+            "Examples:\n"
+            "  metrica adapt cube-linear-00.meshb -m cube-linear-00.solb -o adapted.meshb\n"
+            "  metrica adapt cube.meshb --analytic polar-1 --iterations 5 -o polar1.meshb --vtu polar1.vtu\n"
+            "  metrica adapt cube.meshb --analytic polar-2 --points centroid -o polar2.meshb\n"
+            "  metrica adapt cube.meshb --analytic linear --threads 2 -o linear.meshb\n"
+            "  metrica adapt cube-cylinder.meshb --geometry cube-cylinder.step --analytic polar-2 -o cc.meshb");
+  declare_options(o);
+  if (!o.parse(args)) return kOk;
+  const auto input = o.required("input", "the input mesh (-i)");
+  const auto output = o.required("output", "the output mesh (-o)");
+  if (o.has("metric") == o.has("analytic")) throw UsageError("adapt: give one of -m METRIC or --analytic NAME");
+  const int iterations = o.in_range("iterations", 1, 1000);
+  if (iterations > 1 && !o.has("analytic"))
+    throw UsageError("adapt: --iterations needs --analytic (a metric file holds values at the input's vertices only)");
+  const PolicyChoice policies{o.get<std::string>("space"), o.get<std::string>("precision"),
+                              o.get<std::string>("concurrency")};
+  o.as_usage([&] { check_policy_choice(policies); });
+  const bool serial = policies.concurrency == Serial::name;
+
+  AdaptOptions ao = adapt_options_from(o);
   const MetricBounds bounds = o.size_bounds();
   const auto analytic = o.named("analytic", analytic_metric_from_name);
 
@@ -193,20 +271,7 @@ int run_adapt(const std::vector<std::string>& args) {
   const bool talk = log::level() >= log::Level::normal;
   if (talk) ao.on_cycle = print_cycle;
   for (int it = 0; it < iterations; ++it) {
-    std::vector<Sym6> field;
-    if (analytic) {
-      std::vector<Point> points(mesh.vertex_capacity(), Point::Zero());
-      for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-        if (mesh.vertex_alive(v)) points[v] = mesh.point(v);
-      field = analytic_metric_field(*analytic, points);
-    } else {
-      const auto path = o.get<std::string>("metric");
-      field = metric_field_from_sol(io::read_sol(path), input_vertices, path);
-    }
-    clamp_metrics(field, bounds);
-    const std::string source =
-        analytic ? fmt::format("metric '{}'", to_string(*analytic)) : o.get<std::string>("metric");
-    check_metric_field(field, source);
+    const std::vector<Sym6> field = metric_at_vertices(o, mesh, analytic, bounds, input_vertices);
     if (it == 0) {
       // The size is predicted once, before any work. An analytic metric is
       // sampled inside the tets (the vertex formula overestimates it on a
@@ -238,41 +303,9 @@ int run_adapt(const std::vector<std::string>& args) {
     if (talk && (!serial || log::level() >= log::Level::verbose))
       print_operator_stats(report, serial, thread_count());
   }
-  // Flat boundaries keep the volume to round-off; on a curved discrete
-  // boundary, collapses may flatten it within their normal-deviation bound
-  // (2 degrees), which changes the volume by a few 1e-6 (cube-cylinder).
-  // On a model the volume moves from the input's facets to the model's.
   const PartRunner sweeps = sweep_runner(mesh.tet_capacity(), serial);
-  ValidateOptions vo;
-  vo.run = sweeps;
-  if (!model) {
-    vo.expected_volume = volume;
-    vo.volume_tolerance = 1e-4;
-  }
-  const auto check = mesh.validate(vo);
-  if (!check.ok())
-    throw InputError(fmt::format("adapt: the adapted mesh is invalid; nothing written\n{}", check.to_string()));
-  if (log::level() >= log::Level::verbose) {
-    const double adapted = mesh.volume();
-    log::info("volume {:.17g}, relative change {:.3g}", adapted, std::abs(adapted - volume) / volume);
-  }
-  if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
-  if (model) require_on_model(mesh, *model, "adapt");
-  {
-    // The writers' copy of the mesh (25 bytes per tet) is dropped before
-    // anything else is built beside the mesh: at the end of a run the
-    // copy and the report's edge buckets together were the peak.
-    auto data = extract_mesh_data(mesh);
-    data.version = input_version;
-    if (model) complete_geometry_records(data, *model);
-    io::write_mesh_file(output, data, o.format_version(), sweeps);
-    if (o.has("vtu")) io::write_mesh_file(o.get<std::string>("vtu"), data, 0, {}, io::FileFormat::vtu);
-  }
-  if (o.has("metric-out")) {
-    auto sol = metric_sol(mesh);
-    sol.version = input_version;
-    io::write_sol(o.get<std::string>("metric-out"), sol, o.format_version(), sweeps);
-  }
+  check_adapted(mesh, model.get(), volume, sweeps, talk);
+  write_outputs(o, mesh, model.get(), output, input_version, sweeps);
   if (talk) {
     fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());
     // quality_report throws on a non-finite value: the run then fails and

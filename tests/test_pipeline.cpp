@@ -121,7 +121,7 @@ TEST_SUITE("invariant") {
     Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
     set_metric_function(mesh, metric);
     A adapter(mesh, &metric);
-    CycleReport c;
+    CHECK(mesh.quality_cache_space() == LogEuclidean::name);  // the cache says whose mean ratios it holds
     const Stages<A> stages = {{"flip", [](A& a) { return a.flips({.seed_below = 1.0}); }},
                               {"flip", [](A& a) { return a.flips({.seed_below = 1.0}); }},
                               {"other", [](A& a) { return a.flips({.seed_below = 1.0}); }}};

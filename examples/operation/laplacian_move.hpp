@@ -45,7 +45,7 @@ struct LaplacianMove {
     to /= static_cast<double>(s.neighbours.size());
     const double bar = Criterion::bar(min_score_of<Criterion, S>(mesh, view(s.ball)));
     for (TetId t : s.ball) {
-      const TetPoints x = moved(mesh, t, v, to);
+      const TetPoints x = tet_points_moved(mesh, mesh.tet(t), v, to);
       if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0) return Refusal::rejected;
       if (Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) <= bar) return Refusal::rejected;
     }
@@ -57,14 +57,7 @@ struct LaplacianMove {
   }
   void preview(const Mesh& mesh, VertexId v, const Plan& plan, const Scratch& s, PlannedTets& out) const {
     out.clear();
-    for (TetId t : s.ball) out.push_back({mesh.tet(t), moved(mesh, t, v, plan.to)});
-  }
-
- private:
-  static TetPoints moved(const Mesh& mesh, TetId t, VertexId v, const Point& to) {
-    TetPoints x = detail::tet_points(mesh, mesh.tet(t));
-    x[local_index(mesh.tet(t), v)] = to;
-    return x;
+    for (TetId t : s.ball) out.push_back({mesh.tet(t), tet_points_moved(mesh, mesh.tet(t), v, plan.to)});
   }
 };
 

@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <unordered_set>
 #include <vector>
 
@@ -146,7 +147,15 @@ class Mesh {
   void cache_quality(TetId t, double q) const {
     std::atomic_ref<double>(tet_quality_[t]).store(q, std::memory_order_relaxed);
   }
-  void clear_quality_cache() { std::fill(tet_quality_.begin(), tet_quality_.end(), kUnknownQuality); }
+  // Forgets every number; `space` names the Space whose mean ratios the
+  // cache holds from now on (empty: not said), which cached_mean_ratio
+  // checks in debug builds.
+  void clear_quality_cache(std::string_view space = {}) {
+    std::fill(tet_quality_.begin(), tet_quality_.end(), kUnknownQuality);
+    quality_space_ = space;
+  }
+  // The Space the cache holds mean ratios of (empty: not said).
+  std::string_view quality_cache_space() const { return quality_space_; }
 
   // --- ridges ------------------------------------------------------------
   // Ridge edges: between faces of two different surface ids, plus the
@@ -283,6 +292,7 @@ class Mesh {
   // Written through const access (a cache), one writer per tet at a time:
   // the holder of the tet's vertices' locks.
   mutable MeshArray<double> tet_quality_;
+  std::string_view quality_space_;  // a policy's static name
   Epoch epoch_ = 0;
   std::uint32_t renumberings_ = 0;
 

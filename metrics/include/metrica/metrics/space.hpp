@@ -17,6 +17,7 @@
 #include <metrica/metrics/measures.hpp>
 #include <metrica/policy_list.hpp>
 
+#include <cassert>
 #include <concepts>
 #include <span>
 #include <string_view>
@@ -61,6 +62,17 @@ inline TetPoints tet_points(const Mesh& mesh, const TetVertices& t) {
   return {mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])};
 }
 inline constexpr std::array<double, 4> kCentroidWeights{0.25, 0.25, 0.25, 0.25};
+}  // namespace detail
+
+// The points of tet t with its vertex v at p: a tet of a moved or merged
+// vertex's ball, as a trial sees it.
+inline TetPoints tet_points_moved(const Mesh& mesh, const TetVertices& t, VertexId v, const Point& p) {
+  TetPoints x = detail::tet_points(mesh, t);
+  x[local_index(t, v)] = p;
+  return x;
+}
+
+namespace detail {
 
 // The parts shared by every space, given Derived::vertex_metric (the
 // tensor a space sees at a vertex) and Derived::metric_at.
@@ -147,9 +159,12 @@ struct LogEuclidean : detail::SpaceCommon<LogEuclidean> {
 
 // The mean ratio of live tet t in space S through the mesh's quality
 // cache (Mesh::cached_quality): computed once per version of the tet.
-// Valid while one Space measures the mesh (adapt clears the cache first).
+// Valid while one Space measures the mesh: the Adapter clears the cache
+// and names its Space (Mesh::clear_quality_cache), which debug builds
+// check here.
 template <MetricSpace S>
 double cached_mean_ratio(const Mesh& mesh, TetId t) {
+  assert(mesh.quality_cache_space().empty() || mesh.quality_cache_space() == S::name);
   double q = mesh.cached_quality(t);
   if (q == Mesh::kUnknownQuality) {
     q = S::mean_ratio(mesh, mesh.tet(t));

@@ -11,6 +11,8 @@
 #include <metrica/geometry/model.hpp>
 #include <metrica/operators/shell.hpp>
 
+#include <optional>
+
 namespace metrica {
 
 // The new vertex: its point and its parameters (invalid: not on a model).
@@ -21,14 +23,25 @@ struct BoundaryPoint {
 
 inline constexpr int kBacktrackSteps = 5;
 
+// The paper's backtracking: `target` if `accepts` takes it, else the
+// first of the points halfway back toward `from`, kBacktrackSteps times,
+// that it takes; none when it takes none.
+template <class Accepts>
+std::optional<Point> backtrack_toward(const Point& from, const Point& target, Accepts&& accepts) {
+  Eigen::Vector3d step = target - from;
+  for (int k = 0; k <= kBacktrackSteps; ++k, step *= 0.5) {
+    const Point q = from + step;
+    if (accepts(q)) return q;
+  }
+  return std::nullopt;
+}
+
 // `accepts(q)`: does the cavity accept the new vertex at q?
 template <Geometry G, class Accepts>
 BoundaryPoint place_boundary_vertex(const G& geometry, const GeoParam& param, const Point& straight,
                                     Accepts&& accepts) {
   if (!param.valid()) return {straight, {}};
-  Eigen::Vector3d step = geometry.point(param) - straight;
-  for (int k = 0; k <= kBacktrackSteps; ++k, step *= 0.5)
-    if (accepts(Point(straight + step))) return {Point(straight + step), param};
+  if (const auto q = backtrack_toward(straight, geometry.point(param), accepts)) return {*q, param};
   return {straight, param};
 }
 

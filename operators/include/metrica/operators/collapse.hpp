@@ -133,16 +133,11 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
       if (local_index(mesh.tet(t), a) < 0) s.dragged.emplace_back(mesh.tet(t));
   const Point pb = moved != nullptr ? *moved : mesh.point(b);
   const Sym6 mb = moved_metric != nullptr ? moved_metric->m : S::vertex_metric(mesh, b);
-  auto points_of = [&](const TetVertices& t) {
-    TetPoints x = detail::tet_points(mesh, t);
-    x[local_index(t, b)] = pb;
-    return x;
-  };
   // The checks run cheapest first; the mean ratios (a tensor exponential
   // each in the log-Euclidean space) come last.
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
-      const TetPoints x = points_of(t);
+      const TetPoints x = tet_points_moved(mesh, t, b, pb);
       if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0) return Refusal::rejected;
     }
   // New edges: b to a's neighbours; when b moves, all of b's edges too.
@@ -189,7 +184,7 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
   s.new_quality.clear();
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
-      const double q = S::mean_ratio(mesh, t, points_of(t));
+      const double q = S::mean_ratio(mesh, t, tet_points_moved(mesh, t, b, pb));
       if (list == &s.new_tets) s.new_quality.emplace_back(q);
       if (o.require_gain && q <= worst_old()) return Refusal::rejected;
       if (!shape.admits(q, worst_old)) return Refusal::rejected;
@@ -200,7 +195,7 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
     const double bar = Criterion::bar(old_score);
     for (const auto* list : {&s.new_tets, &s.dragged})
       for (const auto& t : *list)
-        if (Criterion::template tet_score_at<S>(mesh, t, points_of(t)) <= bar) return Refusal::rejected;
+        if (Criterion::template tet_score_at<S>(mesh, t, tet_points_moved(mesh, t, b, pb)) <= bar) return Refusal::rejected;
   }
   CollapsePlan plan{a, b, moved != nullptr, pb, {}};
   if (moved_metric != nullptr) plan.metric = *moved_metric;
@@ -300,9 +295,7 @@ struct Collapse {
     out.clear();
     for (const auto* list : {&s.new_tets, &s.dragged})
       for (const auto& t : *list) {
-        TetPoints x = detail::tet_points(mesh, t);
-        x[local_index(t, plan.to)] = plan.at;
-        out.push_back({t, x});
+        out.push_back({t, tet_points_moved(mesh, t, plan.to, plan.at)});
       }
   }
 };

@@ -141,39 +141,85 @@ struct EdgeRemovalPlan {
   int ref = 0;
 };
 
-// Decide the removal of ab; its shell is in s.shell (edge_shell).
-template <MetricSpace S, Precision P, class Criterion, Geometry G = NoGeometry>
-Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, VertexId b, FlipScratch& s,
-                                              const FlipOptions& o, const G& geometry = {}) {
-  const Shell& shell = s.shell;
+namespace detail {
+
+// Whether the removal of ab (shell `shell`) is one to weigh: one material,
+// not a short edge with a large ring (FlipOptions::short_edge_ring*), a
+// shell within max_shell; open (on the boundary): an inner edge of one
+// surface, whose id goes to `surface` (0 for a closed shell).
+template <MetricSpace S>
+bool edge_removal_applies(const Mesh& mesh, VertexId a, VertexId b, const Shell& shell, const FlipOptions& o,
+                          SurfaceId& surface) {
   const std::size_t n = shell.tets.size();
   const int ref = mesh.tet_ref(shell.tets[0]);
   for (TetId t : shell.tets)
-    if (mesh.tet_ref(t) != ref) return Refusal::not_applicable;
-  SurfaceId surface = 0;
+    if (mesh.tet_ref(t) != ref) return false;
+  surface = 0;
   const std::size_t ring_size = shell.closed ? n : n + 1;
   if (ring_size >= 4) {
     const double shortest = ring_size == 4 ? o.short_edge_ring4 : o.short_edge_ring5;
     if (shortest > 0.0 && !S::edge_length_in(mesh, a, b, {shortest, std::numeric_limits<double>::infinity()}))
-      return Refusal::not_applicable;
+      return false;
   }
-  if (shell.closed) {
-    if (n < 3 || static_cast<int>(n) > o.max_shell) return Refusal::not_applicable;
-  } else {
-    if (n < 2 || static_cast<int>(n) + 1 > o.max_shell || mesh.is_ridge(a, b)) return Refusal::not_applicable;
-    // The two boundary faces through ab, on one surface.
-    SurfaceId ids[2] = {0, 0};
-    int k = 0;
-    for (TetId t : {shell.tets.front(), shell.tets.back()})
-      for (int f = 0; f < 4; ++f) {
-        const VertexId opp = mesh.tet(t)[f];
-        if (opp == a || opp == b || mesh.neighbour(t, f).valid()) continue;
-        if (k < 2) ids[k] = mesh.surface_id(t, f);
-        ++k;
-      }
-    if (k != 2 || ids[0] != ids[1] || ids[0] <= 0) return Refusal::not_applicable;
-    surface = ids[0];
-  }
+  if (shell.closed) return n >= 3 && static_cast<int>(n) <= o.max_shell;
+  if (n < 2 || static_cast<int>(n) + 1 > o.max_shell || mesh.is_ridge(a, b)) return false;
+  // The two boundary faces through ab, on one surface.
+  SurfaceId ids[2] = {0, 0};
+  int k = 0;
+  for (TetId t : {shell.tets.front(), shell.tets.back()})
+    for (int f = 0; f < 4; ++f) {
+      const VertexId opp = mesh.tet(t)[f];
+      if (opp == a || opp == b || mesh.neighbour(t, f).valid()) continue;
+      if (k < 2) ids[k] = mesh.surface_id(t, f);
+      ++k;
+    }
+  if (k != 2 || ids[0] != ids[1] || ids[0] <= 0) return false;
+  surface = ids[0];
+  return true;
+}
+
+// The boundary 2-2 flip's new facets (on the closing edge v_n v_0 of the
+// ring, in s.candidate) fit the Geometry where the old ones were.
+template <Geometry G>
+bool boundary_fan_fits(const Mesh& mesh, VertexId a, VertexId b, const FlipScratch& s, SurfaceId surface,
+                       const FlipOptions& o, const G& geometry) {
+  const Eigen::Vector3d n_old = face_normal(mesh, a, b, s.ring.front());
+  bool flat = geometry.facet_fits(mesh, a, b, s.ring.back(), surface, n_old, o.max_normal_deviation);
+  for (const auto& t : s.candidate)
+    for (int f = 0; f < 4 && flat; ++f) {
+      const VertexId opposite = t[f];
+      const bool closing = local_index(t, s.ring.front()) >= 0 && local_index(t, s.ring.back()) >= 0 &&
+                           opposite != s.ring.front() && opposite != s.ring.back() && opposite != a && opposite != b;
+      if (!closing) continue;
+      const auto fv = face_vertices(t, f);
+      flat = geometry.facet_fits(mesh, fv[0], fv[1], fv[2], surface, n_old, o.max_normal_deviation);
+    }
+  return flat;
+}
+
+// The boundary 2-2 flip's new boundary edge v_n v_0 does not exist yet
+// (it can only on a surface folded by round-off, but then the flip would
+// double a face).
+inline bool closing_edge_is_new(const Mesh& mesh, FlipScratch& s) {
+  vertex_ball(mesh, s.ring.front(), s.ball);
+  for (TetId t : s.ball)
+    if (local_index(mesh.tet(t), s.ring.back()) >= 0) return false;
+  return true;
+}
+
+}  // namespace detail
+
+// Decide the removal of ab; its shell is in s.shell (edge_shell). Each fan
+// of the ring (the new tets joining a ring triangulation to a and b) is
+// weighed in turn: positive (P), on the boundary fitting the Geometry,
+// better than the best so far under the criterion, above the shape floor.
+template <MetricSpace S, Precision P, class Criterion, Geometry G = NoGeometry>
+Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, VertexId b, FlipScratch& s,
+                                              const FlipOptions& o, const G& geometry = {}) {
+  const Shell& shell = s.shell;
+  SurfaceId surface = 0;
+  if (!detail::edge_removal_applies<S>(mesh, a, b, shell, o, surface)) return Refusal::not_applicable;
+  const int ref = mesh.tet_ref(shell.tets[0]);
   const int sign = edge_ring(mesh, a, b, shell, s.ring);
   const std::size_t m = s.ring.size();
   // For a triangle of 3 or 4 ring vertices the fans repeat (the 3 fans of a
@@ -218,23 +264,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
       }
     }
     if (!positive) continue;
-    if (!shell.closed) {
-      // The new boundary faces (on the closing edge v_n v_0) must fit the
-      // Geometry where the old ones were.
-      const Eigen::Vector3d n_old = face_normal(mesh, a, b, s.ring.front());
-      bool flat = geometry.facet_fits(mesh, a, b, s.ring.back(), surface, n_old, o.max_normal_deviation);
-      for (const auto& t : s.candidate)
-        for (int f = 0; f < 4 && flat; ++f) {
-          const VertexId opposite = t[f];
-          const bool closing = local_index(t, s.ring.front()) >= 0 && local_index(t, s.ring.back()) >= 0 &&
-                               opposite != s.ring.front() && opposite != s.ring.back() && opposite != a &&
-                               opposite != b;
-          if (!closing) continue;
-          const auto fv = face_vertices(t, f);
-          flat = geometry.facet_fits(mesh, fv[0], fv[1], fv[2], surface, n_old, o.max_normal_deviation);
-        }
-      if (!flat) continue;
-    }
+    if (!shell.closed && !detail::boundary_fan_fits(mesh, a, b, s, surface, o, geometry)) continue;
     if constexpr (scored) {
       const double bar = Criterion::bar(best_score);
       double q = std::numeric_limits<double>::infinity();
@@ -261,13 +291,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
     found = true;
   }
   if (!found) return Refusal::rejected;
-  if (!shell.closed) {
-    // The new boundary edge must not exist already (it can only on a
-    // surface folded by round-off, but then the flip would double a face).
-    vertex_ball(mesh, s.ring.front(), s.ball);
-    for (TetId t : s.ball)
-      if (local_index(mesh.tet(t), s.ring.back()) >= 0) return Refusal::rejected;
-  }
+  if (!shell.closed && !detail::closing_edge_is_new(mesh, s)) return Refusal::rejected;
   if (!plan_cavity(mesh, view(shell.tets), view(s.best), s.plan, kNoId, kNoId, surface)) return Refusal::rejected;
   return EdgeRemovalPlan{a, b, ref};
 }

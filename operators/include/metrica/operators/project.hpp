@@ -44,13 +44,11 @@ struct Projection {
   Decision<Plan> decide(const Mesh& mesh, VertexId v, Scratch& s) const {
     if (!mesh.has_geo_params() || !mesh.geo_param(v).valid()) return Refusal::not_applicable;
     const Point x = mesh.point(v);
-    Eigen::Vector3d step = geometry.point(mesh.geo_param(v)) - x;
-    if (step.norm() <= options.tolerance) return Refusal::not_applicable;
-    for (int k = 0; k <= kBacktrackSteps; ++k, step *= 0.5) {
-      const Point q = x + step;
-      if (ball_positive_at<P>(mesh, v, s.ball, q)) return Plan{q, GeoParam{}};  // the vertex keeps its parameters
-    }
-    return Refusal::rejected;
+    const Point target = geometry.point(mesh.geo_param(v));
+    if ((target - x).norm() <= options.tolerance) return Refusal::not_applicable;
+    const auto q = backtrack_toward(x, target, [&](const Point& p) { return ball_positive_at<P>(mesh, v, s.ball, p); });
+    if (!q) return Refusal::rejected;
+    return Plan{*q, GeoParam{}};  // the vertex keeps its parameters
   }
   void apply(Mesh& mesh, VertexId v, const Plan& plan, Scratch& s) const {
     apply_smoothing(mesh, v, plan, s, SmoothOptions{.metric = options.metric});

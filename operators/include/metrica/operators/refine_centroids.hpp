@@ -187,15 +187,10 @@ struct CentroidInsertion {
   Decision<Plan> decide(const Mesh& mesh, const Item& c, Scratch& x) const {
     const TetVertices& v = x.seen;
     if (c.a != kNoId) {
-      const BoundaryPoint at =
-          place_boundary_vertex(geometry, edge_vertex_param(geometry, mesh, x.shell, c.a, c.b, c.t), c.p,
-                                [&](const Point& q) { return split_is_valid<P>(mesh, x.shell, c.a, c.b, q); });
-      if (!split_is_valid<P>(mesh, x.shell, c.a, c.b, at.p)) return Refusal::rejected;
-      if (!split_accepted<S, Criterion>(mesh, x.shell, c.a, c.b, at.p, options.quality_floor))
-        return Refusal::rejected;
-      const std::array<VertexId, 2> ends{c.a, c.b};
-      const std::array<double, 2> w{1.0 - c.t, c.t};
-      return Plan{new_vertex_metric<S>(mesh, options.metric, ends, w, at.p), at.p, at.geo};
+      const auto d = decide_edge_point<S, P, Criterion>(mesh, x.shell, c.a, c.b, c.t, c.p, options, geometry,
+                                                        [](const Point&) { return false; });
+      if (!d) return d.why();
+      return Plan{d.plan().metric, d.plan().p, d.plan().geo};
     }
     if (c.face >= 0 && (mesh.neighbour(c.tet, c.face).valid() || mesh.surface_id(c.tet, c.face) <= 0))
       return Refusal::not_applicable;

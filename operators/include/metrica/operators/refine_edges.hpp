@@ -52,6 +52,27 @@ struct EdgeSplitPlan {
   GeoParam geo;  // on the model (a boundary edge under a CAD Geometry)
 };
 
+// A new vertex on edge ab (its shell held) at a + t (b - a), `straight`:
+// placed by the Geometry (boundary_placement.hpp), refused when
+// `too_close(p)`, when a tet of the split would not be positive (P), or by
+// the criterion and shape floor; its metric from `metric` or interpolated
+// with the weights (1 - t, t). The decision of an edge split and of a
+// centroid candidate moved onto a ridge.
+template <MetricSpace S, Precision P, class Criterion, Geometry G, class TooClose>
+Decision<EdgeSplitPlan> decide_edge_point(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, double t,
+                                          const Point& straight, const RefineOptions& options, const G& geometry,
+                                          TooClose&& too_close) {
+  const BoundaryPoint at =
+      place_boundary_vertex(geometry, edge_vertex_param(geometry, mesh, shell, a, b, t), straight,
+                            [&](const Point& q) { return split_is_valid<P>(mesh, shell, a, b, q); });
+  if (too_close(at.p)) return Refusal::rejected;
+  if (!split_is_valid<P>(mesh, shell, a, b, at.p)) return Refusal::rejected;
+  if (!split_accepted<S, Criterion>(mesh, shell, a, b, at.p, options.quality_floor)) return Refusal::rejected;
+  const std::array<VertexId, 2> ends{a, b};
+  const std::array<double, 2> w{1.0 - t, t};
+  return EdgeSplitPlan{at.p, new_vertex_metric<S>(mesh, options.metric, ends, w, at.p), at.geo};
+}
+
 struct EdgeSplitScratch {
   TetList ball;  // the walk to the shell
   Shell shell;
@@ -94,21 +115,18 @@ struct EdgeSplit {
     const auto& ma = S::vertex_metric(mesh, c.a);
     const auto& mb = S::vertex_metric(mesh, c.b);
     const double t = metric_midpoint(std::sqrt(metric_norm2(ma, e)), std::sqrt(metric_norm2(mb, e)));
-    const BoundaryPoint at = place_boundary_vertex(
-        geometry, edge_vertex_param(geometry, mesh, x.shell, c.a, c.b, t), Point(mesh.point(c.a) + t * e),
-        [&](const Point& q) { return split_is_valid<P>(mesh, x.shell, c.a, c.b, q); });
-    const Point& p = at.p;
-    for (VertexId v : x.cavity) {
-      if (mesh.vertex_stamp(v) < pass_epoch) continue;
-      const auto& mv = S::vertex_metric(mesh, v);
-      if (std::sqrt(metric_norm2(mv, p - mesh.point(v))) < options.min_new_distance)
-        return Refusal::rejected;  // too close to a point of this pass (the next pass lists it again)
-    }
-    if (!split_is_valid<P>(mesh, x.shell, c.a, c.b, p)) return Refusal::rejected;
-    if (!split_accepted<S, Criterion>(mesh, x.shell, c.a, c.b, p, options.quality_floor)) return Refusal::rejected;
-    const std::array<VertexId, 2> ends{c.a, c.b};
-    const std::array<double, 2> w{1.0 - t, t};
-    return Plan{p, new_vertex_metric<S>(mesh, options.metric, ends, w, p), at.geo};
+    // Too close to a point of this pass: refused (the next pass lists the
+    // edge again).
+    auto too_close = [&](const Point& p) {
+      for (VertexId v : x.cavity) {
+        if (mesh.vertex_stamp(v) < pass_epoch) continue;
+        const auto& mv = S::vertex_metric(mesh, v);
+        if (std::sqrt(metric_norm2(mv, p - mesh.point(v))) < options.min_new_distance) return true;
+      }
+      return false;
+    };
+    return decide_edge_point<S, P, Criterion>(mesh, x.shell, c.a, c.b, t, Point(mesh.point(c.a) + t * e), options,
+                                              geometry, too_close);
   }
   void apply(Mesh& mesh, const Item& c, const Plan& plan, Scratch& x) const {
     const VertexId n = split_edge(mesh, x.shell, c.a, c.b, plan.p, plan.metric);

@@ -130,7 +130,7 @@ inline Point ideal_apex(const Point& p, const Point& q, const Point& r, const Ei
 }  // namespace detail
 
 // The find step of smoothing: v's ball and neighbours into the scratch
-// (the pass locks them, then smooth_vertex reads them).
+// (the pass locks them, then decide_smoothing reads them).
 inline void find_smoothing_cavity(const Mesh& mesh, VertexId v, SmoothScratch& s) {
   vertex_ball(mesh, v, s.ball);
   vertex_neighbours(mesh, s.ball, v, s.neighbours);
@@ -140,21 +140,14 @@ inline void find_smoothing_cavity(const Mesh& mesh, VertexId v, SmoothScratch& s
 // preview of a move of v.
 inline void ball_moved_to(const Mesh& mesh, VertexId v, const TetList& ball, const Point& p, PlannedTets& out) {
   out.clear();
-  for (TetId t : ball) {
-    const auto& tv = mesh.tet(t);
-    TetPoints pts = detail::tet_points(mesh, tv);
-    pts[local_index(tv, v)] = p;
-    out.push_back({tv, pts});
-  }
+  for (TetId t : ball) out.push_back({mesh.tet(t), tet_points_moved(mesh, mesh.tet(t), v, p)});
 }
 
 // Is every tet of v's ball positively oriented (Precision) with v at p?
 template <Precision P>
 bool ball_positive_at(const Mesh& mesh, VertexId v, const TetList& ball, const Point& p) {
   for (TetId t : ball) {
-    const auto& tv = mesh.tet(t);
-    TetPoints pts = detail::tet_points(mesh, tv);
-    pts[local_index(tv, v)] = p;
+    const TetPoints pts = tet_points_moved(mesh, mesh.tet(t), v, p);
     if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return false;
   }
   return true;
@@ -165,29 +158,21 @@ struct SmoothPlan {
   GeoParam geo;  // on a model: the parameters of `to`
 };
 
-// Decide where vertex v moves; s holds its cavity (find_smoothing_cavity),
-// whose vertices the caller holds. Under a criterion whose score is the
-// mean ratio cubed (MinQuality) a trial is scored from the ball terms;
-// under any other, from its scores at the trial position, with the shape
-// floor.
 template <Geometry G>
 bool boundary_trials_on_model(const Mesh& mesh, VertexId v, SmoothScratch& s, const G& geometry);
 
-template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G = NoGeometry>
-Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o,
-                                      const G& geometry = {}) {
-  const VertexClass cls = mesh.vertex_class(v);
-  if (cls == VertexClass::corner || mesh.is_required(v)) return Refusal::not_applicable;
-  if (s.ball.empty()) return Refusal::not_applicable;
+namespace detail {
+
+// The ball terms of v (s.metrics, s.terms) and the optimal point: the mean
+// of the ideal apexes of its faces. Face (t[kFaceVertex[iv]]) is oriented
+// outwards, so the apex lies on its negative side; two vertices swap. The
+// same swapped order gives the inward normal of the ball terms.
+template <MetricSpace S>
+Point ball_terms_and_optimum(const Mesh& mesh, VertexId v, SmoothScratch& s) {
   const Point x = mesh.point(v);
-  s.trials.clear();
-  s.trial_params.clear();
   s.metrics.clear();
   s.terms.clear();
   for (TetId t : s.ball) s.metrics.emplace_back(S::tet_metric(mesh, mesh.tet(t)));
-  // The optimal point: face (t[kFaceVertex[iv]]) is oriented outwards, so
-  // the apex lies on its negative side; swap two vertices. The same
-  // swapped order gives the inward normal of the ball terms.
   Point optimal = Point::Zero();
   for (std::size_t i = 0; i < s.ball.size(); ++i) {
     const auto& tv = mesh.tet(s.ball[i]);
@@ -199,173 +184,223 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     const double det = determinant(m);
     const std::array<double, 3> edges2 = face_edges2(m, f0, f1, f2);
     s.terms.emplace_back(ball_term(x, f0, f1, f2, m, det, edges2));
-    optimal += detail::ideal_apex(f0, f1, f2, s.terms.back().normal, m, det, edges2);
+    optimal += ideal_apex(f0, f1, f2, s.terms.back().normal, m, det, edges2);
   }
-  optimal /= static_cast<double>(s.ball.size());
-  // Trials from `secondary` on are tried only when none before improved.
-  std::size_t secondary = std::numeric_limits<std::size_t>::max();
-  if (cls == VertexClass::interior) {
-    for (double w : {1.0, 0.5, 0.25}) s.trials.emplace_back(x + w * (optimal - x));
-    Point mean = Point::Zero();
-    for (VertexId u : s.neighbours) mean += mesh.point(u);
-    mean /= static_cast<double>(s.neighbours.size());
-    s.trials.emplace_back(x + 0.5 * (mean - x));
-    secondary = s.trials.size();
-    for (TetId t : s.ball) {
-      const auto& tv = mesh.tet(t);
-      const auto f = face_vertices(tv, local_index(tv, v));
-      const Point c = (mesh.point(f[0]) + mesh.point(f[1]) + mesh.point(f[2])) / 3.0;
-      s.trials.emplace_back(x + 0.25 * (c - x));
-    }
-  } else if (geometry.places(mesh, v)) {
-    if (!boundary_trials_on_model(mesh, v, s, geometry)) return Refusal::not_applicable;
-  } else if (cls == VertexClass::surface) {
-    // Its boundary faces, which must be coplanar; trials towards the
-    // midpoints of their edges opposite v and the projected optimal point.
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    for (TetId t : s.ball) {
-      const auto& tv = mesh.tet(t);
-      for (int f = 0; f < 4; ++f) {
-        if (tv[f] == v || mesh.neighbour(t, f).valid()) continue;
-        const auto fv = face_vertices(tv, f);
-        const Eigen::Vector3d n = face_normal(mesh, fv[0], fv[1], fv[2]);
-        if (normal.squaredNorm() == 0.0)
-          normal = n;
-        else if (normal_deviation(normal, n) > o.flat_tolerance)
-          return Refusal::not_applicable;
-        for (int k = 0; k < 3; ++k) {
-          if (fv[k] == v) {
-            const Point mid = 0.5 * (mesh.point(fv[(k + 1) % 3]) + mesh.point(fv[(k + 2) % 3]));
-            for (double w : {0.5, 0.25}) s.trials.emplace_back(x + w * (mid - x));
-          }
+  return optimal / static_cast<double>(s.ball.size());
+}
+
+// An interior vertex's trials: towards the optimal point (all, half, a
+// quarter of the way) and halfway to its neighbours' mean; then, tried
+// only when none of those improved (from the returned index on), a
+// quarter of the way to each opposite face's centroid.
+inline std::size_t interior_trials(const Mesh& mesh, VertexId v, const Point& optimal, SmoothScratch& s) {
+  const Point x = mesh.point(v);
+  for (double w : {1.0, 0.5, 0.25}) s.trials.emplace_back(x + w * (optimal - x));
+  Point mean = Point::Zero();
+  for (VertexId u : s.neighbours) mean += mesh.point(u);
+  mean /= static_cast<double>(s.neighbours.size());
+  s.trials.emplace_back(x + 0.5 * (mean - x));
+  const std::size_t secondary = s.trials.size();
+  for (TetId t : s.ball) {
+    const auto& tv = mesh.tet(t);
+    const auto f = face_vertices(tv, local_index(tv, v));
+    const Point c = (mesh.point(f[0]) + mesh.point(f[1]) + mesh.point(f[2])) / 3.0;
+    s.trials.emplace_back(x + 0.25 * (c - x));
+  }
+  return secondary;
+}
+
+// A surface vertex off any model: its boundary faces must be coplanar
+// (within flat_tolerance); trials towards the midpoints of their edges
+// opposite v and towards the optimal point projected on their plane.
+// False when they are not coplanar.
+inline bool flat_surface_trials(const Mesh& mesh, VertexId v, const Point& optimal, double flat_tolerance,
+                                SmoothScratch& s) {
+  const Point x = mesh.point(v);
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  for (TetId t : s.ball) {
+    const auto& tv = mesh.tet(t);
+    for (int f = 0; f < 4; ++f) {
+      if (tv[f] == v || mesh.neighbour(t, f).valid()) continue;
+      const auto fv = face_vertices(tv, f);
+      const Eigen::Vector3d n = face_normal(mesh, fv[0], fv[1], fv[2]);
+      if (normal.squaredNorm() == 0.0)
+        normal = n;
+      else if (normal_deviation(normal, n) > flat_tolerance)
+        return false;
+      for (int k = 0; k < 3; ++k) {
+        if (fv[k] == v) {
+          const Point mid = 0.5 * (mesh.point(fv[(k + 1) % 3]) + mesh.point(fv[(k + 2) % 3]));
+          for (double w : {0.5, 0.25}) s.trials.emplace_back(x + w * (mid - x));
         }
       }
     }
-    if (normal.squaredNorm() == 0.0) return Refusal::not_applicable;
-    normal.normalize();
-    const Point projected = optimal - (optimal - x).dot(normal) * normal;
-    for (double w : {1.0, 0.5, 0.25}) s.trials.emplace_back(x + w * (projected - x));
-  } else {  // ridge: a straight one
-    VertexId ends[2] = {kNoId, kNoId};
-    int k = 0;
-    for (VertexId u : s.neighbours)
-      if (mesh.is_ridge(v, u)) {
-        if (k < 2) ends[k] = u;
-        ++k;
-      }
-    if (k != 2) return Refusal::not_applicable;
-    const Eigen::Vector3d d1 = mesh.point(ends[0]) - x, d2 = mesh.point(ends[1]) - x;
-    if (normal_deviation(d1, d2) > o.flat_tolerance) return Refusal::not_applicable;
-    for (const auto& d : {d1, d2})
-      for (double w : {0.5, 0.25, 0.1}) s.trials.emplace_back(x + w * d);
   }
-  // Evaluate: the smallest score of the ball at each trial position, and
-  // how many of v's edges leave the unit band (a move for quality must not
-  // cost conformity: without this rule, smoothing every vertex for quality
-  // took 3 points of conformity on polar-1).
+  if (normal.squaredNorm() == 0.0) return false;
+  normal.normalize();
+  const Point projected = optimal - (optimal - x).dot(normal) * normal;
+  for (double w : {1.0, 0.5, 0.25}) s.trials.emplace_back(x + w * (projected - x));
+  return true;
+}
+
+// A ridge vertex off any model: its two ridge neighbours must lie on a
+// straight line through it (within flat_tolerance); trials towards each
+// (a half, a quarter, a tenth of the way). False otherwise.
+inline bool straight_ridge_trials(const Mesh& mesh, VertexId v, double flat_tolerance, SmoothScratch& s) {
+  const Point x = mesh.point(v);
+  VertexId ends[2] = {kNoId, kNoId};
+  int k = 0;
+  for (VertexId u : s.neighbours)
+    if (mesh.is_ridge(v, u)) {
+      if (k < 2) ends[k] = u;
+      ++k;
+    }
+  if (k != 2) return false;
+  const Eigen::Vector3d d1 = mesh.point(ends[0]) - x, d2 = mesh.point(ends[1]) - x;
+  if (normal_deviation(d1, d2) > flat_tolerance) return false;
+  for (const auto& d : {d1, d2})
+    for (double w : {0.5, 0.25, 0.1}) s.trials.emplace_back(x + w * d);
+  return true;
+}
+
+// The best of s.trials under MinQuality (scores Q^3), from the ball terms:
+// the smallest mean ratio (cubed) of the ball with v at a trial, each
+// trial stopping at the first tet at or below the best so far (tested
+// without a division) and starting from the tet that stopped the last one
+// (the ball's bottleneck stops most failing trials at once). `admissible`
+// says whether a trial that scores better may be kept.
+template <class Admissible>
+Decision<SmoothPlan> best_trial_by_mean_ratio(const Mesh& mesh, VertexId v, const SmoothScratch& s,
+                                              std::size_t secondary, Admissible&& admissible) {
+  const Point x = mesh.point(v);
+  const std::size_t n = s.ball.size();
+  std::size_t first = 0;
+  auto min_quality3_at = [&](const Point& p, double floor3) {
+    const Eigen::Vector3d d = p - x;
+    double num_min = std::numeric_limits<double>::infinity(), den_min = 1.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = first + k < n ? first + k : first + k - n;
+      const auto [num, den] = s.terms[i].quality3_parts(s.metrics[i], d);
+      if (num <= floor3 * den) {
+        first = i;
+        return num / den;
+      }
+      if (num * den_min < num_min * den) {
+        num_min = num;
+        den_min = den;
+      }
+    }
+    return num_min / den_min;
+  };
+  // The ball's quality now: the cache, or the terms (no tet metric; not
+  // stored, since a move, the usual outcome of smoothing every vertex,
+  // makes them stale at once). Cube roots only where a mean ratio meets
+  // the cache's: min and cbrt commute, so one for the uncached tets and
+  // one for the best trial.
+  double q_old = std::numeric_limits<double>::infinity(), q3_uncached = q_old;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double q = mesh.cached_quality(s.ball[i]);
+    if (q != Mesh::kUnknownQuality) {
+      q_old = std::min(q_old, q);
+    } else {
+      const auto [num, den] = s.terms[i].quality3_parts(s.metrics[i], Eigen::Vector3d::Zero());
+      q3_uncached = std::min(q3_uncached, num / den);
+    }
+  }
+  q_old = std::min(q_old, std::cbrt(q3_uncached));
+  double q3_best = q_old * q_old * q_old;
+  std::size_t best = s.trials.size();
+  auto improves = [&] { return best != s.trials.size() && improves_min_quality(q_old, std::cbrt(q3_best)); };
+  for (std::size_t i = 0; i < s.trials.size(); ++i) {
+    if (i == secondary && improves()) break;
+    const Point& p = s.trials[i];
+    const double q3 = min_quality3_at(p, q3_best);
+    if (q3 > q3_best && admissible(p)) {
+      q3_best = q3;
+      best = i;
+    }
+  }
+  if (!improves()) return Refusal::rejected;
+  return SmoothPlan{s.trials[best], s.trial_params.empty() ? GeoParam{} : s.trial_params[best]};
+}
+
+// The best of s.trials under any other criterion: its smallest score over
+// the ball at each trial, with the shape floor `floor`.
+template <MetricSpace S, class Criterion, class Admissible>
+Decision<SmoothPlan> best_trial_by_criterion(const Mesh& mesh, VertexId v, const SmoothScratch& s,
+                                             std::size_t secondary, double floor, Admissible&& admissible) {
+  WorstOld<S> q_old(mesh, view(s.ball));
+  const ShapeFloor shape(floor);
+  auto score_at = [&](const Point& p) {
+    double q = std::numeric_limits<double>::infinity();
+    for (TetId t : s.ball) {
+      const TetPoints pts = tet_points_moved(mesh, mesh.tet(t), v, p);
+      if (!shape.admits(S::mean_ratio(mesh, mesh.tet(t), pts), q_old)) return -std::numeric_limits<double>::infinity();
+      q = std::min(q, Criterion::template tet_score_at<S>(mesh, mesh.tet(t), pts));
+    }
+    return q;
+  };
+  double best_score = min_score_of<Criterion, S>(mesh, view(s.ball));
+  std::size_t best = s.trials.size();
+  for (std::size_t i = 0; i < s.trials.size(); ++i) {
+    if (i == secondary && best != s.trials.size()) break;
+    const Point& p = s.trials[i];
+    const double score = score_at(p);
+    if (score > Criterion::bar(best_score) && admissible(p)) {
+      best_score = score;
+      best = i;
+    }
+  }
+  if (best == s.trials.size()) return Refusal::rejected;
+  return SmoothPlan{s.trials[best], s.trial_params.empty() ? GeoParam{} : s.trial_params[best]};
+}
+
+}  // namespace detail
+
+// Decide where vertex v moves; s holds its cavity (find_smoothing_cavity),
+// whose vertices the caller holds. The trials by vertex class (interior;
+// on the model; a flat surface; a straight ridge), then the best of them
+// that keeps the ball positive (P) and leaves no more of v's edges outside
+// the unit band than now (a move for quality must not cost conformity:
+// without this rule, smoothing every vertex for quality took 3 points of
+// conformity on polar-1). Under a criterion whose score is the mean ratio
+// cubed (MinQuality) trials are scored from the ball terms; under any
+// other, from its scores at the trial position, with the shape floor.
+template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G = NoGeometry>
+Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o,
+                                      const G& geometry = {}) {
+  const VertexClass cls = mesh.vertex_class(v);
+  if (cls == VertexClass::corner || mesh.is_required(v)) return Refusal::not_applicable;
+  if (s.ball.empty()) return Refusal::not_applicable;
+  const Point x = mesh.point(v);
+  s.trials.clear();
+  s.trial_params.clear();
+  const Point optimal = detail::ball_terms_and_optimum<S>(mesh, v, s);
+  // Trials from `secondary` on are tried only when none before improved.
+  std::size_t secondary = std::numeric_limits<std::size_t>::max();
+  if (cls == VertexClass::interior) {
+    secondary = detail::interior_trials(mesh, v, optimal, s);
+  } else if (geometry.places(mesh, v)) {
+    if (!boundary_trials_on_model(mesh, v, s, geometry)) return Refusal::not_applicable;
+  } else if (cls == VertexClass::surface) {
+    if (!detail::flat_surface_trials(mesh, v, optimal, o.flat_tolerance, s)) return Refusal::not_applicable;
+  } else if (!detail::straight_ridge_trials(mesh, v, o.flat_tolerance, s)) {
+    return Refusal::not_applicable;
+  }
   const auto& mv = S::vertex_metric(mesh, v);
   auto out_of_range = [&](const Point& p) {
     int n = 0;
     for (VertexId u : s.neighbours) n += !ugawg_length_in(kUnitBand, mesh.point(u) - p, mv, S::vertex_metric(mesh, u));
     return n;
   };
-  // The decision's orientation tests, with the Precision policy, for a
-  // trial about to be kept.
-  // The points of ball tet t with v at p.
-  auto points_at = [&](TetId t, const Point& p) {
-    const auto& tv = mesh.tet(t);
-    TetPoints pts = detail::tet_points(mesh, tv);
-    pts[local_index(tv, v)] = p;
-    return pts;
+  const int bad_old = out_of_range(x);
+  auto admissible = [&](const Point& p) {
+    return out_of_range(p) <= bad_old && ball_positive_at<P>(mesh, v, s.ball, p);
   };
-  auto all_positive_at = [&](const Point& p) { return ball_positive_at<P>(mesh, v, s.ball, p); };
-  if constexpr (CriterionTraits<Criterion>::score_is_mean_ratio_cubed) {
-    // The smallest mean ratio (cubed) of the ball with v at p, from the
-    // terms; stops at the first tet at or below floor3 (that trial cannot
-    // win), tested without a division. It starts from the tet that stopped
-    // the last trial: the ball's bottleneck stops most failing trials at
-    // once.
-    const std::size_t n = s.ball.size();
-    std::size_t first = 0;
-    auto min_quality3_at = [&](const Point& p, double floor3) {
-      const Eigen::Vector3d d = p - x;
-      double num_min = std::numeric_limits<double>::infinity(), den_min = 1.0;
-      for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t i = first + k < n ? first + k : first + k - n;
-        const auto [num, den] = s.terms[i].quality3_parts(s.metrics[i], d);
-        if (num <= floor3 * den) {
-          first = i;
-          return num / den;
-        }
-        if (num * den_min < num_min * den) {
-          num_min = num;
-          den_min = den;
-        }
-      }
-      return num_min / den_min;
-    };
-    // The ball's quality now: the cache, or the terms (no tet metric; not
-    // stored, since a move, the usual outcome of smoothing every vertex,
-    // makes them stale at once). Cube roots only where a mean ratio meets
-    // the cache's: min and cbrt commute, so one for the uncached tets and
-    // one for the best trial.
-    double q_old = std::numeric_limits<double>::infinity(), q3_uncached = q_old;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double q = mesh.cached_quality(s.ball[i]);
-      if (q != Mesh::kUnknownQuality) {
-        q_old = std::min(q_old, q);
-      } else {
-        const auto [num, den] = s.terms[i].quality3_parts(s.metrics[i], Eigen::Vector3d::Zero());
-        q3_uncached = std::min(q3_uncached, num / den);
-      }
-    }
-    q_old = std::min(q_old, std::cbrt(q3_uncached));
-    const int bad_old = out_of_range(x);
-    double q3_best = q_old * q_old * q_old;
-    std::size_t best = s.trials.size();
-    auto improves = [&] { return best != s.trials.size() && improves_min_quality(q_old, std::cbrt(q3_best)); };
-    for (std::size_t i = 0; i < s.trials.size(); ++i) {
-      if (i == secondary && improves()) break;
-      const Point& p = s.trials[i];
-      const double q3 = min_quality3_at(p, q3_best);
-      if (q3 > q3_best && out_of_range(p) <= bad_old && all_positive_at(p)) {
-        q3_best = q3;
-        best = i;
-      }
-    }
-    if (!improves()) return Refusal::rejected;
-    return SmoothPlan{s.trials[best], s.trial_params.empty() ? GeoParam{} : s.trial_params[best]};
-  } else {
-    // Any other criterion: its smallest score over the ball at each trial,
-    // and the shape floor.
-    WorstOld<S> q_old(mesh, view(s.ball));
-    const ShapeFloor shape(o.min_quality);
-    auto score_at = [&](const Point& p) {
-      double q = std::numeric_limits<double>::infinity();
-      for (TetId t : s.ball) {
-        const TetPoints pts = points_at(t, p);
-        if (!shape.admits(S::mean_ratio(mesh, mesh.tet(t), pts), q_old))
-          return -std::numeric_limits<double>::infinity();
-        q = std::min(q, Criterion::template tet_score_at<S>(mesh, mesh.tet(t), pts));
-      }
-      return q;
-    };
-    const double old_score = min_score_of<Criterion, S>(mesh, view(s.ball));
-    const int bad_old = out_of_range(x);
-    double best_score = old_score;
-    std::size_t best = s.trials.size();
-    for (std::size_t i = 0; i < s.trials.size(); ++i) {
-      if (i == secondary && best != s.trials.size()) break;
-      const Point& p = s.trials[i];
-      const double score = score_at(p);
-      if (score > Criterion::bar(best_score) && out_of_range(p) <= bad_old && all_positive_at(p)) {
-        best_score = score;
-        best = i;
-      }
-    }
-    if (best == s.trials.size()) return Refusal::rejected;
-    return SmoothPlan{s.trials[best], s.trial_params.empty() ? GeoParam{} : s.trial_params[best]};
-  }
+  if constexpr (CriterionTraits<Criterion>::score_is_mean_ratio_cubed)
+    return detail::best_trial_by_mean_ratio(mesh, v, s, secondary, admissible);
+  else
+    return detail::best_trial_by_criterion<S, Criterion>(mesh, v, s, secondary, o.min_quality, admissible);
 }
 
 // The trials of boundary vertex v on the model (s.trials and their

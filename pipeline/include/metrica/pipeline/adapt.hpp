@@ -146,54 +146,48 @@ struct Pipeline : PipelineRules {
   Stages<A> closing;
 };
 
-// Runs a pipeline: cycles, the quality phase, repair rounds.
+// One round of a pipeline: its stages, then the adapter closes it (counts,
+// conformity, worst tet, report, progress). `number` is its index in the
+// report; quality-phase rounds follow the cycles.
+enum class RoundKind { cycle, quality_pass, repair, closing };
+template <class A>
+const CycleReport& run_round(A& a, const Stages<A>& stages, RoundKind kind, int number) {
+  Stopwatch clock;
+  CycleReport c;
+  c.cycle = number;
+  c.quality_phase = kind != RoundKind::cycle;
+  c.repair = kind == RoundKind::repair;
+  run_stages(a, stages, c);
+  a.finish(c, clock);
+  return a.report().cycles.back();
+}
+
+// Runs a pipeline: cycles, the quality phase, repair rounds, the closing.
 template <class A>
 const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
   Stopwatch total;
+  const auto next = [&a] { return static_cast<int>(a.report().cycles.size()); };
   double previous_conformity = 0.0;
   for (int cycle = 0; cycle < p.max_cycles; ++cycle) {
-    Stopwatch clock;
-    CycleReport c;
-    c.cycle = cycle;
     const std::uint64_t changes_before = a.mesh().vertex_changes();
-    run_stages(a, p.cycle, c);
+    const double conformity = run_round(a, p.cycle, RoundKind::cycle, cycle).conformity;
     const std::uint64_t changed = a.mesh().vertex_changes() - changes_before;
-    a.finish(c, clock);
     if (static_cast<double>(changed) < p.min_change * static_cast<double>(a.mesh().num_vertices())) break;
-    if (previous_conformity >= p.near_unit_conformity && c.conformity - previous_conformity < p.min_conformity_gain)
+    if (previous_conformity >= p.near_unit_conformity && conformity - previous_conformity < p.min_conformity_gain)
       break;
-    previous_conformity = c.conformity;
+    previous_conformity = conformity;
   }
   if (p.before_polish) p.before_polish(a);
-  for (int pass = 0; pass < p.quality_passes; ++pass) {
-    Stopwatch clock;
-    CycleReport c;
-    c.cycle = static_cast<int>(a.report().cycles.size());
-    c.quality_phase = true;
-    run_stages(a, p.polish, c);
-    a.finish(c, clock);
-  }
+  for (int pass = 0; pass < p.quality_passes; ++pass) run_round(a, p.polish, RoundKind::quality_pass, next());
   int idle_rounds = 0;  // in a row, without a gain in the worst tet
   for (int round = 0; round < p.repair_rounds && idle_rounds < 2 && !p.repair.empty(); ++round) {
     if (a.report().cycles.empty()) break;
     const double worst = a.report().cycles.back().min_quality;
     if (worst >= p.repair_below) break;
-    Stopwatch clock;
-    CycleReport c;
-    c.cycle = static_cast<int>(a.report().cycles.size());
-    c.quality_phase = c.repair = true;
-    run_stages(a, p.repair, c);
-    a.finish(c, clock);
-    idle_rounds = c.min_quality > worst ? 0 : idle_rounds + 1;
+    const double after = run_round(a, p.repair, RoundKind::repair, next()).min_quality;
+    idle_rounds = after > worst ? 0 : idle_rounds + 1;
   }
-  if (!p.closing.empty()) {
-    Stopwatch clock;
-    CycleReport c;
-    c.cycle = static_cast<int>(a.report().cycles.size());
-    c.quality_phase = true;
-    run_stages(a, p.closing, c);
-    a.finish(c, clock);
-  }
+  if (!p.closing.empty()) run_round(a, p.closing, RoundKind::closing, next());
   a.report().seconds = total.seconds();
   return a.report();
 }

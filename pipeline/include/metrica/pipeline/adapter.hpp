@@ -142,7 +142,7 @@ class Adapter {
   // was filled.
   explicit Adapter(Mesh& mesh, const MetricFunction* metric = nullptr, const G& geometry = {})
       : mesh_(mesh), metric_(metric), geometry_(geometry) {
-    mesh_.clear_quality_cache();
+    mesh_.clear_quality_cache(S::name);
   }
 
   Mesh& mesh() { return mesh_; }
