@@ -43,22 +43,30 @@ int main(int argc, char** argv) {
   fmt::print("output: {} vertices, {} tets; {:.2f} s (median); {:.0f} output tets/s\n", c.vertices, tets, t,
              static_cast<double>(tets) / t);
   fmt::print("quality: {:.2f}% of edges in range, min Q {:.3f}\n", 100.0 * c.conformity, c.min_quality);
-  const double ops = last.ops.get("collapse").seconds + last.ops.get("split").seconds + last.ops.get("flip").seconds + last.ops.get("smooth").seconds;
-  fmt::print("time share (last run, {:.2f} s): collapse {:.0f}%, split {:.0f}%, flips {:.0f}%, smoothing {:.0f}%, "
-             "other (compaction, statistics) {:.0f}%\n",
-             last.seconds, 100 * last.ops.get("collapse").seconds / last.seconds, 100 * last.ops.get("split").seconds / last.seconds,
-             100 * last.ops.get("flip").seconds / last.seconds, 100 * last.ops.get("smooth").seconds / last.seconds,
-             100 * (last.seconds - ops) / last.seconds);
+  const double ops = last.ops.get("collapse").seconds + last.ops.get("split").seconds + last.ops.get("flip").seconds +
+                     last.ops.get("smooth").seconds;
+  fmt::print(
+      "time share (last run, {:.2f} s): collapse {:.0f}%, split {:.0f}%, flips {:.0f}%, smoothing {:.0f}%, "
+      "other (compaction, statistics) {:.0f}%\n",
+      last.seconds, 100 * last.ops.get("collapse").seconds / last.seconds,
+      100 * last.ops.get("split").seconds / last.seconds, 100 * last.ops.get("flip").seconds / last.seconds,
+      100 * last.ops.get("smooth").seconds / last.seconds, 100 * (last.seconds - ops) / last.seconds);
   // Where the time goes, cycle by cycle (q: the quality phase).
   // Each operator: applied / tried.
-  fmt::print("cycle   vertices       tets         collapsed             split             flips          smoothed  in range  min Q  | "
-             "seconds: collapse  split  flips  smooth  total\n");
+  fmt::print(
+      "cycle   vertices       tets         collapsed             split             flips          smoothed  in range  "
+      "min Q  | "
+      "seconds: collapse  split  flips  smooth  total\n");
   for (const auto& r : cycles)
-    fmt::print("{:>4}{} {:>10} {:>10} {:>8}/{:<8} {:>8}/{:<8} {:>8}/{:<8} {:>8}/{:<8} {:>8.2f}% {:>6.3f}  | {:>16.2f} {:>6.2f} {:>6.2f} "
-               "{:>7.2f} {:>6.2f}\n",
-               r.cycle, r.quality_phase ? 'q' : ' ', r.vertices, r.tets, r.ops.get("collapse").applied, r.ops.get("collapse").tried,
-               r.ops.get("split").applied, r.ops.get("split").tried, r.ops.get("flip").applied, r.ops.get("flip").tried, r.ops.get("smooth").applied, r.ops.get("smooth").tried, 100.0 * r.conformity,
-               r.min_quality, r.ops.get("collapse").seconds, r.ops.get("split").seconds, r.ops.get("flip").seconds, r.ops.get("smooth").seconds, r.seconds);
+    fmt::print(
+        "{:>4}{} {:>10} {:>10} {:>8}/{:<8} {:>8}/{:<8} {:>8}/{:<8} {:>8}/{:<8} {:>8.2f}% {:>6.3f}  | {:>16.2f} "
+        "{:>6.2f} {:>6.2f} "
+        "{:>7.2f} {:>6.2f}\n",
+        r.cycle, r.quality_phase ? 'q' : ' ', r.vertices, r.tets, r.ops.get("collapse").applied,
+        r.ops.get("collapse").tried, r.ops.get("split").applied, r.ops.get("split").tried, r.ops.get("flip").applied,
+        r.ops.get("flip").tried, r.ops.get("smooth").applied, r.ops.get("smooth").tried, 100.0 * r.conformity,
+        r.min_quality, r.ops.get("collapse").seconds, r.ops.get("split").seconds, r.ops.get("flip").seconds,
+        r.ops.get("smooth").seconds, r.seconds);
   fmt::print("peak memory {:.1f} MB, {:.0f} bytes per output tet\n", bench::peak_bytes() / 1e6,
              bench::peak_bytes() / static_cast<double>(tets));
   return 0;

@@ -83,8 +83,10 @@ int main(int argc, char** argv) {
     // compute: n threads do n times the work of one.
     compute_ratio.push_back(n * c1 / cn);
     gather_ratio.push_back(g1 / gn);
-    std::printf("run %d: compute 1 thread %.3f s, %d threads %.3f s (%.2fx); gather 1 thread %.3f s, %d threads %.3f s (%.2fx)\n",
-                r + 1, c1, n, cn, n * c1 / cn, g1, n, gn, g1 / gn);
+    std::printf(
+        "run %d: compute 1 thread %.3f s, %d threads %.3f s (%.2fx); gather 1 thread %.3f s, %d threads %.3f s "
+        "(%.2fx)\n",
+        r + 1, c1, n, cn, n * c1 / cn, g1, n, gn, g1 / gn);
   }
   std::printf("%u hardware threads; median speedup on %d threads: compute %.2fx, random gather %.2fx (ideal %dx)\n",
               std::thread::hardware_concurrency(), n, median(compute_ratio), median(gather_ratio), n);

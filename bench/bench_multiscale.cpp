@@ -23,9 +23,10 @@ int main(int argc, char** argv) {
   const Mesh mesh = make_box({.nx = n, .ny = n, .nz = n});
   std::vector<Point> pts(mesh.vertex_capacity());
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) pts[v] = mesh.point(v);
-  fmt::print("multiscale metric on a {}^3 box ({} tets, {} vertices), complexity {}, p = 2, mixed gradation 3,\n"
-             "median of {} runs, {} cores\n\n",
-             n, mesh.num_tets(), mesh.num_vertices(), target, runs, core_count());
+  fmt::print(
+      "multiscale metric on a {}^3 box ({} tets, {} vertices), complexity {}, p = 2, mixed gradation 3,\n"
+      "median of {} runs, {} cores\n\n",
+      n, mesh.num_tets(), mesh.num_vertices(), target, runs, core_count());
   fmt::print("{:<10} {:>10} {:>12} {:>12} {:>12} {:>12}\n", "field", "total s", "Hessian s", "gradation s",
              "relaxations", "complexity");
   for (const auto f : {AnalyticField::sinfun3, AnalyticField::tanh3, AnalyticField::sinatan3}) {

@@ -6,8 +6,8 @@
 //   build/bench/bench_predicates [calls=200000] [runs=5]
 #include "bench_common.hpp"
 
-#include <metrica/predicates/precision.hpp>
 #include <metrica/policies/threads.hpp>
+#include <metrica/predicates/precision.hpp>
 
 #include <fmt/core.h>
 
@@ -29,16 +29,19 @@ std::vector<Five> inputs(const std::string& kind, std::size_t n) {
   std::mt19937_64 r(2026);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::uniform_int_distribution<int> coin(-1, 1), pick(0, 11), grid(-8, 8);
-  const std::array<Point, 12> sphere = {Point(3, 0, 0),  Point(-3, 0, 0), Point(0, 3, 0),  Point(0, -3, 0),
-                                        Point(0, 0, 3),  Point(0, 0, -3), Point(1, 2, 2),  Point(2, 1, -2),
+  const std::array<Point, 12> sphere = {Point(3, 0, 0),  Point(-3, 0, 0), Point(0, 3, 0),   Point(0, -3, 0),
+                                        Point(0, 0, 3),  Point(0, 0, -3), Point(1, 2, 2),   Point(2, 1, -2),
                                         Point(-2, 2, 1), Point(2, -2, 1), Point(-1, -2, 2), Point(2, 2, -1)};
   const double tiny = std::ldexp(1.0, -45);
   std::vector<Five> out(n);
   for (auto& x : out) {
     for (auto& p : x) {
-      if (kind == "random") p = Point(u(r), u(r), u(r));
-      else if (kind == "coplanar") p = Point(grid(r), grid(r), 1.0) + tiny * Point(coin(r), coin(r), coin(r));
-      else p = sphere[pick(r)] + tiny * Point(coin(r), coin(r), coin(r));
+      if (kind == "random")
+        p = Point(u(r), u(r), u(r));
+      else if (kind == "coplanar")
+        p = Point(grid(r), grid(r), 1.0) + tiny * Point(coin(r), coin(r), coin(r));
+      else
+        p = sphere[pick(r)] + tiny * Point(coin(r), coin(r), coin(r));
     }
   }
   return out;
@@ -68,8 +71,8 @@ int main(int argc, char** argv) {
   const int runs = argc > 2 ? std::stoi(argv[2]) : 5;
   fmt::print("predicates: {} calls per input kind, median of {} runs, {} cores\n\n", calls, runs,
              metrica::core_count());
-  fmt::print("{:<12} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>11} {:>11}\n", "input", "orient", "orient",
-             "orient", "insphere", "insphere", "insphere", "orient", "insphere");
+  fmt::print("{:<12} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>11} {:>11}\n", "input", "orient", "orient", "orient",
+             "insphere", "insphere", "insphere", "orient", "insphere");
   fmt::print("{:<12} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>11} {:>11}\n", "", "fast ns", "filt ns", "exact ns",
              "fast ns", "filt ns", "exact ns", "exact share", "exact share");
   for (const std::string kind : {"random", "coplanar", "cospherical"}) {

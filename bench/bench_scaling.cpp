@@ -92,9 +92,11 @@ int main(int argc, char** argv) {
     std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     r.seconds = all[all.size() / 2].first;
     r.report = all[all.size() / 2].second;
-    fmt::print("  {:<16} {:7.2f} s ({:.2f}-{:.2f})  {:>9} tets  in range {:.2f}%  mean Q {:.4f}  min Q {:.3f}  peak {:.0f} MB  {} cycles\n",
-               r.label, r.seconds, all.front().first, all.back().first, r.quality.tets, 100 * r.quality.unit_length_share,
-               r.quality.quality.mean, r.quality.quality.min, r.peak_mb, r.report.cycles.size());
+    fmt::print(
+        "  {:<16} {:7.2f} s ({:.2f}-{:.2f})  {:>9} tets  in range {:.2f}%  mean Q {:.4f}  min Q {:.3f}  peak {:.0f} MB "
+        " {} cycles\n",
+        r.label, r.seconds, all.front().first, all.back().first, r.quality.tets, 100 * r.quality.unit_length_share,
+        r.quality.quality.mean, r.quality.quality.min, r.peak_mb, r.report.cycles.size());
   }
   // Speedups run by run (run i of each configuration ran side by side).
   if (configs.size() > 1 && runs > 1) {
@@ -127,32 +129,39 @@ int main(int argc, char** argv) {
   fmt::print("|---|---|---|---|---|---|---|---|---|\n");
   auto op_cells = [&](const Run& r) {
     const auto& x = r.report;
-    const double other = x.seconds - x.ops.get("collapse").seconds - x.ops.get("split").seconds - x.ops.get("flip").seconds - x.ops.get("smooth").seconds;
-    const double base_other = base.report.seconds - base.report.ops.get("collapse").seconds - base.report.ops.get("split").seconds -
-                              base.report.ops.get("flip").seconds - base.report.ops.get("smooth").seconds;
+    const double other = x.seconds - x.ops.get("collapse").seconds - x.ops.get("split").seconds -
+                         x.ops.get("flip").seconds - x.ops.get("smooth").seconds;
+    const double base_other = base.report.seconds - base.report.ops.get("collapse").seconds -
+                              base.report.ops.get("split").seconds - base.report.ops.get("flip").seconds -
+                              base.report.ops.get("smooth").seconds;
     auto cell = [&](const OperatorStats& s, const OperatorStats& b) {
-      const double conflict_rate = s.tried + s.conflicts > 0 ? double(s.conflicts) / double(s.tried + s.conflicts) : 0.0;
+      const double conflict_rate =
+          s.tried + s.conflicts > 0 ? double(s.conflicts) / double(s.tried + s.conflicts) : 0.0;
       const std::string balance =
           s.thread_seconds > 0 ? fmt::format(", {:.0f}% busy", 100 * s.busy_seconds / s.thread_seconds) : "";
       return fmt::format("{:.2f} s ({:.2f} in loop{}), x{:.2f}, {:.1f}% confl.", s.seconds, s.loop_seconds, balance,
                          b.seconds / s.seconds, 100 * conflict_rate);
     };
-    return fmt::format("{} | {} | {} | {} | {:.2f} s, x{:.2f}", cell(x.ops.get("collapse"), base.report.ops.get("collapse")),
-                       cell(x.ops.get("split"), base.report.ops.get("split")), cell(x.ops.get("flip"), base.report.ops.get("flip")),
-                       cell(x.ops.get("smooth"), base.report.ops.get("smooth")), other, base_other / other);
+    return fmt::format(
+        "{} | {} | {} | {} | {:.2f} s, x{:.2f}", cell(x.ops.get("collapse"), base.report.ops.get("collapse")),
+        cell(x.ops.get("split"), base.report.ops.get("split")), cell(x.ops.get("flip"), base.report.ops.get("flip")),
+        cell(x.ops.get("smooth"), base.report.ops.get("smooth")), other, base_other / other);
   };
   for (const Run& r : results) {
     const double speedup = base.seconds / r.seconds;
     fmt::print("| {} | {:.2f} | {:.2f} | {:.0f}% | {} |\n", r.label, r.seconds, speedup, 100 * speedup / r.threads,
                op_cells(r));
   }
-  fmt::print("\n(speedups against {}; per operator: its seconds (of which in the policy's loop over its work\n"
-             "list, the parallel part), its speedup, its conflict rate; \"other\" is\n"
-             "compaction, statistics and the serial parts of the passes: work lists, candidate generation)\n",
-             base.label);
+  fmt::print(
+      "\n(speedups against {}; per operator: its seconds (of which in the policy's loop over its work\n"
+      "list, the parallel part), its speedup, its conflict rate; \"other\" is\n"
+      "compaction, statistics and the serial parts of the passes: work lists, candidate generation)\n",
+      base.label);
   // The work behind the times: a thread count that replays or tries more
   // pays for it here, not in contention.
-  fmt::print("\n| run | operator | tried | applied | rejected | conflicts | replays | left to one thread | rounds' loop s |\n");
+  fmt::print(
+      "\n| run | operator | tried | applied | rejected | conflicts | replays | left to one thread | rounds' loop s "
+      "|\n");
   fmt::print("|---|---|---|---|---|---|---|---|---|\n");
   for (const Run& r : results) {
     const auto& x = r.report;
@@ -163,11 +172,13 @@ int main(int argc, char** argv) {
   // Cycle by cycle (q: the quality phase): a thread count whose cycles
   // split and collapse more shows here.
   for (const Run& r : results) {
-    fmt::print("\n{}: cycle  vertices  collapsed  split  in range  min Q | s: collapse  split  flips  smooth\n", r.label);
+    fmt::print("\n{}: cycle  vertices  collapsed  split  in range  min Q | s: collapse  split  flips  smooth\n",
+               r.label);
     for (const auto& c : r.report.cycles)
       fmt::print("{:>4}{} {:>10} {:>9} {:>7} {:>8.2f}% {:>6.3f} | {:>11.2f} {:>6.2f} {:>6.2f} {:>7.2f}\n", c.cycle,
-                 c.quality_phase ? 'q' : ' ', c.vertices, c.ops.get("collapse").applied, c.ops.get("split").applied, 100.0 * c.conformity,
-                 c.min_quality, c.ops.get("collapse").seconds, c.ops.get("split").seconds, c.ops.get("flip").seconds, c.ops.get("smooth").seconds);
+                 c.quality_phase ? 'q' : ' ', c.vertices, c.ops.get("collapse").applied, c.ops.get("split").applied,
+                 100.0 * c.conformity, c.min_quality, c.ops.get("collapse").seconds, c.ops.get("split").seconds,
+                 c.ops.get("flip").seconds, c.ops.get("smooth").seconds);
   }
   return 0;
 }

@@ -1,7 +1,5 @@
 #include "cli.hpp"
 
-#include <metrica/io/atomic_file.hpp>
-
 #include <metrica/error.hpp>
 #include <metrica/input_checks.hpp>
 #include <metrica/io/atomic_file.hpp>
@@ -26,15 +24,15 @@ constexpr int kThreadsPerCore = 8;
 }  // namespace
 
 Options::Options(std::string command, std::string usage, std::string description)
-    : command_(std::move(command)), usage_(std::move(usage)), description_(std::move(description)),
-      own_("Options") {}
+    : command_(std::move(command)), usage_(std::move(usage)), description_(std::move(description)), own_("Options") {}
 
 bool Options::parse(const std::vector<std::string>& args) {
   po::options_description common("Common options");
   common.add_options()("help,h", "print this help and exit")("verbose,v", "print more detail (timings, warnings)")(
       "quiet,q", "print only errors")(
-      "dry-run", "check the options and the inputs, print what would be done, compute and write nothing")("threads", po::value<int>()->value_name("N"),
-                                      "threads for parallel work (default: all cores; at most 8 per core)");
+      "dry-run", "check the options and the inputs, print what would be done, compute and write nothing")(
+      "threads", po::value<int>()->value_name("N"),
+      "threads for parallel work (default: all cores; at most 8 per core)");
   po::options_description all;
   all.add(own_).add(common);
   try {
@@ -48,7 +46,8 @@ bool Options::parse(const std::vector<std::string>& args) {
     for (const std::string& a : args)
       for (const char* p : {"%value%", "%canonical_option%", "%prefix_option%", "%original_token%", "%option%"})
         if (a.find(p) != std::string::npos)
-          throw UsageError(fmt::format("{}: invalid argument '{}' (bad value, or an option it does not take)", command_, a));
+          throw UsageError(
+              fmt::format("{}: invalid argument '{}' (bad value, or an option it does not take)", command_, a));
     throw UsageError(fmt::format("{}: {}", command_, e.what()));
   }
   // An option that takes a value takes the next word, even another
@@ -146,7 +145,8 @@ void Options::format_version(const char* what) {
 }
 
 std::string Options::required(const char* name, const char* what) const {
-  if (!vm_.count(name)) throw UsageError(fmt::format("{}: missing {} (see metrica {} --help)", command_, what, command_));
+  if (!vm_.count(name))
+    throw UsageError(fmt::format("{}: missing {} (see metrica {} --help)", command_, what, command_));
   return vm_[name].as<std::string>();
 }
 
@@ -187,11 +187,11 @@ double check_predicted_size(const Options& o, double complexity, const std::stri
   const double limit = o.has("max-tets") ? o.positive("max-tets") : double(default_max_tets());
   const double predicted = kTetsPerComplexity * complexity;
   if (!(predicted <= limit))
-    throw InputError(fmt::format("{}: {} has complexity {:.4g}: about {:.3g} tets and {} of memory; the limit is "
-                                 "{:.3g} tets (--max-tets N raises it; the default is what 90% of this machine's "
-                                 "memory holds)",
-                                 o.command(), what, complexity, predicted, bytes_text(predicted * kBytesPerTet),
-                                 limit));
+    throw InputError(
+        fmt::format("{}: {} has complexity {:.4g}: about {:.3g} tets and {} of memory; the limit is "
+                    "{:.3g} tets (--max-tets N raises it; the default is what 90% of this machine's "
+                    "memory holds)",
+                    o.command(), what, complexity, predicted, bytes_text(predicted * kBytesPerTet), limit));
   return predicted;
 }
 

@@ -38,10 +38,11 @@ std::string stats_text(const char* name, const OperatorStats& s) {
 // working (the rest is waiting at a loop's end for the last thread).
 void print_operator_stats(const AdaptReport& r, bool serial, int threads) {
   for (const auto& [name, s] : r.ops) {
-    std::string text = fmt::format("  {:<8} tried {:>10} applied {:>10} rejected {:>10} deferred {:>6} "
-                                   "candidates {:>10}",
-                                   name, count_text(s.tried), count_text(s.applied), count_text(s.rejected),
-                                   count_text(s.deferred), count_text(s.candidates));
+    std::string text = fmt::format(
+        "  {:<8} tried {:>10} applied {:>10} rejected {:>10} deferred {:>6} "
+        "candidates {:>10}",
+        name, count_text(s.tried), count_text(s.applied), count_text(s.rejected), count_text(s.deferred),
+        count_text(s.candidates));
     if (!serial) {
       const std::string busy = threads > 1 && s.thread_seconds > 0.0
                                    ? fmt::format(" busy {:.1f}%", 100.0 * s.busy_seconds / s.thread_seconds)
@@ -87,9 +88,10 @@ void declare_options(Options& o) {
       "points", po::value<std::string>()->default_value(to_string(d.points))->value_name("RULE"),
       "point creation: edge (split long edges at their metric midpoint) or centroid (the centroids "
       "of tets with a long edge, moved to a boundary face or ridge they encroach)")(
-      "cycles", po::value<int>()->default_value(d.max_cycles)->value_name("N"), "most adaptation cycles per adaptation")(
-      "quality-passes", po::value<int>()->default_value(d.quality_passes)->value_name("N"),
-      "flip + smooth passes at the end")(
+      "cycles", po::value<int>()->default_value(d.max_cycles)->value_name("N"),
+      "most adaptation cycles per adaptation")("quality-passes",
+                                               po::value<int>()->default_value(d.quality_passes)->value_name("N"),
+                                               "flip + smooth passes at the end")(
       "repair-rounds", po::value<int>()->default_value(d.repair_rounds)->value_name("N"),
       "after the quality passes, at most N rounds of collapse, split, flips and smoothing around the tets "
       "still below --repair-below (none after two in a row that leave the worst tet)")(
@@ -102,8 +104,8 @@ void declare_options(Options& o) {
       "collapse-max-length", po::value<double>()->value_name("L"),
       fmt::format("a collapse may not make an edge longer than L (default {})", text(d.collapse.max_new_length))
           .c_str())(
-      "quality-floor",
-      po::value<double>()->default_value(d.collapse.quality_floor, text(d.collapse.quality_floor))->value_name("Q"),
+      "shape-floor",
+      po::value<double>()->default_value(d.collapse.shape_floor, text(d.collapse.shape_floor))->value_name("Q"),
       "a collapse may not make a tet worse than Q (unless the ball was already worse)")(
       "smooth-below", po::value<double>()->default_value(d.smooth.below, text(d.smooth.below))->value_name("Q"),
       "smooth the vertices of tets with mean ratio below Q during the cycles")(
@@ -128,7 +130,7 @@ AdaptOptions adapt_options_from(const Options& o) {
   ao.repair_below = o.in_range("repair-below", 0.0, 1.0);
   if (o.has("max-length")) ao.refine.max_length = o.positive("max-length", 1e6);
   if (o.has("min-length")) ao.collapse.min_length = o.positive("min-length", 1e6);
-  ao.collapse.quality_floor = o.in_range("quality-floor", 0.0, 1.0);
+  ao.collapse.shape_floor = o.in_range("shape-floor", 0.0, 1.0);
   if (o.has("collapse-max-length")) ao.collapse.max_new_length = o.positive("collapse-max-length", 1e6);
   ao.smooth.below = o.in_range("smooth-below", 0.0, 1.0);
   if (!(ao.refine.max_length > ao.collapse.min_length))
@@ -290,7 +292,7 @@ int run_adapt(const std::vector<std::string>& args) {
       fmt::print("{}adapting {} vertices, {} tets ({} space, {} predicates, {} points, {})\n",
                  iterations > 1 ? fmt::format("iteration {}: ", it + 1) : "", count_text(mesh.num_vertices()),
                  count_text(mesh.num_tets()), policies.space, policies.precision, to_string(ao.points),
-                 serial                                       ? std::string("serial")
+                 serial                                ? std::string("serial")
                  : log::level() >= log::Level::verbose ? Speculative::describe()
                                                        : fmt::format("speculative, {} threads", thread_count()));
     const auto report = adapt_by_name(mesh, ao, policies);
@@ -300,8 +302,7 @@ int run_adapt(const std::vector<std::string>& args) {
                  count_text(report.ops.get("split").applied),
                  count_text(report.ops.get("flip").applied + report.ops.get("delaunay").applied),
                  count_text(report.ops.get("smooth").applied));
-    if (talk && (!serial || log::level() >= log::Level::verbose))
-      print_operator_stats(report, serial, thread_count());
+    if (talk && (!serial || log::level() >= log::Level::verbose)) print_operator_stats(report, serial, thread_count());
   }
   const PartRunner sweeps = sweep_runner(mesh.tet_capacity(), serial);
   check_adapted(mesh, model.get(), volume, sweeps, talk);

@@ -28,7 +28,8 @@ int run_bootstrap(const std::vector<std::string>& args) {
   o.input("CAD model (.step .stp .iges .igs .brep .geo)");
   o.output("mesh (.mesh, .meshb; .vtu, .su2 without the association)",
            {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2});
-  o.add()("size", po::value<double>()->value_name("H"), "target edge length (default: a tenth of the model's diagonal)");
+  o.add()("size", po::value<double>()->value_name("H"),
+          "target edge length (default: a tenth of the model's diagonal)");
   o.format_version("libMeshb version to write, 1-4 (default 2)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the CAD model (-i)");
@@ -45,7 +46,8 @@ int run_bootstrap(const std::vector<std::string>& args) {
   auto data = bootstrap_mesh(model, bo);
   Mesh mesh = build_mesh(data, {.source = input});
   const auto check = mesh.validate();
-  if (!check.ok()) throw InputError(fmt::format("bootstrap: gmsh's mesh is invalid; nothing written\n{}", check.to_string()));
+  if (!check.ok())
+    throw InputError(fmt::format("bootstrap: gmsh's mesh is invalid; nothing written\n{}", check.to_string()));
   // The association as the adaptation will read it back.
   associate(mesh, model, &data);
   auto out = extract_mesh_data(mesh);

@@ -21,8 +21,8 @@ int run_check(const std::vector<std::string>& args) {
             "  metrica check adapted.meshb --geometry cube-cylinder.step");
   o.input("mesh to check (.mesh, .meshb)");
   o.add()("max-messages", po::value<int>()->default_value(20)->value_name("N"),
-      "problems listed per check (counts stay exact)")(
-      "geometry", po::value<std::string>()->value_name("MODEL"), "CAD model the boundary must lie on")(
+          "problems listed per check (counts stay exact)")("geometry", po::value<std::string>()->value_name("MODEL"),
+                                                           "CAD model the boundary must lie on")(
       "model-tolerance", po::value<double>()->default_value(1e-8, "1e-8")->value_name("D"),
       "largest distance of a boundary vertex to its entity (--geometry)");
   if (!o.parse(args)) return kOk;

@@ -1,8 +1,7 @@
 #include "cli.hpp"
 
-#include <metrica/input_checks.hpp>
-
 #include <metrica/error.hpp>
+#include <metrica/input_checks.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/log.hpp>
@@ -38,8 +37,9 @@ int run_convert(const std::vector<std::string>& args) {
   const bool in_sol = in_format == io::FileFormat::sol || in_format == io::FileFormat::solb;
   const bool out_sol = out_format == io::FileFormat::sol || out_format == io::FileFormat::solb;
   if (in_sol != out_sol)
-    throw UsageError(fmt::format("convert: cannot convert {} to {} (a solution converts to a solution, a mesh to a mesh)",
-                                 io::to_string(in_format), io::to_string(out_format)));
+    throw UsageError(
+        fmt::format("convert: cannot convert {} to {} (a solution converts to a solution, a mesh to a mesh)",
+                    io::to_string(in_format), io::to_string(out_format)));
   if (in_format == io::FileFormat::unknown || in_format == io::FileFormat::vtu || in_format == io::FileFormat::su2)
     throw UsageError(fmt::format("convert: cannot read {} (Metrica reads .mesh, .meshb, .sol and .solb)", input));
   if (in_sol) {

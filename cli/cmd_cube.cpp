@@ -1,8 +1,7 @@
 #include "cli.hpp"
 
-#include <metrica/input_checks.hpp>
-
 #include <metrica/box.hpp>
+#include <metrica/input_checks.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/log.hpp>
 #include <metrica/timer.hpp>
@@ -11,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <cstdio>
 
 namespace metrica::cli {
@@ -45,7 +43,8 @@ int run_cube(const std::vector<std::string>& args) {
   for (int k : {spec.nx, spec.ny, spec.nz})
     if (k < 1 || k > 1000) throw UsageError(fmt::format("cube: --n must be in [1, 1000] (got {})", k));
   if (6.0 * spec.nx * spec.ny * spec.nz > 6e8)
-    throw UsageError(fmt::format("cube: {} x {} x {} hexes make more than 600 million tets", spec.nx, spec.ny, spec.nz));
+    throw UsageError(
+        fmt::format("cube: {} x {} x {} hexes make more than 600 million tets", spec.nx, spec.ny, spec.nz));
   auto corner = [&](const char* name, Point& p) {
     if (!o.has(name)) return;
     const auto text = o.get<std::string>(name);

@@ -1,14 +1,12 @@
 #include "cli.hpp"
 
 #include <metrica/error.hpp>
-
 #include <metrica/io/file_format.hpp>
 #include <metrica/mesh_summary.hpp>
 
 #include <fmt/core.h>
 
 #include <cmath>
-
 #include <filesystem>
 
 namespace metrica::cli {
@@ -33,9 +31,9 @@ int run_info(const std::vector<std::string>& args) {
 
   auto row = [](const char* label, const std::string& value) { fmt::print("  {:<20} {}\n", label, value); };
   fmt::print("{}\n", input);
-  row("format", fmt::format("libMeshb v{} {}, {}", d.version,
-                            io::format_of(input) == io::FileFormat::meshb ? "binary" : "ASCII",
-                            ec ? std::string("?") : bytes_text(double(file_size))));
+  row("format",
+      fmt::format("libMeshb v{} {}, {}", d.version, io::format_of(input) == io::FileFormat::meshb ? "binary" : "ASCII",
+                  ec ? std::string("?") : bytes_text(double(file_size))));
   row("read", fmt::format("{:.3f} s (+ {:.3f} s adjacency)", loaded.read_seconds, loaded.build_seconds));
   fmt::print("File\n");
   row("vertices", count_text(d.vertices.size()));
@@ -58,7 +56,8 @@ int run_info(const std::vector<std::string>& args) {
   row("volume", fmt::format("{:.10g}", s.volume));
   row("tet volume", fmt::format("min {:.4g}, max {:.4g}", s.min_tet_volume, s.max_tet_volume));
   fmt::print("Surfaces ({} ids)\n  {:>8} {:>12} {:>14}\n", s.surfaces.size(), "id", "faces", "area");
-  for (const auto& [id, surf] : s.surfaces) fmt::print("  {:>8} {:>12} {:>14.6g}\n", id, count_text(surf.faces), surf.area);
+  for (const auto& [id, surf] : s.surfaces)
+    fmt::print("  {:>8} {:>12} {:>14.6g}\n", id, count_text(surf.faces), surf.area);
   return kOk;
 }
 

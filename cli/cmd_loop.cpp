@@ -78,7 +78,8 @@ int run_loop(const std::vector<std::string>& args) {
   if (o.has("geometry") && !o.has("input")) throw UsageError("loop: --geometry needs the start mesh (-i)");
   // The last iteration's complexity bounds the run's size.
   const double last = loop_complexity(lo, lo.iterations - 1);
-  const double predicted = check_predicted_size(o, last, fmt::format("the last iteration (iteration {})", lo.iterations));
+  const double predicted =
+      check_predicted_size(o, last, fmt::format("the last iteration (iteration {})", lo.iterations));
 
   Mesh mesh;
   std::unique_ptr<CadModel> model;
@@ -93,9 +94,10 @@ int run_loop(const std::vector<std::string>& args) {
     mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
   }
   if (o.dry_run()) {
-    fmt::print("loop: {} iterations from {} vertices; the last at complexity {:.4g}, about {:.3g} tets and {} of "
-               "memory\n",
-               lo.iterations, count_text(mesh.num_vertices()), last, predicted, bytes_text(predicted * kBytesPerTet));
+    fmt::print(
+        "loop: {} iterations from {} vertices; the last at complexity {:.4g}, about {:.3g} tets and {} of "
+        "memory\n",
+        lo.iterations, count_text(mesh.num_vertices()), last, predicted, bytes_text(predicted * kBytesPerTet));
     return kOk;
   }
   std::string dir;
@@ -109,17 +111,18 @@ int run_loop(const std::vector<std::string>& args) {
   const bool talk = log::level() >= log::Level::normal;
   if (talk)
     fmt::print("loop: {} from {} vertices, complexity {} doubling every {}, {} iterations, p = {}, gradation {} ({})\n",
-               to_string(field), count_text(mesh.num_vertices()), lo.complexity, lo.double_every, lo.iterations, lo.norm,
-               lo.gradation, lo.concurrency == Serial::name ? std::string("serial")
-                                                                      : fmt::format("{} threads", thread_count()));
+               to_string(field), count_text(mesh.num_vertices()), lo.complexity, lo.double_every, lo.iterations,
+               lo.norm, lo.gradation,
+               lo.concurrency == Serial::name ? std::string("serial") : fmt::format("{} threads", thread_count()));
   Stopwatch clock;
   lo.on_iteration = [&](const LoopRow& r, const Mesh& m) {
     if (talk) {
-      fmt::print("  {:>3}  complexity {:>8.0f}  {:>9} vertices {:>10} tets  L2 error {:.4e}{}  in range {:5.1f}%  "
-                 "min Q {:.3f}  {:.1f} s\n",
-                 r.iteration, r.complexity, count_text(r.vertices), count_text(r.tets), r.l2_error,
-                 r.transfer_error >= 0 ? fmt::format("  transfer {:.4e}", r.transfer_error) : "",
-                 100 * r.conformity, r.min_quality, r.seconds);
+      fmt::print(
+          "  {:>3}  complexity {:>8.0f}  {:>9} vertices {:>10} tets  L2 error {:.4e}{}  in range {:5.1f}%  "
+          "min Q {:.3f}  {:.1f} s\n",
+          r.iteration, r.complexity, count_text(r.vertices), count_text(r.tets), r.l2_error,
+          r.transfer_error >= 0 ? fmt::format("  transfer {:.4e}", r.transfer_error) : "", 100 * r.conformity,
+          r.min_quality, r.seconds);
       std::fflush(stdout);
     }
     if (!dir.empty()) {
@@ -134,8 +137,8 @@ int run_loop(const std::vector<std::string>& args) {
   const auto rows = adaptive_loop(mesh, lo);
   for (const auto& r : rows)
     if (!std::isfinite(r.l2_error) || !std::isfinite(r.min_quality))
-      throw InputError(fmt::format("loop: iteration {} measured a non-finite error or quality; nothing written",
-                                   r.iteration));
+      throw InputError(
+          fmt::format("loop: iteration {} measured a non-finite error or quality; nothing written", r.iteration));
   if (const auto check = mesh.validate(); !check.ok())
     throw InputError(fmt::format("loop: the last mesh is invalid; nothing written\n{}", check.to_string()));
   if (o.has("csv")) io::write_file_atomically(o.get<std::string>("csv"), loop_csv(rows));

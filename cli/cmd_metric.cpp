@@ -18,6 +18,107 @@
 
 namespace metrica::cli {
 
+namespace {
+
+// The command's options; the multiscale defaults shown and used are the
+// library's (MultiscaleOptions{}).
+void declare_options(Options& o) {
+  const MultiscaleOptions d;
+  o.input("mesh (.mesh, .meshb)");
+  o.output("metric (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
+  max_tets_option(o);
+  o.format_version("libMeshb version to write (default: the mesh's)");
+  o.add()("analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
+      "field", po::value<std::string>()->value_name("NAME"), "analytic field for a multiscale metric")(
+      "field-file", po::value<std::string>()->value_name("FILE"), "solution (.sol/.solb) for a multiscale metric")(
+      "fields", po::value<std::string>()->value_name("LIST"),
+      "fields of --field-file, intersected: K (field K, 1-based; a vector: all its components), "
+      "K.x K.y K.z (one component), all; comma-separated (default: the first scalar field)")(
+      "metric,m", po::value<std::string>()->value_name("FILE"), "an existing metric to post-process")(
+      "complexity", po::value<double>()->value_name("C"),
+      fmt::format("target complexity (multiscale default {})", d.complexity).c_str())(
+      "norm", po::value<double>()->default_value(d.norm)->value_name("P"),
+      "L^p norm of the multiscale metric (p >= 1)")("gradation", po::value<double>()->value_name("BETA"),
+                                                    "size gradation (>= 1; none when not given)")(
+      "gradation-space", po::value<std::string>()->default_value("mixed")->value_name("S"),
+      "gradation space: mixed (Alauzet 2010, t = 1/8) or metric")(
+      "hmin", po::value<double>()->value_name("H"), "smallest size")("hmax", po::value<double>()->value_name("H"),
+                                                                     "largest size")(
+      "max-anisotropy", po::value<double>()->value_name("R"), "largest ratio of sizes of one tensor")(
+      "intersect", po::value<std::string>()->value_name("FILE"), "intersect with this metric (.sol/.solb)")(
+      "geometry", po::value<std::string>()->value_name("MODEL"),
+      "CAD model of the mesh's boundary: its curvatures bound the sizes (.step .iges .brep .geo)")(
+      "curvature-angle", po::value<double>()->default_value(8.0)->value_name("DEG"),
+      "with --geometry: the largest turn of the facets between neighbouring vertices, in degrees");
+}
+
+// The scalar fields of a multiscale metric at the mesh's vertices: the
+// analytic field, or the chosen fields of --field-file; `what` says which.
+std::vector<std::vector<double>> field_values(const Options& o, const std::vector<Point>& vertices,
+                                              const std::optional<AnalyticField>& analytic, std::string& what) {
+  std::vector<std::vector<double>> values;
+  if (analytic) {
+    values.push_back(analytic_field_values(*analytic, vertices));
+    what = fmt::format("multiscale metric of {}", to_string(*analytic));
+    return values;
+  }
+  const auto path = o.get<std::string>("field-file");
+  auto chosen =
+      select_fields(io::read_sol(path), vertices.size(), o.has("fields") ? o.get<std::string>("fields") : "", path);
+  std::string names;
+  for (auto& f : chosen) {
+    names += (names.empty() ? "" : ", ") + f.name;
+    values.push_back(std::move(f.values));
+  }
+  what = o.has("fields") ? fmt::format("multiscale metric of {} (fields {}, intersected)", path, names)
+                         : fmt::format("multiscale metric of {}", path);
+  return values;
+}
+
+// The multiscale metric of `values` (one field, or several intersected).
+std::vector<Sym6> multiscale_field(const Options& o, const Mesh& mesh, const std::vector<std::vector<double>>& values,
+                                   const MetricBounds& bounds, const GradationOptions& grading, double norm) {
+  MultiscaleOptions ms;
+  if (o.has("complexity")) ms.complexity = o.get<double>("complexity");
+  ms.norm = norm;
+  ms.bounds = bounds;
+  ms.gradation = o.has("gradation");
+  ms.gradation_options = grading;
+  MultiscaleReport rep;
+  auto field = values.size() == 1 ? multiscale_metric(mesh, values.front(), ms, &rep)
+                                  : multiscale_metric(mesh, values, ms, &rep);
+  log::info("multiscale: Hessian {:.3f} s, gradation {:.3f} s, {} relaxations, total {:.3f} s", rep.hessian_seconds,
+            rep.gradation_seconds, rep.relaxations, rep.total_seconds);
+  return field;
+}
+
+// A metric given as such: analytic, or read from -m; `what` says which.
+std::vector<Sym6> given_field(const Options& o, const std::vector<Point>& vertices,
+                              const std::optional<AnalyticMetric>& analytic, std::string& what) {
+  if (analytic) {
+    what = fmt::format("metric '{}'", to_string(*analytic));
+    return analytic_metric_field(*analytic, vertices);
+  }
+  const auto path = o.get<std::string>("metric");
+  what = fmt::format("metric of {}", path);
+  return metric_field_from_sol(io::read_sol(path), vertices.size(), path);
+}
+
+// A given metric scaled to --complexity, bounded, graded (and scaled
+// again).
+void scale_bound_grade(const Options& o, const Mesh& mesh, std::vector<Sym6>& field, const MetricBounds& bounds,
+                       const GradationOptions& grading) {
+  const auto dual = dual_volumes(mesh);
+  if (o.has("complexity")) scale_to_complexity(field, dual, o.get<double>("complexity"));
+  clamp_metrics(field, bounds);
+  if (o.has("gradation")) {
+    limit_gradation(mesh, field, grading);
+    if (o.has("complexity")) scale_to_complexity(field, dual, o.get<double>("complexity"));
+  }
+}
+
+}  // namespace
+
 int run_metric(const std::vector<std::string>& args) {
   Options o("metric", "[-i] MESH (--analytic NAME | --field NAME | --field-file F.solb | -m M.solb) [-o] OUTPUT",
             "Writes a metric field (one symmetric tensor per vertex, SolAtVertices) for a mesh, from one of:\n"
@@ -42,36 +143,12 @@ int run_metric(const std::vector<std::string>& args) {
             "  metrica metric cube.meshb --field sinfun3 --complexity 8000 --gradation 3 -o m.solb\n"
             "  metrica metric flow.meshb --field-file flow.sol --fields 1,2 --complexity 20000 -o m.solb\n"
             "  metrica metric flow.meshb --field-file flow.sol --fields 1,2 --geometry channel.geo -o m.solb");
-  o.input("mesh (.mesh, .meshb)");
-  o.output("metric (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
-  max_tets_option(o);
-  o.format_version("libMeshb version to write (default: the mesh's)");
-  o.add()("analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
-      "field", po::value<std::string>()->value_name("NAME"), "analytic field for a multiscale metric")(
-      "field-file", po::value<std::string>()->value_name("FILE"), "solution (.sol/.solb) for a multiscale metric")(
-      "fields", po::value<std::string>()->value_name("LIST"),
-      "fields of --field-file, intersected: K (field K, 1-based; a vector: all its components), "
-      "K.x K.y K.z (one component), all; comma-separated (default: the first scalar field)")(
-      "metric,m", po::value<std::string>()->value_name("FILE"), "an existing metric to post-process")(
-      "complexity", po::value<double>()->value_name("C"), "target complexity (multiscale default 1000)")(
-      "norm", po::value<double>()->default_value(2.0)->value_name("P"), "L^p norm of the multiscale metric (p >= 1)")(
-      "gradation", po::value<double>()->value_name("BETA"), "size gradation (>= 1; none when not given)")(
-      "gradation-space", po::value<std::string>()->default_value("mixed")->value_name("S"),
-      "gradation space: mixed (Alauzet 2010, t = 1/8) or metric")(
-      "hmin", po::value<double>()->value_name("H"), "smallest size")("hmax", po::value<double>()->value_name("H"),
-                                                                     "largest size")(
-      "max-anisotropy", po::value<double>()->value_name("R"), "largest ratio of sizes of one tensor")(
-      "intersect", po::value<std::string>()->value_name("FILE"), "intersect with this metric (.sol/.solb)")(
-      "geometry", po::value<std::string>()->value_name("MODEL"),
-      "CAD model of the mesh's boundary: its curvatures bound the sizes (.step .iges .brep .geo)")(
-      "curvature-angle", po::value<double>()->default_value(8.0)->value_name("DEG"),
-      "with --geometry: the largest turn of the facets between neighbouring vertices, in degrees");
+  declare_options(o);
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   const auto output = o.required("output", "the output metric (-o)");
   const int sources = static_cast<int>(o.has("analytic") + o.has("field") + o.has("field-file") + o.has("metric"));
-  if (sources != 1)
-    throw UsageError("metric: give exactly one source: --analytic, --field, --field-file or -m");
+  if (sources != 1) throw UsageError("metric: give exactly one source: --analytic, --field, --field-file or -m");
   if (o.has("fields") && !o.has("field-file")) throw UsageError("metric: --fields chooses among --field-file's fields");
   // The form of the list before any file is read (which fields exist is
   // the file's to say).
@@ -101,52 +178,13 @@ int run_metric(const std::vector<std::string>& args) {
   std::vector<Sym6> field;
   std::string what;
   if (o.has("field") || o.has("field-file")) {
-    std::vector<std::vector<double>> values;
-    if (analytic_field) {
-      const auto f = *analytic_field;
-      values.push_back(analytic_field_values(f, loaded.data.vertices));
-      what = fmt::format("multiscale metric of {}", to_string(f));
-    } else {
-      const auto path = o.get<std::string>("field-file");
-      auto chosen = select_fields(io::read_sol(path), n, o.has("fields") ? o.get<std::string>("fields") : "", path);
-      std::string names;
-      for (auto& f : chosen) {
-        names += (names.empty() ? "" : ", ") + f.name;
-        values.push_back(std::move(f.values));
-      }
-      what = o.has("fields") ? fmt::format("multiscale metric of {} (fields {}, intersected)", path, names)
-                             : fmt::format("multiscale metric of {}", path);
-    }
+    auto values = field_values(o, loaded.data.vertices, analytic_field, what);
     if (o.dry_run()) return kOk;
-    MultiscaleOptions ms;
-    ms.complexity = o.has("complexity") ? o.get<double>("complexity") : 1000.0;
-    ms.norm = norm;
-    ms.bounds = bounds;
-    ms.gradation = o.has("gradation");
-    ms.gradation_options = grading;
-    MultiscaleReport rep;
-    field = values.size() == 1 ? multiscale_metric(mesh, values.front(), ms, &rep)
-                               : multiscale_metric(mesh, values, ms, &rep);
-    log::info("multiscale: Hessian {:.3f} s, gradation {:.3f} s, {} relaxations, total {:.3f} s", rep.hessian_seconds,
-              rep.gradation_seconds, rep.relaxations, rep.total_seconds);
+    field = multiscale_field(o, mesh, values, bounds, grading, norm);
   } else {
-    if (analytic_metric) {
-      const auto kind = *analytic_metric;
-      field = analytic_metric_field(kind, loaded.data.vertices);
-      what = fmt::format("metric '{}'", to_string(kind));
-    } else {
-      const auto path = o.get<std::string>("metric");
-      field = metric_field_from_sol(io::read_sol(path), n, path);
-      what = fmt::format("metric of {}", path);
-    }
+    field = given_field(o, loaded.data.vertices, analytic_metric, what);
     if (o.dry_run()) return kOk;
-    const auto dual = dual_volumes(mesh);
-    if (o.has("complexity")) scale_to_complexity(field, dual, o.get<double>("complexity"));
-    clamp_metrics(field, bounds);
-    if (o.has("gradation")) {
-      limit_gradation(mesh, field, grading);
-      if (o.has("complexity")) scale_to_complexity(field, dual, o.get<double>("complexity"));
-    }
+    scale_bound_grade(o, mesh, field, bounds, grading);
   }
   if (model) {
     const auto bound = curvature_metric(mesh, *model, curvature_angle);

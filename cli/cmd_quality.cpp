@@ -1,12 +1,11 @@
 #include "cli.hpp"
 
 #include <metrica/error.hpp>
-
 #include <metrica/io/atomic_file.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/log.hpp>
-#include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
+#include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/metrics/space.hpp>
@@ -30,15 +29,16 @@ int run_quality(const std::vector<std::string>& args) {
   o.add()("metric,m", po::value<std::string>()->value_name("FILE"), "metric (.sol, .solb)")(
       "analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
       "space", po::value<std::string>()->default_value("log-euclidean")->value_name("S"),
-      "metric interpolation for Q: log-euclidean, anisotropic, isotropic")(
-      "hmin", po::value<double>()->value_name("H"), "clamp the metric's sizes to at least H")(
+      "metric interpolation for Q: log-euclidean, anisotropic, isotropic")("hmin", po::value<double>()->value_name("H"),
+                                                                           "clamp the metric's sizes to at least H")(
       "hmax", po::value<double>()->value_name("H"), "clamp the metric's sizes to at most H");
   o.output_option("csv", "also write the report as CSV (section,key,lo,hi,value)", {});
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   if (o.has("metric") == o.has("analytic")) throw UsageError("quality: give one of -m METRIC or --analytic NAME");
   const auto space = o.get<std::string>("space");
-  if (!Spaces::contains(space)) throw UsageError(fmt::format("quality: unknown space '{}' ({})", space, Spaces::names()));
+  if (!Spaces::contains(space))
+    throw UsageError(fmt::format("quality: unknown space '{}' ({})", space, Spaces::names()));
   const MetricBounds bounds = o.size_bounds();
   const auto analytic = o.named("analytic", analytic_metric_from_name);
 

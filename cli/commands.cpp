@@ -17,8 +17,7 @@ int run_error(const std::vector<std::string>& args);
 const std::vector<Command>& commands() {
   static const std::vector<Command> list{
       {"cube", "write a box mesh of n x m x k hexes split into 6 tets each", run_cube},
-      {"bootstrap", "write a first mesh of a CAD model (gmsh), its boundary associated with the model",
-       run_bootstrap},
+      {"bootstrap", "write a first mesh of a CAD model (gmsh), its boundary associated with the model", run_bootstrap},
       {"info", "print counts, extent, surfaces, ridges, corners and volume of a mesh", run_info},
       {"check", "read a mesh and check every invariant (exit 1 with a report if invalid)", run_check},
       {"convert", "convert between .mesh, .meshb, .vtu, .su2 (and .sol <-> .solb)", run_convert},

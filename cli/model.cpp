@@ -13,10 +13,11 @@ std::unique_ptr<CadModel> open_geometry(const std::string& path, Mesh& mesh, con
   Stopwatch clock;
   auto model = std::make_unique<CadModel>(path);
   const AssociationReport r = associate(mesh, *model, input);
-  log::info("{}: {} surfaces, {} curves, {} model vertices; {} boundary vertices associated ({} with the input's "
-            "parameters), farthest {:.3g} from its entity ({:.2f} s)",
-            path, model->entities(2).size(), model->entities(1).size(), model->entities(0).size(),
-            count_text(r.vertices), count_text(r.from_file), r.max_distance, clock.seconds());
+  log::info(
+      "{}: {} surfaces, {} curves, {} model vertices; {} boundary vertices associated ({} with the input's "
+      "parameters), farthest {:.3g} from its entity ({:.2f} s)",
+      path, model->entities(2).size(), model->entities(1).size(), model->entities(0).size(), count_text(r.vertices),
+      count_text(r.from_file), r.max_distance, clock.seconds());
   return model;
 }
 

@@ -187,7 +187,9 @@ void complete_geometry_records(io::MeshData& data, const CadModel& model) {
   std::sort(curves.begin(), curves.end(), by_vertex);
   std::sort(surfaces.begin(), surfaces.end(), by_vertex);
   // A corner's surface may come from two of its curves: once is enough.
-  auto same = [](const io::GeoRecord& a, const io::GeoRecord& b) { return a.vertex == b.vertex && a.entity == b.entity; };
+  auto same = [](const io::GeoRecord& a, const io::GeoRecord& b) {
+    return a.vertex == b.vertex && a.entity == b.entity;
+  };
   surfaces.erase(std::unique(surfaces.begin(), surfaces.end(), same), surfaces.end());
   curves.erase(std::unique(curves.begin(), curves.end(), same), curves.end());
 }

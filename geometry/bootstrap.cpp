@@ -1,10 +1,10 @@
+#include "gmsh_library.hpp"
+#include "keep_threads.hpp"
+
 #include <metrica/error.hpp>
 #include <metrica/geometry/bootstrap.hpp>
 
 #include <fmt/core.h>
-#include "gmsh_library.hpp"
-
-#include "keep_threads.hpp"
 
 #include <cmath>
 #include <unordered_map>
@@ -12,8 +12,7 @@
 namespace metrica {
 
 io::MeshData bootstrap_mesh(const CadModel& model, const BootstrapOptions& options) {
-  if (model.entities(3).empty())
-    throw InputError(fmt::format("{}: the model has no volume to mesh", model.source()));
+  if (model.entities(3).empty()) throw InputError(fmt::format("{}: the model has no volume to mesh", model.source()));
   const double h = options.size > 0.0 ? options.size : 0.1 * model.size();
   if (!std::isfinite(h)) throw InputError("bootstrap: the target size must be finite");
   io::MeshData d;

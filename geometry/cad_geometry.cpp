@@ -71,7 +71,8 @@ GeoParam CadGeometry::boundary_vertex(const Mesh& mesh, std::span<const VertexId
           break;
         }
       double t = 0.0;
-      for (std::size_t i = 0; i < parents.size(); ++i) t += weights[i] * model->on_curve(mesh.geo_param(parents[i]), c, near);
+      for (std::size_t i = 0; i < parents.size(); ++i)
+        t += weights[i] * model->on_curve(mesh.geo_param(parents[i]), c, near);
       const GeoParam g{c, 1, t, 0.0};
       const double d = shared.size() == 1 ? 0.0 : (model->value(g) - straight).norm();
       if (d < best_distance) {

@@ -1,19 +1,19 @@
 // CadModel over gmsh's API (OpenCASCADE inside), loaded on first use
 // (gmsh_library.hpp).
+#include "gmsh_library.hpp"
+#include "keep_threads.hpp"
+
 #include <metrica/error.hpp>
 #include <metrica/geometry/cad_model.hpp>
 
 #include <fmt/core.h>
-#include "gmsh_library.hpp"
-
-#include "keep_threads.hpp"
 
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <fcntl.h>
-#include <unistd.h>
-#include <cmath>
 #include <filesystem>
+#include <unistd.h>
 
 namespace metrica {
 namespace {
@@ -297,8 +297,7 @@ GeoParam CadModel::parametrize(int dim, int tag, const Point& p) const {
   thread_local std::vector<double> out;
   {
     std::lock_guard lock(lock_);
-    gmsh_call("getParametrization",
-              [&] { gmsh_api::model::getParametrization(dim, tag, {p.x(), p.y(), p.z()}, out); });
+    gmsh_call("getParametrization", [&] { gmsh_api::model::getParametrization(dim, tag, {p.x(), p.y(), p.z()}, out); });
   }
   if (out.size() < static_cast<std::size_t>(dim))
     throw InputError(fmt::format("gmsh: no parameters on entity ({}, {})", dim, tag));

@@ -1,10 +1,8 @@
 #include "gmsh_library.hpp"
 
-#include <gmshc.h>
-
 #include <dlfcn.h>
-
 #include <filesystem>
+#include <gmshc.h>
 #include <mutex>
 
 #ifndef METRICA_GMSH_LIBRARY

@@ -59,8 +59,8 @@ void remove(const vectorpair& dim_tags, bool recursive);
 namespace mesh {
 void clear();
 void generate(int dim);
-void getNodes(std::vector<std::size_t>& nodes, std::vector<double>& coord, std::vector<double>& param, int dim,
-              int tag, bool include_boundary, bool return_param);
+void getNodes(std::vector<std::size_t>& nodes, std::vector<double>& coord, std::vector<double>& param, int dim, int tag,
+              bool include_boundary, bool return_param);
 void getElementsByType(int type, std::vector<std::size_t>& elements, std::vector<std::size_t>& nodes, int tag);
 }  // namespace mesh
 }  // namespace model

@@ -13,9 +13,10 @@ void check_coordinates(const io::MeshData& data, const std::string& source) {
     const Point& p = data.vertices[v];
     for (int k = 0; k < 3; ++k)
       if (!(std::abs(p[k]) <= kCoordinateLimit))
-        throw InputError(fmt::format("{}: vertex {} has coordinates ({}, {}, {}): each must be finite and within "
-                                     "+-{:g}",
-                                     source, v + 1, p.x(), p.y(), p.z(), kCoordinateLimit));
+        throw InputError(
+            fmt::format("{}: vertex {} has coordinates ({}, {}, {}): each must be finite and within "
+                        "+-{:g}",
+                        source, v + 1, p.x(), p.y(), p.z(), kCoordinateLimit));
   }
 }
 

@@ -13,14 +13,10 @@ namespace metrica {
 
 const char* to_string(VertexClass c) {
   switch (c) {
-    case VertexClass::interior:
-      return "interior";
-    case VertexClass::surface:
-      return "surface";
-    case VertexClass::ridge:
-      return "ridge";
-    case VertexClass::corner:
-      return "corner";
+    case VertexClass::interior: return "interior";
+    case VertexClass::surface: return "surface";
+    case VertexClass::ridge: return "ridge";
+    case VertexClass::corner: return "corner";
   }
   return "?";
 }
@@ -276,7 +272,8 @@ void Mesh::end_parallel(std::span<AllocationPool> pools) {
     free_tets_.insert(free_tets_.end(), p.tets.begin(), p.tets.end());
     live_vertices_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(live_vertices_) + p.vertex_delta);
     // created = delta + removed
-    vertex_changes_ += static_cast<std::uint64_t>(p.vertex_delta + 2 * static_cast<std::ptrdiff_t>(p.removed_vertices.size()));
+    vertex_changes_ +=
+        static_cast<std::uint64_t>(p.vertex_delta + 2 * static_cast<std::ptrdiff_t>(p.removed_vertices.size()));
     live_tets_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(live_tets_) + p.tet_delta);
     p = AllocationPool{};
   }

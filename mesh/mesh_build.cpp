@@ -20,12 +20,12 @@ std::vector<TetVertices> oriented_tets(const io::MeshData& d, const std::string&
   for (std::size_t i = 0; i < tets.size(); ++i) {
     const auto& t = tets[i];
     const bool repeated = t[0] == t[1] || t[0] == t[2] || t[0] == t[3] || t[1] == t[2] || t[1] == t[3] || t[2] == t[3];
-    const double o = repeated ? 0.0
-                              : orient3d_fast(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], d.vertices[t[3]]);
+    const double o =
+        repeated ? 0.0 : orient3d_fast(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], d.vertices[t[3]]);
     if (o < 0) ++negative;
     if (o == 0 && bad.size() < 5)
-      bad.push_back(fmt::format("tet {} (vertices {} {} {} {}) is degenerate (zero volume)", i + 1, t[0] + 1,
-                                t[1] + 1, t[2] + 1, t[3] + 1));
+      bad.push_back(fmt::format("tet {} (vertices {} {} {} {}) is degenerate (zero volume)", i + 1, t[0] + 1, t[1] + 1,
+                                t[2] + 1, t[3] + 1));
   }
   if (negative == tets.size()) {
     log::warn("{}: every tet is negatively oriented; reorienting all {} tets", source, tets.size());
@@ -34,8 +34,8 @@ std::vector<TetVertices> oriented_tets(const io::MeshData& d, const std::string&
     for (std::size_t i = 0; i < tets.size() && bad.size() < 5; ++i) {
       const auto& t = tets[i];
       if (orient3d_fast(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], d.vertices[t[3]]) < 0)
-        bad.push_back(fmt::format("tet {} (vertices {} {} {} {}) is inverted", i + 1, t[0] + 1, t[1] + 1, t[2] + 1,
-                                  t[3] + 1));
+        bad.push_back(
+            fmt::format("tet {} (vertices {} {} {} {}) is inverted", i + 1, t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1));
     }
   }
   if (!bad.empty() || (negative > 0 && negative < tets.size())) {
@@ -107,8 +107,9 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
     triangles[i] = {sorted(d.triangles[i]), static_cast<std::uint32_t>(i)};
     if (i < d.triangle_refs.size()) max_id = std::max(max_id, d.triangle_refs[i]);
   }
-  std::sort(triangles.begin(), triangles.end(),
-            [](const FaceKeyed& a, const FaceKeyed& b) { return a.key < b.key || (a.key == b.key && a.index < b.index); });
+  std::sort(triangles.begin(), triangles.end(), [](const FaceKeyed& a, const FaceKeyed& b) {
+    return a.key < b.key || (a.key == b.key && a.index < b.index);
+  });
   // Up to kMaxSurfaceId - 1, so that the default id (the largest + 1) fits.
   if (max_id >= kMaxSurfaceId || opt.default_surface_id >= kMaxSurfaceId)
     throw InputError(fmt::format("{}: surface id {} is beyond the ids a mesh holds (1 to {})", src,
@@ -137,9 +138,10 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
     }
   }
   if (untagged > 0 && opt.require_boundary_triangles)
-    throw InputError(fmt::format("{}: {} boundary faces have no input triangle: give the whole boundary as Triangles "
-                                 "with surface ids (their edges between ids become ridges)",
-                                 src, untagged));
+    throw InputError(
+        fmt::format("{}: {} boundary faces have no input triangle: give the whole boundary as Triangles "
+                    "with surface ids (their edges between ids become ridges)",
+                    src, untagged));
   if (untagged > 0)
     log::warn("{}: {} boundary faces have no input triangle; they get surface id {}", src, untagged, default_id);
   if (nonpositive > 0)
@@ -157,8 +159,7 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
                                    tri[0] + 1, tri[1] + 1, tri[2] + 1));
     ++internal;
   }
-  if (internal > 0)
-    log::warn("{}: {} triangles lie inside the volume (internal surfaces are not kept)", src, internal);
+  if (internal > 0) log::warn("{}: {} triangles lie inside the volume (internal surfaces are not kept)", src, internal);
 
   for (const auto& e : d.edges) mesh.add_feature_edge(e[0], e[1]);
   for (VertexId v : d.corners) mesh.set_required(v, true);

@@ -158,8 +158,10 @@ class Checker {
       while (j < edges.size() && edges[j] == edges[i]) ++j;
       if (j - i != 2) {
         const auto e = edge_from_key(edges[i]);
-        fail("manifold", "boundary edge ({} {}) lies on {} boundary faces (must be 2: the boundary is open or "
-             "non-manifold)", e[0], e[1], j - i);
+        fail("manifold",
+             "boundary edge ({} {}) lies on {} boundary faces (must be 2: the boundary is open or "
+             "non-manifold)",
+             e[0], e[1], j - i);
       }
       i = j;
     }

@@ -12,7 +12,8 @@ namespace {
 
 void check_values(const Mesh& mesh, const std::vector<double>& values, const char* what) {
   if (values.size() != mesh.vertex_capacity())
-    throw InputError(fmt::format("{}: {} values for a mesh of {} vertex ids", what, values.size(), mesh.vertex_capacity()));
+    throw InputError(
+        fmt::format("{}: {} values for a mesh of {} vertex ids", what, values.size(), mesh.vertex_capacity()));
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
     if (mesh.vertex_alive(v) && !std::isfinite(values[v]))
       throw InputError(fmt::format("{}: the value at vertex {} is not finite", what, v));

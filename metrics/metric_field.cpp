@@ -21,8 +21,9 @@ std::vector<Eigen::Vector3d> checked_eigenvalues(const std::vector<Sym6>& metric
         throw InputError(fmt::format("{}: metric at vertex {} has a non-finite entry ({})", source, v + 1, x));
     const auto e = eigen_decomposition(m);
     if (!(e.values[0] > 0.0))
-      throw InputError(fmt::format("{}: metric at vertex {} is not positive definite (eigenvalues {:.3g} {:.3g} {:.3g})",
-                                   source, v + 1, e.values[0], e.values[1], e.values[2]));
+      throw InputError(
+          fmt::format("{}: metric at vertex {} is not positive definite (eigenvalues {:.3g} {:.3g} {:.3g})", source,
+                      v + 1, e.values[0], e.values[1], e.values[2]));
     values[v] = e.values;
   }
   return values;
@@ -40,17 +41,17 @@ void check_metric_field(const std::vector<Sym6>& metrics, const std::string& sou
   for (std::size_t v = 0; v < metrics.size(); ++v) {
     const auto& l = values[v];
     if (!(l[0] >= lo && l[2] <= hi))
-      throw InputError(fmt::format("{}: metric at vertex {} asks for sizes {:.3g} to {:.3g}, outside [{:g}, {:g}] "
-                                   "(bound them with --hmin/--hmax)",
-                                   source, v + 1, 1.0 / std::sqrt(l[2]), 1.0 / std::sqrt(l[0]), kSmallestSize,
-                                   kLargestSize));
+      throw InputError(
+          fmt::format("{}: metric at vertex {} asks for sizes {:.3g} to {:.3g}, outside [{:g}, {:g}] "
+                      "(bound them with --hmin/--hmax)",
+                      source, v + 1, 1.0 / std::sqrt(l[2]), 1.0 / std::sqrt(l[0]), kSmallestSize, kLargestSize));
   }
 }
 
 std::vector<Sym6> metric_field_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source) {
   if (sol.count != vertices)
-    throw InputError(fmt::format("{}: the metric has {} entries but the mesh has {} vertices", source, sol.count,
-                                 vertices));
+    throw InputError(
+        fmt::format("{}: the metric has {} entries but the mesh has {} vertices", source, sol.count, vertices));
   std::vector<Sym6> out(vertices);
   const auto stride = static_cast<std::size_t>(sol.stride());
   for (std::size_t k = 0; k < sol.types.size(); ++k) {
@@ -76,8 +77,8 @@ std::vector<Sym6> metric_field_from_sol(const io::SolData& sol, std::size_t vert
 
 std::vector<double> scalar_field_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source) {
   if (sol.count != vertices)
-    throw InputError(fmt::format("{}: the field has {} entries but the mesh has {} vertices", source, sol.count,
-                                 vertices));
+    throw InputError(
+        fmt::format("{}: the field has {} entries but the mesh has {} vertices", source, sol.count, vertices));
   for (std::size_t k = 0; k < sol.types.size(); ++k) {
     if (sol.types[k] != io::SolType::scalar) continue;
     std::vector<double> out = sol.field(k);
@@ -220,8 +221,8 @@ std::vector<Sym6> analytic_metric_field(AnalyticMetric m, const std::vector<Poin
 
 void assign_metric(Mesh& mesh, const std::vector<Sym6>& metrics) {
   if (metrics.size() != mesh.vertex_capacity())
-    throw InputError(fmt::format("metric field of {} tensors for a mesh of {} vertex ids", metrics.size(),
-                                 mesh.vertex_capacity()));
+    throw InputError(
+        fmt::format("metric field of {} tensors for a mesh of {} vertex ids", metrics.size(), mesh.vertex_capacity()));
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
     if (mesh.vertex_alive(v)) mesh.set_metric(v, metrics[v], spd_log(metrics[v]));
   mesh.clear_quality_cache();  // every tet's quality changed

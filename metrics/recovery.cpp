@@ -46,7 +46,8 @@ std::vector<Eigen::Matrix3d> project_gradients(const Mesh& mesh, const double* v
 
 void check_values(const Mesh& mesh, const std::vector<double>& values) {
   if (values.size() != mesh.vertex_capacity())
-    throw InputError(fmt::format("field of {} values for a mesh of {} vertex ids", values.size(), mesh.vertex_capacity()));
+    throw InputError(
+        fmt::format("field of {} values for a mesh of {} vertex ids", values.size(), mesh.vertex_capacity()));
   for (std::size_t v = 0; v < values.size(); ++v)
     if (mesh.vertex_alive(static_cast<VertexId>(v)) && !std::isfinite(values[v]))
       throw InputError(fmt::format("field value at vertex {} is not finite ({})", v + 1, values[v]));

@@ -1,9 +1,9 @@
 #include <metrica/metrics/sym_tensor.hpp>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Eigenvalues>
 
 namespace metrica {
 
@@ -61,8 +61,8 @@ Sym6 spd_exp_fast(const Sym6& log_m) {
   const double t = (log_m[0] + log_m[2] + log_m[5]) / 3.0;
   const Sym6 d{log_m[0] - t, log_m[1], log_m[2] - t, log_m[3], log_m[4], log_m[5] - t};
   const double norm2 = d[0] * d[0] + d[2] * d[2] + d[5] * d[5] + 2.0 * (d[1] * d[1] + d[3] * d[3] + d[4] * d[4]);
-  const double det = d[0] * (d[2] * d[5] - d[4] * d[4]) - d[1] * (d[1] * d[5] - d[4] * d[3]) +
-                     d[3] * (d[1] * d[4] - d[2] * d[3]);
+  const double det =
+      d[0] * (d[2] * d[5] - d[4] * d[4]) - d[1] * (d[1] * d[5] - d[4] * d[3]) + d[3] * (d[1] * d[4] - d[2] * d[3]);
   if (!std::isfinite(norm2 + det + t)) {  // NaN or inf in: NaN out, not an endless halving
     const double nan = std::numeric_limits<double>::quiet_NaN();
     return Sym6{nan, nan, nan, nan, nan, nan};

@@ -34,10 +34,11 @@ void check_policy_choice(const PolicyChoice& c) {
 }
 
 std::string not_compiled_message(std::string_view what, std::string_view name, std::string_view compiled) {
-  return fmt::format("{} '{}': this build compiles the pipeline for the {} '{}' only "
-                     "(METRICA_DEFAULT_POLICIES_ONLY: the sanitizer builds and scripts/demo's; scripts/build "
-                     "compiles every policy)",
-                     what, name, what, compiled);
+  return fmt::format(
+      "{} '{}': this build compiles the pipeline for the {} '{}' only "
+      "(METRICA_DEFAULT_POLICIES_ONLY: the sanitizer builds and scripts/demo's; scripts/build "
+      "compiles every policy)",
+      what, name, what, compiled);
 }
 
 bool policies_compiled(const PolicyChoice& p) {

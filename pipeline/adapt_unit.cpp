@@ -36,6 +36,6 @@ METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<2>, UnitConcurrency, UnitGeo
 #endif
 
 template AdaptReport adapt_instance<UnitSpace, UnitConcurrency, UnitGeometry>(Mesh&, const AdaptOptions&,
-                                                                               std::string_view);
+                                                                              std::string_view);
 
 }  // namespace metrica

@@ -3,19 +3,18 @@
 // runs under.
 #pragma once
 
-#include <metrica/policies/speculative.hpp>
-
 #include "test_support.hpp"
 
 #include <metrica/box.hpp>
 #include <metrica/mesh_edges.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_field.hpp>
-#include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/criterion.hpp>
+#include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/testing.hpp>
 #include <metrica/pipeline/adapt.hpp>  // the standard stages, compiled in the library
 #include <metrica/policies/concurrency.hpp>
+#include <metrica/policies/speculative.hpp>
 #include <metrica/predicates/precision.hpp>
 #include <metrica/validate.hpp>
 
@@ -131,17 +130,15 @@ struct SpeculativeOn {
 // compile the pipeline for the default space and precision only
 // (METRICA_DEFAULT_POLICIES_ONLY): there, those under each executor.
 #if METRICA_DEFAULT_POLICIES_ONLY
-#define METRICA_POLICY_COMBINATIONS                                                                                \
-  metrica::Policies<LogEuclidean, Filtered, Serial>,                                                         \
-      metrica::Policies<LogEuclidean, Filtered, Speculative, 1>,                                            \
-      metrica::Policies<LogEuclidean, Filtered, Speculative, 2>,                                            \
+#define METRICA_POLICY_COMBINATIONS                                                                             \
+  metrica::Policies<LogEuclidean, Filtered, Serial>, metrica::Policies<LogEuclidean, Filtered, Speculative, 1>, \
+      metrica::Policies<LogEuclidean, Filtered, Speculative, 2>,                                                \
       metrica::Policies<LogEuclidean, Filtered, Speculative, 8>
 #else
-#define METRICA_POLICY_COMBINATIONS                                                                                \
-  metrica::Policies<LogEuclidean, Filtered, Serial>, metrica::Policies<Anisotropic, Filtered, Serial>, \
-      metrica::Policies<Isotropic, Filtered, Serial>, metrica::Policies<LogEuclidean, Exact, Serial>,  \
-      metrica::Policies<LogEuclidean, Fast, Serial>,                                                        \
-      metrica::Policies<LogEuclidean, Filtered, Speculative, 1>,                                            \
-      metrica::Policies<LogEuclidean, Filtered, Speculative, 2>,                                            \
+#define METRICA_POLICY_COMBINATIONS                                                                             \
+  metrica::Policies<LogEuclidean, Filtered, Serial>, metrica::Policies<Anisotropic, Filtered, Serial>,          \
+      metrica::Policies<Isotropic, Filtered, Serial>, metrica::Policies<LogEuclidean, Exact, Serial>,           \
+      metrica::Policies<LogEuclidean, Fast, Serial>, metrica::Policies<LogEuclidean, Filtered, Speculative, 1>, \
+      metrica::Policies<LogEuclidean, Filtered, Speculative, 2>,                                                \
       metrica::Policies<Anisotropic, Filtered, Speculative, 8>
 #endif

@@ -56,7 +56,9 @@ TEST_SUITE("property") {
 
   TEST_CASE("the L2 interpolation error is zero for linear fields and falls by 4 when h halves") {
     const ScalarFunction linear = [](const Point& p) { return 1.0 + 2.0 * p.x() - 3.0 * p.y() + 0.5 * p.z(); };
-    const ScalarFunction smooth = [](const Point& p) { return std::sin(3.0 * p.x()) * std::cos(2.0 * p.y()) + p.z() * p.z(); };
+    const ScalarFunction smooth = [](const Point& p) {
+      return std::sin(3.0 * p.x()) * std::cos(2.0 * p.y()) + p.z() * p.z();
+    };
     Mesh coarse = make_box({.nx = 4, .ny = 4, .nz = 4});
     Mesh fine = make_box({.nx = 8, .ny = 8, .nz = 8});
     CHECK(l2_interpolation_error(coarse, values_at_vertices(coarse, linear), linear) < 1e-13);
@@ -114,7 +116,8 @@ TEST_SUITE("regression") {
     double e1 = 0, e2 = 0;
     for (int i = 1; i < 3; ++i) e1 += rows[i].l2_error / 2;  // iterations 2-3 (1000)
     for (int i = 4; i < 6; ++i) e2 += rows[i].l2_error / 2;  // iterations 5-6 (2000)
-    INFO("errors at 1000 and 2000: " << e1 << " " << e2 << ", vertices " << rows[2].vertices << " " << rows[5].vertices);
+    INFO("errors at 1000 and 2000: " << e1 << " " << e2 << ", vertices " << rows[2].vertices << " "
+                                     << rows[5].vertices);
     CHECK(rows[5].complexity == 2000);
     CHECK(rows[5].vertices > rows[2].vertices);
     CHECK(e2 < 0.85 * e1);

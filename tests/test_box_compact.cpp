@@ -20,7 +20,8 @@ TEST_SUITE("unit") {
     const auto mesh = build_mesh(d);
     CHECK(mesh.validate({.expected_volume = 1.0}).ok());
     // Same surface id convention as cube-linear-00: compare id areas.
-    const auto ours = summarize(mesh), theirs = summarize(build_mesh(io::read_meshb(test::ugawg("cube-linear-00.meshb"))));
+    const auto ours = summarize(mesh),
+               theirs = summarize(build_mesh(io::read_meshb(test::ugawg("cube-linear-00.meshb"))));
     CHECK(ours.surfaces.size() == theirs.surfaces.size());
     for (const auto& [id, s] : ours.surfaces) CHECK(theirs.surfaces.at(id).faces == s.faces);
     const auto big = make_box({.nx = 7, .ny = 5, .nz = 3, .lo = Point(0, 0, 0), .hi = Point(7, 5, 3)});

@@ -15,8 +15,8 @@
 #include <fstream>
 #include <sys/stat.h>
 #include <thread>
-#include <vector>
 #include <unistd.h>
+#include <vector>
 
 using namespace metrica;
 using test::has;
@@ -85,9 +85,10 @@ TEST_SUITE("regression") {
     test::TempDir dir;
     for (const char* x : {"1e308", "nan", "inf", "2e12"}) {
       CAPTURE(x);
-      std::ofstream(dir / "far.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n" << x
-                                      << " 0 0 0\n0 1 0 0\n0 0 1 0\nTetrahedra\n1\n1 2 3 4 0\nEnd\n";
-      for (const std::string& cmd : std::vector<std::string>{"info", "check", "adapt --analytic linear -o " + (dir / "a.meshb"),
+      std::ofstream(dir / "far.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n"
+                                      << x << " 0 0 0\n0 1 0 0\n0 0 1 0\nTetrahedra\n1\n1 2 3 4 0\nEnd\n";
+      for (const std::string& cmd :
+           std::vector<std::string>{"info", "check", "adapt --analytic linear -o " + (dir / "a.meshb"),
                                     "metric --analytic linear -o " + (dir / "m.solb")}) {
         CAPTURE(cmd);
         const auto r = metrica_cli(cmd.substr(0, cmd.find(' ')) + " " + (dir / "far.mesh") +
@@ -140,8 +141,8 @@ TEST_SUITE("regression") {
     CHECK_FALSE(fs::exists(dir / "a.meshb"));
     // The loop's last iteration and a metric's target.
     CHECK(metrica_cli("loop --field tanh3 --complexity 1e12 --iterations 1").code == 1);
-    const auto metric = metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --complexity 1e300 -o " +
-                                    (dir / "m.solb"));
+    const auto metric =
+        metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --complexity 1e300 -o " + (dir / "m.solb"));
     CHECK(metric.code == 1);
     CHECK(has(metric, "--max-tets"));
     CHECK_FALSE(fs::exists(dir / "m.solb"));
@@ -150,36 +151,36 @@ TEST_SUITE("regression") {
   TEST_CASE("options out of their domain are usage errors (exit 2) found before any input is read") {
     // The input does not exist: a usage error must be found first.
     const std::string in = "/nonexistent/in.meshb", out = " -o /tmp/out.meshb";
-    for (const std::string& args : std::vector<std::string>{"adapt " + in + " --analytic linear --quality-floor nan" + out,
-          "adapt " + in + " --analytic linear --quality-floor 2" + out,
-          "adapt " + in + " --analytic linear --smooth-below -5" + out,
-          "adapt " + in + " --analytic linear --collapse-max-length -1" + out,
-          "adapt " + in + " --analytic linear --min-length 2 --max-length 1" + out,
-          "adapt " + in + " --analytic linear --space curved" + out,
-          "adapt " + in + " --analytic linear --points random" + out,
-          "adapt " + in + " --analytic nope" + out,
-          "adapt " + in + " --analytic linear --hmin 2 --hmax 1" + out,
-          "adapt " + in + " --analytic linear --format-version 7" + out,
-          "adapt " + in + " --analytic linear -o /tmp/out.txt",
-          "adapt " + in + " --analytic linear --metric-out m.mesh" + out,
-          "cube --n 0" + out, "cube --n 2 --hi=1e308,1,1" + out, "cube --n 2 --hi=inf,1,1" + out,
-          "cube --n 2 --lo=1,0,0 --hi=0,1,1" + out,
-          "metric " + in + " --analytic linear --complexity 0 -o /tmp/m.solb",
-          "metric " + in + " --analytic linear --complexity nan -o /tmp/m.solb",
-          "metric " + in + " --field tanh3 --norm 0.5 -o /tmp/m.solb",
-          "metric " + in + " --analytic linear --gradation-space curved -o /tmp/m.solb",
-          "metric " + in + " --analytic linear -o /tmp/m.meshb",
-          "check " + in + " --max-messages -3", "check " + in + " --model-tolerance -1",
-          "loop --field nofield --quick", "loop --field tanh3 --complexity inf", "loop --field tanh3 --gradation 0.5",
-          "quality " + in + " --analytic linear --space curved", "error " + in + " --analytic nofield",
-          "convert " + in + " /tmp/out.obj", "interpolate " + in + " --field f.solb --to t.meshb -o out.meshb",
-          // A value-taking option followed by another option: the fuzzer's
-          // `--ou --dry-run` ran the whole loop into a folder "--dry-run".
-          "loop --field tanh3 -i " + in + " --quick --output-dir --dry-run",
-          "loop --field tanh3 -i " + in + " --quick --ou --dry-run", "adapt " + in + " --analytic linear -o --dry-run",
-          "metric " + in + " --analytic linear -o --quiet",
-          // Boost's placeholder in a bad value: its message looped forever.
-          "cube --n %value%" + out, "cube --n 2 --lo %canonical_option%" + out}) {
+    for (const std::string& args : std::vector<std::string>{
+             "adapt " + in + " --analytic linear --shape-floor nan" + out,
+             "adapt " + in + " --analytic linear --shape-floor 2" + out,
+             "adapt " + in + " --analytic linear --smooth-below -5" + out,
+             "adapt " + in + " --analytic linear --collapse-max-length -1" + out,
+             "adapt " + in + " --analytic linear --min-length 2 --max-length 1" + out,
+             "adapt " + in + " --analytic linear --space curved" + out,
+             "adapt " + in + " --analytic linear --points random" + out, "adapt " + in + " --analytic nope" + out,
+             "adapt " + in + " --analytic linear --hmin 2 --hmax 1" + out,
+             "adapt " + in + " --analytic linear --format-version 7" + out,
+             "adapt " + in + " --analytic linear -o /tmp/out.txt",
+             "adapt " + in + " --analytic linear --metric-out m.mesh" + out, "cube --n 0" + out,
+             "cube --n 2 --hi=1e308,1,1" + out, "cube --n 2 --hi=inf,1,1" + out,
+             "cube --n 2 --lo=1,0,0 --hi=0,1,1" + out,
+             "metric " + in + " --analytic linear --complexity 0 -o /tmp/m.solb",
+             "metric " + in + " --analytic linear --complexity nan -o /tmp/m.solb",
+             "metric " + in + " --field tanh3 --norm 0.5 -o /tmp/m.solb",
+             "metric " + in + " --analytic linear --gradation-space curved -o /tmp/m.solb",
+             "metric " + in + " --analytic linear -o /tmp/m.meshb", "check " + in + " --max-messages -3",
+             "check " + in + " --model-tolerance -1", "loop --field nofield --quick",
+             "loop --field tanh3 --complexity inf", "loop --field tanh3 --gradation 0.5",
+             "quality " + in + " --analytic linear --space curved", "error " + in + " --analytic nofield",
+             "convert " + in + " /tmp/out.obj", "interpolate " + in + " --field f.solb --to t.meshb -o out.meshb",
+             // A value-taking option followed by another option: the fuzzer's
+             // `--ou --dry-run` ran the whole loop into a folder "--dry-run".
+             "loop --field tanh3 -i " + in + " --quick --output-dir --dry-run",
+             "loop --field tanh3 -i " + in + " --quick --ou --dry-run",
+             "adapt " + in + " --analytic linear -o --dry-run", "metric " + in + " --analytic linear -o --quiet",
+             // Boost's placeholder in a bad value: its message looped forever.
+             "cube --n %value%" + out, "cube --n 2 --lo %canonical_option%" + out}) {
       CAPTURE(args);
       const auto r = metrica_cli(args);
       CHECK(r.code == 2);

@@ -145,8 +145,7 @@ TEST_SUITE("unit") {
     }
     // Every curve vertex also has its (u, v) on each surface along its curve.
     std::size_t on_curves = 0;
-    for (VertexId v = 0; v < c.mesh.vertex_capacity(); ++v)
-      on_curves += c.mesh.geo_param(v).dim == 1;
+    for (VertexId v = 0; v < c.mesh.vertex_capacity(); ++v) on_curves += c.mesh.geo_param(v).dim == 1;
     CHECK(out.on_geometry[2].size() > c.data.on_geometry[2].size() - 10);
     CHECK(on_curves > 0);
   }
@@ -263,7 +262,7 @@ TEST_SUITE("unit") {
 
   TEST_CASE("bootstrap meshes a model with every boundary vertex on it - STEP - IGES - periodic") {
     for (const std::string& path : {test::ugawg("cube-cylinder.step"), test::ugawg("cone-cone.step"),
-                                   test::ugawg("cone-cone.iges"), kCylinderModel}) {
+                                    test::ugawg("cone-cone.iges"), kCylinderModel}) {
       CAPTURE(path);
       CadModel model(path);
       const io::MeshData data = bootstrap_mesh(model, {.size = 0.25 * model.size()});
@@ -294,7 +293,7 @@ TEST_SUITE("invariant") {
     test::set_uniform_metric(c.mesh, 0.08);
     for (int pass = 0; pass < 3; ++pass) {
       refine_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
-      project_to_model<P, C>(c.mesh, {}, g);
+      project_to_model<S, P, C>(c.mesh, {}, g);
       const auto report = c.mesh.validate();
       INFO(report.to_string());
       REQUIRE(report.ok());
@@ -318,7 +317,7 @@ TEST_SUITE("invariant") {
     test::set_uniform_metric(c.mesh, 0.1);
     for (int pass = 0; pass < 2; ++pass) {
       refine_centroids<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
-      project_to_model<P, C>(c.mesh, {}, g);
+      project_to_model<S, P, C>(c.mesh, {}, g);
       const auto report = c.mesh.validate();
       INFO(report.to_string());
       REQUIRE(report.ok());
@@ -337,7 +336,7 @@ TEST_SUITE("invariant") {
     const CadGeometry g{&c.model};
     test::set_uniform_metric(c.mesh, 0.06);
     refine_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
-    project_to_model<P, C>(c.mesh, {}, g);
+    project_to_model<S, P, C>(c.mesh, {}, g);
     test::set_uniform_metric(c.mesh, 0.15);  // now most edges are short
     const std::size_t before = c.mesh.num_vertices();
     collapse_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
@@ -371,7 +370,7 @@ TEST_SUITE("invariant") {
     const CadGeometry g{&c.model};
     test::set_uniform_metric(c.mesh, 0.07);
     refine_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
-    project_to_model<P, C>(c.mesh, {}, g);
+    project_to_model<S, P, C>(c.mesh, {}, g);
     auto deviation = [&] {
       double sum = 0.0;
       for_each_boundary_face(c.mesh, [&](TetId t, int f) {

@@ -84,7 +84,8 @@ TEST_SUITE("unit") {
     d.triangles = {{0, 1, 2}};
     d.triangle_refs = {kMaxSurfaceId + 1};
     CHECK_THROWS_WITH_AS(build_mesh(d, BuildOptions{.source = "big.mesh"}),
-                         doctest::Contains("big.mesh: surface id 268435456 is beyond the ids a mesh holds"), InputError);
+                         doctest::Contains("big.mesh: surface id 268435456 is beyond the ids a mesh holds"),
+                         InputError);
   }
 
   TEST_CASE("every tet negatively oriented: all are reoriented") {

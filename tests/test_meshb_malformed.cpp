@@ -143,7 +143,8 @@ TEST_SUITE("unit") {
     test::QuietLog quiet;
     auto r = test::rng(2);
     for (auto enc : {Encoding::binary, Encoding::ascii}) {
-      const auto good = read_file_bytes(test::ugawg(enc == Encoding::binary ? "cube-cylinder.meshb" : "cube-linear-00.mesh"));
+      const auto good =
+          read_file_bytes(test::ugawg(enc == Encoding::binary ? "cube-cylinder.meshb" : "cube-linear-00.mesh"));
       std::uniform_int_distribution<std::size_t> pos(0, good.size() - 1);
       std::uniform_int_distribution<int> byte(0, 255);
       for (int trial = 0; trial < 300; ++trial) {
@@ -171,7 +172,8 @@ TEST_SUITE("unit") {
     CHECK(contains(error_of(std::string(kTet) + "Tetrahedra\n2\n1 2 3 4 0\n" + std::string(40, ' '), Encoding::ascii),
                    "unexpected end of file"));
     CHECK(contains(error_of("MeshVersionFormatted 2\nDimension 2\n", Encoding::ascii), "unsupported dimension 2"));
-    CHECK(contains(error_of("MeshVersionFormatted 9\nDimension 3\n", Encoding::ascii), "unsupported libMeshb version 9"));
+    CHECK(
+        contains(error_of("MeshVersionFormatted 9\nDimension 3\n", Encoding::ascii), "unsupported libMeshb version 9"));
     CHECK(contains(error_of("MeshVersionFormatted 2\nVertices 1\n0 0 0 0\nEnd\n", Encoding::ascii), "no Dimension"));
     CHECK(contains(error_of("MeshVersionFormatted 2\nDimension 3\nEnd\n", Encoding::ascii), "no Vertices"));
     CHECK(contains(error_of("12 13 14\n", Encoding::ascii), "expected a keyword"));
@@ -179,12 +181,12 @@ TEST_SUITE("unit") {
   }
 
   TEST_CASE("solutions: unknown type - wrong size - missing keyword") {
-    CHECK_THROWS_WITH_AS(parse_sol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 7\n1\nEnd\n",
-                                   Encoding::ascii, "s.sol"),
-                         doctest::Contains("unknown solution type 7"), IoError);
-    CHECK_THROWS_WITH_AS(parse_sol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n3\n1 3\n1 2 3\nEnd\n",
-                                   Encoding::ascii, "s.sol"),
-                         doctest::Contains("exceeds"), IoError);
+    CHECK_THROWS_WITH_AS(
+        parse_sol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 7\n1\nEnd\n", Encoding::ascii, "s.sol"),
+        doctest::Contains("unknown solution type 7"), IoError);
+    CHECK_THROWS_WITH_AS(
+        parse_sol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n3\n1 3\n1 2 3\nEnd\n", Encoding::ascii, "s.sol"),
+        doctest::Contains("exceeds"), IoError);
     CHECK_THROWS_WITH_AS(parse_sol("MeshVersionFormatted 2\nDimension 3\nEnd\n", Encoding::ascii, "s.sol"),
                          doctest::Contains("no SolAtVertices"), IoError);
     const auto solb = read_file_bytes(test::ugawg("cube-linear-00.solb"));

@@ -78,7 +78,8 @@ TEST_SUITE("property") {
       CHECK(sign * mean_ratio(k, m) == doctest::Approx(1.0).epsilon(1e-9));
       // Any tet: its quality in M is its Euclidean quality once mapped.
       const TetPoints t = random_tet(r);
-      CHECK(std::abs(mean_ratio(t, m)) == doctest::Approx(std::abs(mean_ratio(mapped(l, t), isotropic_metric(1.0)))).epsilon(1e-9));
+      CHECK(std::abs(mean_ratio(t, m)) ==
+            doctest::Approx(std::abs(mean_ratio(mapped(l, t), isotropic_metric(1.0)))).epsilon(1e-9));
       CHECK(mean_ratio(t, m) <= 1.0 + 1e-12);
     }
     // A flat tet has quality 0, an inverted one negative quality.
@@ -209,8 +210,8 @@ TEST_SUITE("property") {
       CHECK(rel_diff(log_euclidean_mean(cab, w3p), mean) < 1e-12);
       CHECK(is_spd(mean));
       // The determinant of the log-Euclidean mean is the geometric mean.
-      const double det = std::pow(determinant(abc[0]), 0.5) * std::pow(determinant(abc[1]), 0.3) *
-                         std::pow(determinant(abc[2]), 0.2);
+      const double det =
+          std::pow(determinant(abc[0]), 0.5) * std::pow(determinant(abc[1]), 0.3) * std::pow(determinant(abc[2]), 0.2);
       CHECK(determinant(mean) == doctest::Approx(det).epsilon(1e-8));
     }
   }
@@ -259,9 +260,11 @@ TEST_SUITE("property") {
       // Half the trials: a point on the circumsphere up to 2^-45.
       Point p = test::draw_point(u, r);
       if (i % 2) {
-        const Matrix3 rows = (Matrix3() << 2 * (k[1] - k[0]).transpose(), 2 * (k[2] - k[0]).transpose(),
-                              2 * (k[3] - k[0]).transpose()).finished();
-        const Eigen::Vector3d rhs((k[1] - k[0]).squaredNorm(), (k[2] - k[0]).squaredNorm(), (k[3] - k[0]).squaredNorm());
+        const Matrix3 rows =
+            (Matrix3() << 2 * (k[1] - k[0]).transpose(), 2 * (k[2] - k[0]).transpose(), 2 * (k[3] - k[0]).transpose())
+                .finished();
+        const Eigen::Vector3d rhs((k[1] - k[0]).squaredNorm(), (k[2] - k[0]).squaredNorm(),
+                                  (k[3] - k[0]).squaredNorm());
         const Point o = k[0] + rows.inverse() * rhs;
         p = o + (k[0] - o).norm() * test::draw_point(u, r).normalized();
       }
@@ -292,7 +295,8 @@ TEST_SUITE("property") {
                  Filtered::insphere(mk_points[0], mk_points[1], mk_points[2], mk_points[3], lp) >
              0));
       const auto w = edge_weights(k, m);
-      auto wl = edge_weights(l.determinant() > 0 ? mk_points : TetPoints{mk_points[0], mk_points[1], mk_points[3], mk_points[2]}, id);
+      auto wl = edge_weights(
+          l.determinant() > 0 ? mk_points : TetPoints{mk_points[0], mk_points[1], mk_points[3], mk_points[2]}, id);
       if (l.determinant() < 0) {
         // The swap of vertices 2 and 3 permutes edges: (0,2)<->(0,3), (1,2)<->(1,3).
         std::swap(wl[1], wl[2]);

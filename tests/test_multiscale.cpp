@@ -104,8 +104,7 @@ TEST_SUITE("property") {
       linear[i] = 2.0 * pts[i].x() - 3.0 * pts[i].y() + 0.5 * pts[i].z();
       quad[i] = quadratic(pts[i]);
     }
-    for (const auto& g : recover_gradient(mesh, linear))
-      CHECK((g - Eigen::Vector3d(2.0, -3.0, 0.5)).norm() < 1e-12);
+    for (const auto& g : recover_gradient(mesh, linear)) CHECK((g - Eigen::Vector3d(2.0, -3.0, 0.5)).norm() < 1e-12);
     const auto h = recover_hessian(mesh, quad);
     const auto deep = deep_interior(mesh, spec);
     int checked = 0;
@@ -130,7 +129,8 @@ TEST_SUITE("property") {
     for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
       const bool boundary = mesh.vertex_class(v) != VertexClass::interior;
       for (int c = 0; c < 6; ++c) {
-        if (!boundary) CHECK(fixed[v][c] == raw[v][c]);
+        if (!boundary)
+          CHECK(fixed[v][c] == raw[v][c]);
         else {
           before = std::max(before, std::abs(raw[v][c] - kQuadratic[c]));
           after = std::max(after, std::abs(fixed[v][c] - kQuadratic[c]));

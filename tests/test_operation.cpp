@@ -132,7 +132,7 @@ TEST_SUITE("property") {
     const auto long_edges = edges_beyond<S>(mesh, kUnitBand.hi, EdgeOrder::longest_first);
     CHECK(plans_checked<S>(mesh, EdgeSplit<S, P>{{}, mesh.next_epoch()}, long_edges, 0.0) > 0);
     // With a shape floor (children measured in their parent's metric).
-    CHECK(plans_checked<S>(mesh, EdgeSplit<S, P>{{.quality_floor = 0.2}, mesh.next_epoch()}, long_edges, 0.0) > 0);
+    CHECK(plans_checked<S>(mesh, EdgeSplit<S, P>{{.shape_floor = 0.2}, mesh.next_epoch()}, long_edges, 0.0) > 0);
     std::vector<std::uint32_t> of_tet;
     const auto candidates = centroid_candidates<S>(mesh, {}, of_tet);
     CHECK(plans_checked<S>(mesh, CentroidInsertion<S, P>{{}, mesh.next_epoch()}, candidates, 0.0) > 0);
@@ -147,8 +147,8 @@ TEST_SUITE("property") {
     set_uniform_metric(mesh, 0.5);
     const auto short_edges = edges_beyond<S>(mesh, kUnitBand.lo, EdgeOrder::shortest_first);
     const CollapseOptions o;
-    CHECK(plans_checked<S>(mesh, Collapse<S, P>{o}, short_edges, o.quality_floor) > 0);
-    CHECK(plans_checked<S>(mesh, Collapse<S, P, MinQuality>{o}, short_edges, o.quality_floor) >= 0);
+    CHECK(plans_checked<S>(mesh, Collapse<S, P>{o}, short_edges, o.shape_floor) > 0);
+    CHECK(plans_checked<S>(mesh, Collapse<S, P, MinQuality>{o}, short_edges, o.shape_floor) >= 0);
   }
 
   TEST_CASE_TEMPLATE("decided flips and smoothing moves never invert nor drop below the floor under every criterion", T,
@@ -161,18 +161,18 @@ TEST_SUITE("property") {
     const FlipOptions fo;
     const auto edges = all_edge_seeds<S>(mesh);
     const auto tets = all_tets(mesh);
-    CHECK(plans_checked<S>(mesh, EdgeRemoval<S, P, MinQuality>{fo}, edges, fo.min_quality) > 0);
-    CHECK(plans_checked<S>(mesh, EdgeRemoval<S, P, MaxMinEdgeWeight>{fo}, edges, fo.min_quality) > 0);
-    plans_checked<S>(mesh, EdgeRemoval<S, P, MetricDelaunay>{fo}, edges, fo.min_quality);
-    plans_checked<S>(mesh, EdgeRemoval<S, P, PreferNew>{fo}, edges, fo.min_quality);
-    CHECK(plans_checked<S>(mesh, FaceFlip<S, P, MinQuality>{fo}, tets, fo.min_quality) > 0);
-    plans_checked<S>(mesh, FaceFlip<S, P, MaxMinEdgeWeight>{fo}, tets, fo.min_quality);
-    plans_checked<S>(mesh, FaceFlip<S, P, MetricDelaunay>{fo}, tets, fo.min_quality);
-    CHECK(plans_checked<S>(mesh, FaceFlip<S, P, PreferNew>{fo}, tets, fo.min_quality) > 0);
+    CHECK(plans_checked<S>(mesh, EdgeRemoval<S, P, MinQuality>{fo}, edges, fo.shape_floor) > 0);
+    CHECK(plans_checked<S>(mesh, EdgeRemoval<S, P, MaxMinEdgeWeight>{fo}, edges, fo.shape_floor) > 0);
+    plans_checked<S>(mesh, EdgeRemoval<S, P, MetricDelaunay>{fo}, edges, fo.shape_floor);
+    plans_checked<S>(mesh, EdgeRemoval<S, P, PreferNew>{fo}, edges, fo.shape_floor);
+    CHECK(plans_checked<S>(mesh, FaceFlip<S, P, MinQuality>{fo}, tets, fo.shape_floor) > 0);
+    plans_checked<S>(mesh, FaceFlip<S, P, MaxMinEdgeWeight>{fo}, tets, fo.shape_floor);
+    plans_checked<S>(mesh, FaceFlip<S, P, MetricDelaunay>{fo}, tets, fo.shape_floor);
+    CHECK(plans_checked<S>(mesh, FaceFlip<S, P, PreferNew>{fo}, tets, fo.shape_floor) > 0);
     const auto vertices = all_vertices(mesh);
     const SmoothOptions so{.below = 1.0};
     CHECK(plans_checked<S>(mesh, Smoothing<S, P>{so}, vertices, 0.0) > 0);
-    CHECK(plans_checked<S>(mesh, Smoothing<S, P, MaxMinEdgeWeight>{so}, vertices, so.min_quality) > 0);
+    CHECK(plans_checked<S>(mesh, Smoothing<S, P, MaxMinEdgeWeight>{so}, vertices, so.shape_floor) > 0);
   }
 
   TEST_CASE_TEMPLATE("the 2-3 flip keeps the shape floor under every criterion", T, METRICA_SPACE_PRECISION) {
@@ -190,12 +190,12 @@ TEST_SUITE("property") {
     CHECK(old_worst > 0.3);
     auto check_floor = [&](const auto& d) {
       if (!d) return;
-      for (const auto& c : s.candidate) CHECK(S::mean_ratio(mesh, c) >= std::min(fo.min_quality, old_worst));
+      for (const auto& c : s.candidate) CHECK(S::mean_ratio(mesh, c) >= std::min(fo.shape_floor, old_worst));
     };
     const auto prefer_new = decide_flip23<S, P, PreferNew>(mesh, t, face, s, fo);
     double sliver = 1.0;
     for (const auto& c : s.candidate) sliver = std::min(sliver, S::mean_ratio(mesh, c));
-    CHECK(sliver < fo.min_quality);  // the configuration holds the case
+    CHECK(sliver < fo.shape_floor);  // the configuration holds the case
     CHECK_FALSE(prefer_new);
     check_floor(decide_flip23<S, P, MinQuality>(mesh, t, face, s, fo));
     check_floor(decide_flip23<S, P, MaxMinEdgeWeight>(mesh, t, face, s, fo));
@@ -203,7 +203,7 @@ TEST_SUITE("property") {
     check_floor(decide_flip23<S, P, AlwaysFlip>(mesh, t, face, s, fo));
     // With the floor at 0 the flip is taken (the floor is what refused it).
     FlipOptions no_floor = fo;
-    no_floor.min_quality = 0.0;
+    no_floor.shape_floor = 0.0;
     CHECK(static_cast<bool>(decide_flip23<S, P, PreferNew>(mesh, t, face, s, no_floor)));
   }
 }
@@ -250,22 +250,22 @@ TEST_SUITE("invariant") {
 // docs/writing-an-operator.md, step 3, as written there: the public
 // testing tools under PolicyCombinations.
 TEST_SUITE("invariant") {
-TEST_CASE_TEMPLATE_DEFINE("a Laplacian move never inverts under every policy (the tutorial's test)", T, laplacian) {
-  using S = typename T::Space;
-  using P = typename T::Precision;
-  const ExecutorOf<T> executor;
-  std::mt19937_64 rng(7);
-  Mesh mesh = jittered_box(4, 0.3, rng);
-  set_uniform_metric(mesh, 0.3);
-  std::vector<VertexId> vertices;
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) vertices.push_back(v);
-  const PlanCheck plans =
-      check_plans<S>(mesh, example::LaplacianMove<S, P>{}, std::span<const VertexId>(vertices), 0.0);
-  INFO(plans.problem);
-  CHECK(plans.ok());
-  CHECK(plans.plans > 0);
-  run_pass<typename T::Concurrency>(mesh, example::LaplacianMove<S, P>{}, vertices);
-  CHECK(mesh.validate().ok());
-}
-TEST_CASE_TEMPLATE_APPLY(laplacian, PolicyCombinations);
+  TEST_CASE_TEMPLATE_DEFINE("a Laplacian move never inverts under every policy (the tutorial's test)", T, laplacian) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    const ExecutorOf<T> executor;
+    std::mt19937_64 rng(7);
+    Mesh mesh = jittered_box(4, 0.3, rng);
+    set_uniform_metric(mesh, 0.3);
+    std::vector<VertexId> vertices;
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) vertices.push_back(v);
+    const PlanCheck plans =
+        check_plans<S>(mesh, example::LaplacianMove<S, P>{}, std::span<const VertexId>(vertices), 0.0);
+    INFO(plans.problem);
+    CHECK(plans.ok());
+    CHECK(plans.plans > 0);
+    run_pass<typename T::Concurrency>(mesh, example::LaplacianMove<S, P>{}, vertices);
+    CHECK(mesh.validate().ok());
+  }
+  TEST_CASE_TEMPLATE_APPLY(laplacian, PolicyCombinations);
 }

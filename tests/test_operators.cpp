@@ -138,8 +138,8 @@ TEST_SUITE("invariant") {
     CHECK(done == 20);
   }
 
-  TEST_CASE_TEMPLATE("reconnection under each criterion keeps the mesh valid - quality flips never lower the worst tet", T,
-                     METRICA_POLICY_COMBINATIONS) {
+  TEST_CASE_TEMPLATE("reconnection under each criterion keeps the mesh valid - quality flips never lower the worst tet",
+                     T, METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;
@@ -342,12 +342,14 @@ TEST_SUITE("invariant") {
     o.require_gain = true;
     const OperatorStats stats = collapse_edges<S, P, C>(mesh, o);
     require_valid(mesh, 1.0);
-    INFO("applied " << stats.applied << " of " << stats.tried << ", worst " << before << " -> " << worst_quality<S>(mesh));
+    INFO("applied " << stats.applied << " of " << stats.tried << ", worst " << before << " -> "
+                    << worst_quality<S>(mesh));
     CHECK(stats.applied > 0);
     CHECK(worst_quality<S>(mesh) >= before);
   }
 
-  TEST_CASE_TEMPLATE("smoothing never lowers the worst quality of a ball and never inverts", T, METRICA_POLICY_COMBINATIONS) {
+  TEST_CASE_TEMPLATE("smoothing never lowers the worst quality of a ball and never inverts", T,
+                     METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
     using P = typename T::Precision;

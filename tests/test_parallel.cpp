@@ -69,9 +69,7 @@ Adapted adapt_linear_by(Run&& run) {
 }
 
 Adapted adapt_linear(const std::string& c) {
-  return adapt_linear_by([c](Mesh& mesh, const AdaptOptions& o) {
-    return adapt_by_name(mesh, o, {.concurrency = c});
-  });
+  return adapt_linear_by([c](Mesh& mesh, const AdaptOptions& o) { return adapt_by_name(mesh, o, {.concurrency = c}); });
 }
 
 // The pipeline with every list shared out however short (by default
@@ -84,9 +82,7 @@ Adapted adapt_linear_shared() {
   });
 }
 
-std::size_t total_conflicts(const AdaptReport& r) {
-  return r.ops.total().conflicts;
-}
+std::size_t total_conflicts(const AdaptReport& r) { return r.ops.total().conflicts; }
 
 // The three worst tets by their true (not cached) mean ratio, with their
 // vertices' classes and their boundary faces' surface ids, and the min Q
@@ -323,8 +319,8 @@ TEST_SUITE("parallel") {
 
   TEST_CASE("grow_array on 2 and 8 threads and on 3 reversed parts: old elements kept, new ones filled") {
     const PartRunner reversed = reversed_parts(3);
-    for (const PartRunner& run : {PartRunner{}, part_runner<SpeculativeOn<2>>(1 << 20), reversed,
-                                  part_runner<SpeculativeOn<8>>(1 << 20)}) {
+    for (const PartRunner& run :
+         {PartRunner{}, part_runner<SpeculativeOn<2>>(1 << 20), reversed, part_runner<SpeculativeOn<8>>(1 << 20)}) {
       MeshArray<std::uint32_t> a;
       for (std::uint32_t i = 0; i < 10001; ++i) a.push_back(3 * i);
       a.shrink_to_fit();
@@ -335,8 +331,7 @@ TEST_SUITE("parallel") {
       grow_array(a, 100, 5u, 0, run);    // never shrinks
       REQUIRE(a.size() == 26003);
       std::size_t right = 0;
-      for (std::size_t i = 0; i < a.size(); ++i)
-        right += a[i] == (i < 10001 ? 3 * i : i < 25000 ? 7u : 9u);
+      for (std::size_t i = 0; i < a.size(); ++i) right += a[i] == (i < 10001 ? 3 * i : i < 25000 ? 7u : 9u);
       CHECK(right == a.size());
     }
   }
@@ -402,7 +397,8 @@ TEST_SUITE("parallel") {
     for (const Edge& e : all)
       if (seen.insert({e.a, e.b}).second) first_seen.push_back(e);
     auto by_key = first_seen;
-    std::stable_sort(by_key.begin(), by_key.end(), [](const Edge& x, const Edge& y) { return x.a < y.a || (x.a == y.a && x.b < y.b); });
+    std::stable_sort(by_key.begin(), by_key.end(),
+                     [](const Edge& x, const Edge& y) { return x.a < y.a || (x.a == y.a && x.b < y.b); });
     auto check = [&](auto policy, std::size_t parts, bool sorted) {
       using P = decltype(policy);
       std::vector<std::vector<Edge>> got(parts);
@@ -473,7 +469,9 @@ TEST_SUITE("parallel") {
     REQUIRE(mesh.tet_capacity() >= 16384);
     auto edges_with = [&](auto policy) {
       return collect_mesh_edges<decltype(policy), EdgeVertices>(
-          mesh, [](VertexId x, VertexId y, std::vector<EdgeVertices>& part) { part.push_back({x, y}); });
+          mesh, [](VertexId x, VertexId y, std::vector<EdgeVertices>& part) {
+            part.push_back({x, y});
+          });
     };
     // Serial's list: the mesh's edges, each once, by lower vertex (the
     // order within a vertex is checked by the bucket test above).
@@ -530,7 +528,9 @@ TEST_SUITE("parallel") {
     }
   }
 
-  TEST_CASE("edges_beyond: every edge past the bound once, longest (shortest) first to a factor 2^(1/8), the same on 2 and 8 threads, limited to changed balls") {
+  TEST_CASE(
+      "edges_beyond: every edge past the bound once, longest (shortest) first to a factor 2^(1/8), the same on 2 and 8 "
+      "threads, limited to changed balls") {
     Mesh mesh = make_box({.nx = 16, .ny = 16, .nz = 16});
     // Sizes graded along x and random anisotropy, so lengths spread over
     // several classes.
@@ -624,7 +624,7 @@ TEST_SUITE("parallel") {
       if (mesh.tet_alive(t) && mesh.tet_point(t, 0).y() > 0.85 && mesh.tet_point(t, 0).z() > 0.85) mesh.touch_tet(t);
     const Mesh::Epoch changes = mesh.next_epoch();
     const OperatorStats collapsed = collapse_edges<LogEuclidean, Filtered, Serial>(
-        mesh, {.max_new_length = 3.0, .quality_floor = 0.0, .changed_since = local});
+        mesh, {.max_new_length = 3.0, .shape_floor = 0.0, .changed_since = local});
     INFO("collapses tried " << collapsed.tried);
     CHECK(collapsed.applied > 0);
     CHECK(refine_edges<LogEuclidean, Filtered, Serial>(mesh, {.changed_since = local}).applied > 0);

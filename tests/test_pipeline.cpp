@@ -59,9 +59,8 @@ TEST_SUITE("invariant") {
                {"my-smooth", [&custom_runs](A& a) {
                   ++custom_runs;
                   const std::vector<VertexId> vertices = all_vertices(a.mesh());
-                  return a.run(
-                      Smoothing<typename A::Space, typename A::Precision>{{.below = 1.0}},
-                      std::span<const VertexId>(vertices));
+                  return a.run(Smoothing<typename A::Space, typename A::Precision>{{.below = 1.0}},
+                               std::span<const VertexId>(vertices));
                 }}};
     const AdaptReport& r = run_pipeline(adapter, p);
     require_valid(mesh, 1.0);
@@ -84,8 +83,7 @@ TEST_SUITE("invariant") {
       AdaptOptions o;
       o.quality_passes = 0;
       o.repair_rounds = 0;
-      const AdaptReport r =
-          run_pipeline(adapter, renamed ? renamed_cycle<A>(o) : standard_pipeline<A>(o));
+      const AdaptReport r = run_pipeline(adapter, renamed ? renamed_cycle<A>(o) : standard_pipeline<A>(o));
       return std::pair{r.cycles.size(), mesh.num_tets()};
     };
     const auto [standard_cycles, standard_tets] = run(false);

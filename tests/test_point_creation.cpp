@@ -7,9 +7,9 @@
 
 #include <metrica/io/meshb.hpp>
 #include <metrica/mesh_build.hpp>
-#include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/operators/reconnect.hpp>
 #include <metrica/operators/refine_centroids.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
 
 using namespace metrica;
 using namespace metrica::test;
@@ -51,9 +51,9 @@ TEST_SUITE("invariant") {
       if (mesh.vertex_class(v) == VertexClass::surface) CHECK(on_faces == 1);
       if (mesh.vertex_class(v) == VertexClass::ridge) CHECK(on_faces == 2);
     }
-    CHECK(by_class[0] > 1);                         // centroids inside
-    CHECK(by_class[1] > 0);                         // encroached boundary faces
-    CHECK(mesh.ridge_edges().size() > ridges);      // encroached ridges were split
+    CHECK(by_class[0] > 1);                     // centroids inside
+    CHECK(by_class[1] > 0);                     // encroached boundary faces
+    CHECK(mesh.ridge_edges().size() > ridges);  // encroached ridges were split
     CHECK(by_class[3] == 8);
     const auto after = surface_areas(mesh);
     REQUIRE(after.size() == areas.size());

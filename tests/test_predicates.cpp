@@ -39,8 +39,8 @@ int sphere(const std::array<Point, 5>& x, const std::array<int, 5>& p) {
 
 // Integer points on the sphere |x|^2 = 9 (exactly cospherical) and
 // points in the plane z = 1 (exactly coplanar).
-const std::array<Point, 12> kOnSphere = {Point(3, 0, 0),  Point(-3, 0, 0), Point(0, 3, 0),  Point(0, -3, 0),
-                                         Point(0, 0, 3),  Point(0, 0, -3), Point(1, 2, 2),  Point(2, 1, -2),
+const std::array<Point, 12> kOnSphere = {Point(3, 0, 0),  Point(-3, 0, 0), Point(0, 3, 0),   Point(0, -3, 0),
+                                         Point(0, 0, 3),  Point(0, 0, -3), Point(1, 2, 2),   Point(2, 1, -2),
                                          Point(-2, 2, 1), Point(2, -2, 1), Point(-1, -2, 2), Point(2, 2, -1)};
 
 enum class Input { random, coplanar, cospherical };
@@ -133,9 +133,9 @@ TEST_SUITE("property") {
           CHECK(fast_orient == 0);
           CHECK(fast_sphere == 0);
         }
-        MESSAGE("Fast vs Exact on " << std::string(names[static_cast<int>(kind)]) << std::string(perturb ? " + 2^-45" : "") << ": orient3d "
-                                    << fast_orient << " / " << calls << " wrong, insphere " << fast_sphere << " / "
-                                    << calls);
+        MESSAGE("Fast vs Exact on " << std::string(names[static_cast<int>(kind)])
+                                    << std::string(perturb ? " + 2^-45" : "") << ": orient3d " << fast_orient << " / "
+                                    << calls << " wrong, insphere " << fast_sphere << " / " << calls);
       }
     }
   }

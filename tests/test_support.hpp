@@ -31,7 +31,9 @@ inline std::uint64_t seed() {
   return s;
 }
 
-inline std::mt19937_64 rng(std::uint64_t stream = 0) { return std::mt19937_64(seed() + stream * 0x9e3779b97f4a7c15ull); }
+inline std::mt19937_64 rng(std::uint64_t stream = 0) {
+  return std::mt19937_64(seed() + stream * 0x9e3779b97f4a7c15ull);
+}
 
 // A point of three draws in a fixed order, last coordinate first: the order
 // in which GCC evaluated the argument list Point(d(r), d(r), d(r)) (which
@@ -46,7 +48,8 @@ Point draw_point(Dist& d, std::mt19937_64& r) {
 // Lists each tet's vertices so that it is positively oriented.
 inline void orient_positively(io::MeshData& d) {
   for (auto& t : d.tets)
-    if (orient3d_fast(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], d.vertices[t[3]]) < 0) std::swap(t[2], t[3]);
+    if (orient3d_fast(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], d.vertices[t[3]]) < 0)
+      std::swap(t[2], t[3]);
 }
 
 // A random SPD tensor with eigenvalues spread over [1, ratio] times a
@@ -56,8 +59,7 @@ inline Sym6 random_metric(std::mt19937_64& r, double ratio) {
   const double q3 = u(r), q2 = u(r), q1 = u(r), q0 = u(r);  // draw_point's order
   const Eigen::Quaterniond q(Eigen::Vector4d(q0, q1, q2, q3).normalized());
   const Eigen::Vector3d l(1.0, std::pow(ratio, e(r)), ratio);
-  return to_sym6(q.toRotationMatrix() * (l * std::pow(10.0, 4 * u(r))).asDiagonal() *
-                 q.toRotationMatrix().transpose());
+  return to_sym6(q.toRotationMatrix() * (l * std::pow(10.0, 4 * u(r))).asDiagonal() * q.toRotationMatrix().transpose());
 }
 
 // |a - b| / |b| in the Frobenius norm.

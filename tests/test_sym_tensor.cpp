@@ -14,7 +14,6 @@ namespace {
 using test::random_metric;
 using test::rel_diff;
 
-
 }  // namespace
 
 TEST_SUITE("property") {

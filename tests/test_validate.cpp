@@ -13,7 +13,9 @@ using namespace metrica;
 
 namespace {
 
-bool only(const ValidationReport& r, const std::string& check) { return r.count(check) > 0 && r.count(check) == r.total(); }
+bool only(const ValidationReport& r, const std::string& check) {
+  return r.count(check) > 0 && r.count(check) == r.total();
+}
 
 }  // namespace
 
@@ -75,8 +77,7 @@ TEST_SUITE("invariant") {
   TEST_CASE("manifold: two tets touching along an edge only - and at a vertex only") {
     test::QuietLog quiet;
     io::MeshData edge;
-    edge.vertices = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1),
-                     Point(0, -1, 0), Point(0, 0, -1)};
+    edge.vertices = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1), Point(0, -1, 0), Point(0, 0, -1)};
     edge.tets = {{0, 1, 2, 3}, {0, 1, 5, 4}};  // share the edge (0 1)
     test::orient_positively(edge);
     auto r = build_mesh(edge).validate();
@@ -84,7 +85,7 @@ TEST_SUITE("invariant") {
     CHECK(r.problems().front().message.find("lies on 4 boundary faces") != std::string::npos);
 
     io::MeshData vertex;
-    vertex.vertices = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1),
+    vertex.vertices = {Point(0, 0, 0),  Point(1, 0, 0),  Point(0, 1, 0), Point(0, 0, 1),
                        Point(-1, 0, 0), Point(0, -1, 0), Point(0, 0, -1)};
     vertex.tets = {{0, 1, 2, 3}, {0, 4, 6, 5}};  // share vertex 0
     test::orient_positively(vertex);

@@ -37,8 +37,8 @@ TEST_SUITE("property") {
         for (std::size_t i = 0; i < all.size(); ++i)
           if (i == 0 || all[i].first != all[i - 1].first) expected.push_back({all[i].first, seeds[all[i].second]});
         std::vector<EdgeSeed> got{{1, 2}};  // replaced, not appended to
-        unique_edge_seeds(std::span<const TetId>(seeds), [&](TetId t) -> const TetVertices& { return tets[t]; },
-                          capacity, got);
+        unique_edge_seeds(
+            std::span<const TetId>(seeds), [&](TetId t) -> const TetVertices& { return tets[t]; }, capacity, got);
         REQUIRE(got.size() == expected.size());
         for (std::size_t i = 0; i < got.size(); ++i) {
           CHECK(got[i].key == expected[i].key);

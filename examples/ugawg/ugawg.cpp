@@ -47,18 +47,26 @@ int main(int argc, char** argv) try {
   std::vector<std::string> cases;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--iterations" && i + 1 < argc) iterations = std::stoi(argv[++i]);
-    else if (a == "--csv" && i + 1 < argc) csv_path = argv[++i];
-    else if (a == "--space" && i + 1 < argc) space_name = argv[++i];
-    else if (a == "--points" && i + 1 < argc) points = argv[++i];
-    else if (a == "--concurrency" && i + 1 < argc) concurrency = argv[++i];
-    else if (a == "--threads" && i + 1 < argc) set_thread_count(std::stoi(argv[++i]));
+    if (a == "--iterations" && i + 1 < argc)
+      iterations = std::stoi(argv[++i]);
+    else if (a == "--csv" && i + 1 < argc)
+      csv_path = argv[++i];
+    else if (a == "--space" && i + 1 < argc)
+      space_name = argv[++i];
+    else if (a == "--points" && i + 1 < argc)
+      points = argv[++i];
+    else if (a == "--concurrency" && i + 1 < argc)
+      concurrency = argv[++i];
+    else if (a == "--threads" && i + 1 < argc)
+      set_thread_count(std::stoi(argv[++i]));
     else if (a == "-h" || a == "--help") {
-      fmt::print("usage: ugawg [--iterations N] [--csv FILE] [--space S] [--points edge|centroid]\n"
-                 "             [--concurrency serial|speculative] [--threads N] [linear polar-1 polar-2]\n"
-                 "(serial by default: the figures of the README are reproducible to the bit)\n");
+      fmt::print(
+          "usage: ugawg [--iterations N] [--csv FILE] [--space S] [--points edge|centroid]\n"
+          "             [--concurrency serial|speculative] [--threads N] [linear polar-1 polar-2]\n"
+          "(serial by default: the figures of the README are reproducible to the bit)\n");
       return 0;
-    } else cases.push_back(a);
+    } else
+      cases.push_back(a);
   }
   if (cases.empty()) cases = {"linear", "polar-1", "polar-2"};
   const PolicyChoice policies{space_name, Precisions::at<0>::name.data(), concurrency};
@@ -83,11 +91,13 @@ int main(int argc, char** argv) try {
       adapt_by_name(mesh, o, policies);
       const double seconds = clock.seconds();
       const auto r = quality_report(mesh, policies.space);
-      fmt::print("  {:>4} {:>9} {:>10} {:>8.2f} {:>8.2f}% {:>7.3f} {:>7.3f} {:>8.3f} {:>8.1f}\n", it, r.vertices, r.tets,
-                 seconds, 100.0 * r.unit_length_share, r.quality.min, r.quality.mean, r.vertices_per_complexity, peak_mb());
+      fmt::print("  {:>4} {:>9} {:>10} {:>8.2f} {:>8.2f}% {:>7.3f} {:>7.3f} {:>8.3f} {:>8.1f}\n", it, r.vertices,
+                 r.tets, seconds, 100.0 * r.unit_length_share, r.quality.min, r.quality.mean, r.vertices_per_complexity,
+                 peak_mb());
       std::fflush(stdout);
-      csv += fmt::format("{},{},{},{},{:.3f},{:.5f},{:.5f},{:.5f},{:.4f},{:.1f}\n", name, it, r.vertices, r.tets, seconds,
-                         r.unit_length_share, r.quality.min, r.quality.mean, r.vertices_per_complexity, peak_mb());
+      csv +=
+          fmt::format("{},{},{},{},{:.3f},{:.5f},{:.5f},{:.5f},{:.4f},{:.1f}\n", name, it, r.vertices, r.tets, seconds,
+                      r.unit_length_share, r.quality.min, r.quality.mean, r.vertices_per_complexity, peak_mb());
     }
   }
   if (!csv_path.empty()) io::write_file_atomically(csv_path, csv);

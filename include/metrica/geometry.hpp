@@ -26,9 +26,7 @@ inline double triangle_area(const Point& a, const Point& b, const Point& c) {
 }
 
 // The (unnormalised) normal (b-a)x(c-a) of triangle abc.
-inline Eigen::Vector3d triangle_normal(const Point& a, const Point& b, const Point& c) {
-  return (b - a).cross(c - a);
-}
+inline Eigen::Vector3d triangle_normal(const Point& a, const Point& b, const Point& c) { return (b - a).cross(c - a); }
 
 // 1 - |cos| of the angle between the lines of two normals: 0 when the
 // faces are parallel, whichever way they are oriented; 1 for a flat face.

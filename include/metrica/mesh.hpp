@@ -304,7 +304,7 @@ class Mesh {
 
   std::unordered_set<std::uint64_t> ridges_;
   std::unordered_set<std::uint64_t> feature_edges_;
-  mutable SpinLock tags_lock_;  // guards the two sets in parallel passes
+  mutable SpinLock tags_lock_;       // guards the two sets in parallel passes
   bool feature_edges_empty_ = true;  // never input feature edges
 
   // The reserve of a parallel pass: ids handed out from `cursor` on.

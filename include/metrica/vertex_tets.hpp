@@ -24,9 +24,7 @@ class VertexTets {
         for (VertexId v : mesh.tet(t)) tets_[fill[v]++] = t;
   }
 
-  std::span<const TetId> of(VertexId v) const {
-    return {tets_.data() + offsets_[v], offsets_[v + 1] - offsets_[v]};
-  }
+  std::span<const TetId> of(VertexId v) const { return {tets_.data() + offsets_[v], offsets_[v + 1] - offsets_[v]}; }
 
  private:
   std::vector<std::size_t> offsets_;

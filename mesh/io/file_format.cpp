@@ -48,13 +48,10 @@ void write_mesh_file(const std::string& path, const MeshData& data, int version,
                      FileFormat standard_output_format) {
   switch (is_standard_output(path) ? standard_output_format : format_of(path)) {
     case FileFormat::mesh:
-    case FileFormat::meshb:
-      write_meshb(path, data, version, run);
-      return;
+    case FileFormat::meshb: write_meshb(path, data, version, run); return;
     case FileFormat::vtu: write_vtu(path, data); return;
     case FileFormat::su2: write_su2(path, data); return;
-    default:
-      throw IoError(fmt::format("{}: unknown mesh output format (use .mesh, .meshb, .vtu or .su2)", path));
+    default: throw IoError(fmt::format("{}: unknown mesh output format (use .mesh, .meshb, .vtu or .su2)", path));
   }
 }
 

@@ -24,10 +24,7 @@ namespace {
 
 using namespace meshb;
 
-void log_missing_end(const std::string& file) {
-  log::warn("{}: no End keyword; the file may be truncated", file);
-}
-
+void log_missing_end(const std::string& file) { log::warn("{}: no End keyword; the file may be truncated", file); }
 
 // Values of one record kind, to bound counts against the file size.
 struct BinarySource {
@@ -325,7 +322,8 @@ int walk_text(TextReader& in, const std::string& file, Visit&& visit) {
 std::string read_file_bytes(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
-    throw IoError(fmt::format("{}: {}", path, S_ISDIR(st.st_mode) ? "is a folder, not a file" : "is not a regular file"));
+    throw IoError(
+        fmt::format("{}: {}", path, S_ISDIR(st.st_mode) ? "is a folder, not a file" : "is not a regular file"));
   std::ifstream f(path, std::ios::binary);
   if (!f) throw IoError(fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
   std::string bytes;

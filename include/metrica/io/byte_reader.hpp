@@ -29,14 +29,12 @@ class ByteReader {
 
   [[noreturn]] void fail(const std::string& what) const { fail_at(what, pos_); }
   [[noreturn]] void fail_at(const std::string& what, std::size_t offset) const {
-    if (context_.empty())
-      throw IoError(fmt::format("{}: {} (at byte offset {})", file_, what, offset));
+    if (context_.empty()) throw IoError(fmt::format("{}: {} (at byte offset {})", file_, what, offset));
     throw IoError(fmt::format("{}: {} (keyword {}, at byte offset {})", file_, what, context_, offset));
   }
 
   void need(std::uint64_t n) const {
-    if (n > left())
-      fail(fmt::format("file is truncated: {} more bytes needed, {} left", n, left()));
+    if (n > left()) fail(fmt::format("file is truncated: {} more bytes needed, {} left", n, left()));
   }
 
   template <class T>

@@ -47,9 +47,9 @@ constexpr std::string_view keyword_name(int code) {
 }
 
 inline int keyword_code(std::string_view name) {
-  for (int code : {kVersion, kDimension, kVertices, kEdges, kTriangles, kTetrahedra, kCorners, kRidges,
-                   kRequiredVertices, kVerticesOnGeometricVertices, kVerticesOnGeometricEdges,
-                   kVerticesOnGeometricTriangles, kEnd, kSolAtVertices})
+  for (int code :
+       {kVersion, kDimension, kVertices, kEdges, kTriangles, kTetrahedra, kCorners, kRidges, kRequiredVertices,
+        kVerticesOnGeometricVertices, kVerticesOnGeometricEdges, kVerticesOnGeometricTriangles, kEnd, kSolAtVertices})
     if (keyword_name(code) == name) return code;
   return 0;
 }

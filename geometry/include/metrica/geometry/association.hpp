@@ -30,11 +30,11 @@ AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshDat
 
 // How far the boundary vertices are from their entities.
 struct ModelDistance {
-  std::size_t vertices = 0;       // boundary vertices with an entity
-  std::size_t unassociated = 0;   // boundary vertices without one
-  double max = 0.0;               // largest distance
-  VertexId worst = kNoId;         // where
-  std::size_t beyond = 0;         // vertices farther than the tolerance asked
+  std::size_t vertices = 0;      // boundary vertices with an entity
+  std::size_t unassociated = 0;  // boundary vertices without one
+  double max = 0.0;              // largest distance
+  VertexId worst = kNoId;        // where
+  std::size_t beyond = 0;        // vertices farther than the tolerance asked
 };
 ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance = 1e-8);
 

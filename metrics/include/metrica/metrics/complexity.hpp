@@ -27,8 +27,7 @@ double complexity(const Mesh& mesh);
 // The vertex formula overestimates a metric that varies within the coarse
 // tets of a start mesh by up to 10x (UGAWG linear on 48 tets); sampled, the
 // estimate is within a few tens of percent: what size predictions need.
-double sampled_complexity(const Mesh& mesh, const std::function<Sym6(const Point&)>& metric,
-                          double samples = 4e6);
+double sampled_complexity(const Mesh& mesh, const std::function<Sym6(const Point&)>& metric, double samples = 4e6);
 
 // Multiplies every tensor by s (sizes by 1/sqrt(s); complexity by s^1.5).
 void scale_metrics(std::vector<Sym6>& field, double s);

@@ -31,7 +31,9 @@ inline double ugawg_length(double la, double lb) {
   const double x = (la - lb) / sum, x2 = x * x;
   if (x2 < 1.0 / 64.0) {
     const double atanh_over_x =
-        1.0 + x2 * (1.0 / 3 + x2 * (1.0 / 5 + x2 * (1.0 / 7 + x2 * (1.0 / 9 + x2 * (1.0 / 11 + x2 * (1.0 / 13 + x2 * (1.0 / 15)))))));
+        1.0 +
+        x2 * (1.0 / 3 +
+              x2 * (1.0 / 5 + x2 * (1.0 / 7 + x2 * (1.0 / 9 + x2 * (1.0 / 11 + x2 * (1.0 / 13 + x2 * (1.0 / 15)))))));
     return 0.5 * sum / atanh_over_x;
   }
   if (la < lb) std::swap(la, lb);  // the same rounding either way round

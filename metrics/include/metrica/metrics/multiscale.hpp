@@ -19,14 +19,14 @@ namespace metrica {
 
 struct MultiscaleOptions {
   double complexity = 1000.0;
-  double norm = 2.0;  // p, in [1, inf)
+  double norm = 2.0;    // p, in [1, inf)
   MetricBounds bounds;  // h_max defaults to the domain's largest extent
   bool gradation = true;
   GradationOptions gradation_options;
   // The recovered Hessian at boundary vertices replaced by their interior
   // neighbours' (recovery.hpp: extrapolate_hessian_to_boundary).
   bool extrapolate_boundary = true;
-  int max_relaxations = 8;           // scale / bound / grade rounds
+  int max_relaxations = 8;             // scale / bound / grade rounds
   double complexity_tolerance = 5e-3;  // stop when |C/N - 1| is below
 };
 
@@ -53,7 +53,6 @@ std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<std::vec
 
 // The same from a Hessian field (for users who recover it themselves).
 std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<Sym6> hessian,
-                                                 const MultiscaleOptions& options,
-                                                 MultiscaleReport* report = nullptr);
+                                                 const MultiscaleOptions& options, MultiscaleReport* report = nullptr);
 
 }  // namespace metrica

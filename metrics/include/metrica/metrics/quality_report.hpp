@@ -29,7 +29,7 @@ struct QualityReport {
   std::string space;
   std::size_t vertices = 0, edges = 0, tets = 0;
   SampleStats length, quality;
-  double unit_length_share = 0;  // edges with L in [1/sqrt 2, sqrt 2]
+  double unit_length_share = 0;                       // edges with L in [1/sqrt 2, sqrt 2]
   double quality_below_01 = 0, quality_below_03 = 0;  // shares of tets
   double complexity = 0;
   double vertices_per_complexity = 0;

@@ -10,6 +10,7 @@
 #include <metrica/mesh.hpp>
 
 #include <Eigen/Core>
+
 #include <vector>
 
 namespace metrica {

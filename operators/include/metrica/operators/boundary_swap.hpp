@@ -24,8 +24,7 @@ namespace metrica {
 struct BoundarySwapOptions {
   // The new facets' deviation must be at most this share of the old.
   double gain = 0.5;
-  // The shape floor of the new tets.
-  double min_quality = 0.1;
+  double shape_floor = ShapeFloors::boundary_swap;
   // Old facets that deviate less than this are left as they are.
   double below = 1e-4;
 };
@@ -67,15 +66,15 @@ struct BoundarySwap {
     const int sign = edge_ring(mesh, a, b, shell, s.ring);
     if (s.ring.size() != 3) return Refusal::not_applicable;
     const VertexId v0 = s.ring.front(), v2 = s.ring.back();
-    const double before = std::max(geometry.facet_deviation(mesh, a, b, v0, surface),
-                                   geometry.facet_deviation(mesh, a, b, v2, surface));
+    const double before =
+        std::max(geometry.facet_deviation(mesh, a, b, v0, surface), geometry.facet_deviation(mesh, a, b, v2, surface));
     if (before < options.below) return Refusal::not_applicable;
     const double after = std::max(geometry.facet_deviation(mesh, v0, v2, a, surface),
                                   geometry.facet_deviation(mesh, v0, v2, b, surface));
     if (after > options.gain * before) return Refusal::rejected;
     fan_tets(s.ring, 0, a, b, sign, s.candidate);
     if (!all_positive<P>(mesh, view(s.candidate))) return Refusal::rejected;
-    if (!keeps_shape<S, MinQuality>(mesh, view(shell.tets), view(s.candidate), options.min_quality))
+    if (!keeps_shape<S, ShapeOnly>(mesh, view(shell.tets), view(s.candidate), options.shape_floor))
       return Refusal::rejected;
     // The new boundary edge must not exist already.
     if (tet_with_edge(mesh, v0, v2, s.ball) != kNoId) return Refusal::rejected;

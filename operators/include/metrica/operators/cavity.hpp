@@ -14,7 +14,6 @@
 #pragma once
 
 #include <metrica/mesh.hpp>
-
 #include <metrica/small_vector.hpp>
 
 #include <algorithm>

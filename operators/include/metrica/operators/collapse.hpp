@@ -41,7 +41,7 @@ struct CollapseOptions {
   // more short edges go (UGAWG linear: 92.6% of edges in range against
   // 91.0% with sqrt 2).
   double max_new_length = 1.5;
-  double quality_floor = 0.1;
+  double shape_floor = ShapeFloors::collapse;
   // Largest 1 - cos between a boundary face's normal before and after.
   double max_normal_deviation = 1.0 - std::cos(2.0 * std::numbers::pi / 180.0);
   // When set, a collapse must raise the worst tet of the ball (both balls
@@ -73,14 +73,10 @@ struct CollapseScratch {
 inline bool collapse_allowed(const Mesh& mesh, VertexId a, VertexId b, bool boundary_edge) {
   if (mesh.is_required(a)) return false;
   switch (mesh.vertex_class(a)) {
-    case VertexClass::corner:
-      return false;
-    case VertexClass::ridge:
-      return mesh.is_ridge(a, b);
-    case VertexClass::surface:
-      return boundary_edge;
-    case VertexClass::interior:
-      return true;
+    case VertexClass::corner: return false;
+    case VertexClass::ridge: return mesh.is_ridge(a, b);
+    case VertexClass::surface: return boundary_edge;
+    case VertexClass::interior: return true;
   }
   return false;
 }
@@ -180,7 +176,7 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
     }
     return q_old;
   };
-  const ShapeFloor shape(o.quality_floor);
+  const ShapeFloor shape(o.shape_floor);
   s.new_quality.clear();
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
@@ -195,7 +191,8 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
     const double bar = Criterion::bar(old_score);
     for (const auto* list : {&s.new_tets, &s.dragged})
       for (const auto& t : *list)
-        if (Criterion::template tet_score_at<S>(mesh, t, tet_points_moved(mesh, t, b, pb)) <= bar) return Refusal::rejected;
+        if (Criterion::template tet_score_at<S>(mesh, t, tet_points_moved(mesh, t, b, pb)) <= bar)
+          return Refusal::rejected;
   }
   CollapsePlan plan{a, b, moved != nullptr, pb, {}};
   if (moved_metric != nullptr) plan.metric = *moved_metric;
@@ -219,7 +216,6 @@ inline void apply_collapse(Mesh& mesh, const CollapsePlan& plan, CollapseScratch
       if (mesh.tet_alive(t)) mesh.touch_tet(t);  // dragged along
   }
 }
-
 
 // The collapse of a short edge as an operation: it tries to remove the
 // end of lower class (interior before surface before ridge), then the

@@ -176,6 +176,26 @@ struct ShapeOnly {
 
 static_assert(ScoredCriterion<MinQuality> && ScoredCriterion<MaxMinEdgeWeight> && ScoredCriterion<ShapeOnly>);
 
+// The shape floor of each operation, one default each, stated here (the
+// options' `shape_floor`): the mean ratio below which a new tet is
+// refused unless the configuration it replaces already had a worse one.
+struct ShapeFloors {
+  // A split refines what it is given: its tets are as good as their
+  // parents allow.
+  static constexpr double split = 0.0;
+  // A collapse can make what later cycles cannot undo.
+  static constexpr double collapse = 0.1;
+  // Flips and smoothing under a criterion that does not measure shape must
+  // not fold a flat boundary (tets of Q ~ 1e-11 without a floor).
+  static constexpr double flip = 1e-3;
+  static constexpr double smoothing = 1e-3;
+  // A boundary swap and a projection follow the model: no criterion
+  // decides them, and by default no floor but a positive tet (the flips
+  // and smoothing around them lift what they leave).
+  static constexpr double boundary_swap = 0.0;
+  static constexpr double projection = 0.0;
+};
+
 // The shape floor every criterion gets: a new configuration may not have a
 // tet below min(floor, the worst old tet) in mean ratio. Without it, metric
 // Delaunay or edge-weight flips on a flat boundary made tets of Q ~ 1e-11

@@ -76,8 +76,8 @@ void add_lower_ends(const TetVertices& v, Add&& add) {
 }
 
 template <class C, class Entry, class TetOf, class VerticesOf, class Visit, class Sizes = NoEdgeCounts>
-void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, VerticesOf&& vertices_of,
-                          LowerRange range, bool sorted, Visit&& visit, Sizes&& sizes = {}) {
+void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, VerticesOf&& vertices_of, LowerRange range,
+                          bool sorted, Visit&& visit, Sizes&& sizes = {}) {
   static_assert(std::is_same_v<Entry, VertexId> || std::is_same_v<Entry, UpperTet>);
   parts = std::max<std::size_t>(parts, 1);
   const std::size_t lo = range.lo, cap = range.hi > range.lo ? range.hi - range.lo : 0;
@@ -128,7 +128,8 @@ void for_each_edge_bucket(std::size_t parts, std::size_t n, TetOf&& tet_of, Vert
   cut[0] = 0;
   for (std::size_t p = 1; p < parts; ++p)
     cut[p] = static_cast<std::size_t>(
-        std::lower_bound(start.data(), start.data() + cap, static_cast<std::uint32_t>(total * p / parts)) - start.data());
+        std::lower_bound(start.data(), start.data() + cap, static_cast<std::uint32_t>(total * p / parts)) -
+        start.data());
   auto upper_of = [](const Entry& x) {
     if constexpr (std::is_same_v<Entry, UpperTet>)
       return x.upper;

@@ -59,10 +59,7 @@ struct FlipOptions {
   // Boundary faces of a 2-2 flip: largest angle between old and new
   // normals, as 1 - cos (flat surfaces: round-off only).
   double max_normal_deviation = 1e-9;
-  // The shape floor (criterion.hpp) of every criterion that does not
-  // measure shape: no new tet below this mean ratio, unless the old tets
-  // had a worse one.
-  double min_quality = 1e-3;
+  double shape_floor = ShapeFloors::flip;
 };
 
 // The ring of edge ab from its shell (append_ring: tet k of the shell is
@@ -283,7 +280,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
       const NewTets& reference = found ? s.best : s.old_tets;
       if (!Criterion::template prefers<S, P>(mesh, view(reference), view(s.candidate))) continue;
     }
-    if (!keeps_shape<S, Criterion>(mesh, view(shell.tets), view(s.candidate), o.min_quality)) continue;
+    if (!keeps_shape<S, Criterion>(mesh, view(shell.tets), view(s.candidate), o.shape_floor)) continue;
     s.best = s.candidate;
     s.best_scores.clear();
     if (memo)
@@ -340,7 +337,7 @@ Decision<Flip23Plan> decide_flip23(const Mesh& mesh, TetId t, int face, FlipScra
     s.old_tets.emplace_back(mesh.tet(nb.tet()));
     if (!Criterion::template prefers<S, P>(mesh, view(s.old_tets), view(s.candidate))) return Refusal::rejected;
   }
-  if (!keeps_shape<S, Criterion>(mesh, old, view(s.candidate), o.min_quality)) return Refusal::rejected;
+  if (!keeps_shape<S, Criterion>(mesh, old, view(s.candidate), o.shape_floor)) return Refusal::rejected;
   if (!plan_cavity(mesh, old, view(s.candidate), s.plan)) return Refusal::rejected;
   return Flip23Plan{t, nb.tet(), face};
 }

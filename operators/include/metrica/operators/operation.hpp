@@ -11,8 +11,9 @@
 //                                     there, and the rest of its cavity;
 //   decide(mesh, item, scratch)       reads the cavity, returns a plan or
 //                                     a refusal; writes nothing to the
-//                                     mesh but its quality cache (the
-//                                     held cavity's mean ratios);
+//                                     mesh (it gets a const Mesh&) but its
+//                                     quality cache (the held cavity's
+//                                     mean ratios; check_plans verifies);
 //   apply(mesh, item, plan, scratch)  writes the plan.
 //
 // A plan is valid with the scratch it was decided with, until the next
@@ -130,12 +131,9 @@ Decision<typename Op::Plan> decide_item(const Mesh& mesh, const Op& op, const ty
                                         typename Op::Scratch& s) {
   VertexList list;
   switch (prepare_item(mesh, op, item, s, list, [](std::span<const VertexId>) { return true; })) {
-    case Prepared::ready:
-      return op.decide(mesh, item, s);
-    case Prepared::deferred:
-      return Refusal::deferred;
-    default:
-      return Refusal::not_applicable;
+    case Prepared::ready: return op.decide(mesh, item, s);
+    case Prepared::deferred: return Refusal::deferred;
+    default: return Refusal::not_applicable;
   }
 }
 
@@ -154,16 +152,13 @@ OperatorStats run_pass(Mesh& mesh, const Op& op, std::span<const typename Op::It
     auto& [x, st] = threads[static_cast<std::size_t>(thread)];
     switch (prepare_item(view_only, op, item, x.scratch, x.hold,
                          [&locks](std::span<const VertexId> v) { return locks.acquire(v); })) {
-      case Prepared::conflict:
-        return Attempt::conflict;
-      case Prepared::gone:
-        return Attempt::done;
+      case Prepared::conflict: return Attempt::conflict;
+      case Prepared::gone: return Attempt::done;
       case Prepared::deferred:
         ++st.tried;
         ++st.deferred;
         return Attempt::done;
-      case Prepared::ready:
-        break;
+      case Prepared::ready: break;
     }
     const Decision<typename Op::Plan> d = op.decide(view_only, item, x.scratch);
     if (d) {

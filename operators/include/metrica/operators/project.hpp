@@ -18,11 +18,14 @@ namespace metrica {
 struct ProjectionOptions {
   // A vertex this close to its entity's point is on the model.
   double tolerance = 1e-10;
+  // A move may not make a tet of the ball worse than this (unless one
+  // already was).
+  double shape_floor = ShapeFloors::projection;
   // When set, a moved vertex takes this metric at its new position.
   const MetricFunction* metric = nullptr;
 };
 
-template <Precision P, Geometry G>
+template <MetricSpace S, Precision P, Geometry G>
 struct Projection {
   using Item = VertexId;
   using Scratch = SmoothScratch;
@@ -46,7 +49,17 @@ struct Projection {
     const Point x = mesh.point(v);
     const Point target = geometry.point(mesh.geo_param(v));
     if ((target - x).norm() <= options.tolerance) return Refusal::not_applicable;
-    const auto q = backtrack_toward(x, target, [&](const Point& p) { return ball_positive_at<P>(mesh, v, s.ball, p); });
+    WorstOld<S> worst_old(mesh, view(s.ball));
+    const ShapeFloor shape(options.shape_floor);
+    auto keeps_shape_at = [&](const Point& p) {
+      if (options.shape_floor <= 0.0) return true;
+      for (TetId t : s.ball)
+        if (!shape.admits(S::mean_ratio(mesh, mesh.tet(t), tet_points_moved(mesh, mesh.tet(t), v, p)), worst_old))
+          return false;
+      return true;
+    };
+    const auto q = backtrack_toward(
+        x, target, [&](const Point& p) { return ball_positive_at<P>(mesh, v, s.ball, p) && keeps_shape_at(p); });
     if (!q) return Refusal::rejected;
     return Plan{*q, GeoParam{}};  // the vertex keeps its parameters
   }
@@ -70,12 +83,12 @@ std::vector<VertexId> vertices_off_model(const Mesh& mesh, const G& geometry, do
 }
 
 // The projection pass: every boundary vertex off the model.
-template <Precision P, Concurrency C, Geometry G>
+template <MetricSpace S, Precision P, Concurrency C, Geometry G>
 OperatorStats project_to_model(Mesh& mesh, const ProjectionOptions& o, const G& geometry) {
   Stopwatch clock;
   const auto todo = vertices_off_model<C>(mesh, geometry, o.tolerance);
   OperatorStats stats;
-  if (!todo.empty()) stats = run_pass<C>(mesh, Projection<P, G>{o, geometry}, todo);
+  if (!todo.empty()) stats = run_pass<C>(mesh, Projection<S, P, G>{o, geometry}, todo);
   stats.seconds = clock.seconds();
   return stats;
 }
@@ -83,8 +96,8 @@ OperatorStats project_to_model(Mesh& mesh, const ProjectionOptions& o, const G& 
 // The last resort for the vertices in `off` (off the model, their
 // projection refused): each is collapsed onto one of its neighbours along
 // a boundary edge, at any length and shape, when the Geometry's rules
-// and a positive ball allow it (serial: few vertices, outside a pass). Returns the stats; the vertices that stay are the caller's to
-// report.
+// and a positive ball allow it (serial: few vertices, outside a pass). Returns the stats; the vertices that stay are
+// the caller's to report.
 template <MetricSpace S, Precision P, Geometry G>
 OperatorStats collapse_off_model(Mesh& mesh, std::span<const VertexId> off, const G& geometry) {
   Stopwatch clock;
@@ -94,7 +107,7 @@ OperatorStats collapse_off_model(Mesh& mesh, std::span<const VertexId> off, cons
   CollapseOptions o;
   o.min_length = std::numeric_limits<double>::infinity();
   o.max_new_length = std::numeric_limits<double>::infinity();
-  o.quality_floor = 0.0;
+  o.shape_floor = 0.0;
   CollapseScratch s;
   for (VertexId v : off) {
     if (!mesh.vertex_alive(v)) continue;

@@ -24,10 +24,10 @@
 // which).
 #pragma once
 
+#include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/refine_edges.hpp>
-#include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/split_cell.hpp>
 #include <metrica/operators/split_edge.hpp>
 #include <metrica/policies/concurrency.hpp>
@@ -207,8 +207,7 @@ struct CentroidInsertion {
     const BoundaryPoint at = place_boundary_vertex(
         geometry, param, c.p, [&](const Point& q) { return cell_split_is_valid<P>(mesh, c.tet, c.face, q); });
     if (!cell_split_is_valid<P>(mesh, c.tet, c.face, at.p)) return Refusal::rejected;
-    if (!cell_split_accepted<S, Criterion>(mesh, c.tet, c.face, at.p, options.quality_floor))
-      return Refusal::rejected;
+    if (!cell_split_accepted<S, Criterion>(mesh, c.tet, c.face, at.p, options.shape_floor)) return Refusal::rejected;
     return Plan{new_vertex_metric<S>(mesh, options.metric, parents, weights, at.p), at.p, at.geo};
   }
   void apply(Mesh& mesh, const Item& c, const Plan& plan, Scratch& x) const {

@@ -23,9 +23,7 @@ namespace metrica {
 struct RefineOptions {
   double max_length = kUnitBand.hi;
   double min_new_distance = kUnitBand.lo;
-  // The shape floor of a split (0: none): no child below this mean ratio
-  // unless its parent was worse.
-  double quality_floor = 0.0;
+  double shape_floor = ShapeFloors::split;
   // When set, new vertices take this metric instead of an interpolated one.
   const MetricFunction* metric = nullptr;
   // Only edges with an end whose ball changed since this epoch are split
@@ -67,7 +65,7 @@ Decision<EdgeSplitPlan> decide_edge_point(const Mesh& mesh, const Shell& shell, 
                             [&](const Point& q) { return split_is_valid<P>(mesh, shell, a, b, q); });
   if (too_close(at.p)) return Refusal::rejected;
   if (!split_is_valid<P>(mesh, shell, a, b, at.p)) return Refusal::rejected;
-  if (!split_accepted<S, Criterion>(mesh, shell, a, b, at.p, options.quality_floor)) return Refusal::rejected;
+  if (!split_accepted<S, Criterion>(mesh, shell, a, b, at.p, options.shape_floor)) return Refusal::rejected;
   const std::array<VertexId, 2> ends{a, b};
   const std::array<double, 2> w{1.0 - t, t};
   return EdgeSplitPlan{at.p, new_vertex_metric<S>(mesh, options.metric, ends, w, at.p), at.geo};

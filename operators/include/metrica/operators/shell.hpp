@@ -6,7 +6,6 @@
 
 #include <metrica/mesh.hpp>
 #include <metrica/policies/concurrency.hpp>
-
 #include <metrica/small_vector.hpp>
 
 #include <algorithm>

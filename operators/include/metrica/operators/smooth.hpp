@@ -43,8 +43,7 @@ struct SmoothOptions {
   double flat_tolerance = 1e-12;
   // When set, a moved vertex takes this metric at its new position.
   const MetricFunction* metric = nullptr;
-  // The shape floor of criteria other than MinQuality.
-  double min_quality = 1e-3;
+  double shape_floor = ShapeFloors::smoothing;
   // Only vertices with a tet written since this epoch are tried (0: all):
   // smoothing v reads only v's ball, so an unchanged ball gives the same
   // refusal as last time. Valid only when `below` is no larger than in the
@@ -400,7 +399,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   if constexpr (CriterionTraits<Criterion>::score_is_mean_ratio_cubed)
     return detail::best_trial_by_mean_ratio(mesh, v, s, secondary, admissible);
   else
-    return detail::best_trial_by_criterion<S, Criterion>(mesh, v, s, secondary, o.min_quality, admissible);
+    return detail::best_trial_by_criterion<S, Criterion>(mesh, v, s, secondary, o.shape_floor, admissible);
 }
 
 // The trials of boundary vertex v on the model (s.trials and their
@@ -470,7 +469,6 @@ inline void apply_smoothing(Mesh& mesh, VertexId v, const SmoothPlan& plan, cons
     mesh.set_metric(v, m, spd_log(m));
   }
 }
-
 
 // Vertex smoothing as an operation.
 template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G = NoGeometry>

@@ -74,7 +74,8 @@ bool cell_split_accepted(const Mesh& mesh, TetId t, int face, const Point& p, do
   const ShapeFloor shape(floor);
   const std::array<TetId, 1> parent{t};
   WorstOld<S> worst_old(mesh, parent);
-  const double bar = CriterionTraits<Criterion>::indifferent ? 0.0 : Criterion::bar(Criterion::template tet_score_of<S>(mesh, t));
+  const double bar =
+      CriterionTraits<Criterion>::indifferent ? 0.0 : Criterion::bar(Criterion::template tet_score_of<S>(mesh, t));
   return all_cell_children(mesh, t, face, p, [&](const TetVertices&, const TetPoints& x) {
     if (floor > 0.0 && !shape.admits(S::mean_ratio(mesh, mesh.tet(t), x), worst_old)) return false;
     return CriterionTraits<Criterion>::indifferent || Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) > bar;

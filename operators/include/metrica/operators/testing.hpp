@@ -2,7 +2,8 @@
 // (docs/writing-an-operator.md, step 3):
 //   - jittered_box: a box whose interior vertices are moved at random, so
 //     that flips and smoothing have work to do;
-//   - check_plans: every item through decide without applying it; each plan
+//   - check_plans: every item through decide without applying it (the mesh
+//     must come out as it went in, but for its quality cache); each plan
 //     previewed (no tet inverted under exact predicates, none below the
 //     shape floor) and the first plans applied on a copy of the mesh (valid,
 //     the same volume, the same area per surface id, the same ridge length);
@@ -25,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <random>
 #include <span>
@@ -74,15 +76,51 @@ double worst_quality(const Mesh& mesh) {
   return q;
 }
 
+// A hash of everything but the quality cache: live entities, points,
+// metrics, vertex classes, tets, neighbours and surface ids, change stamps
+// and the epoch. What decide may not change (operation.hpp).
+inline std::uint64_t mesh_fingerprint(const Mesh& mesh) {
+  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a
+  auto mix = [&h](const auto& value) {
+    const auto* bytes = reinterpret_cast<const unsigned char*>(&value);
+    for (std::size_t i = 0; i < sizeof(value); ++i) h = (h ^ bytes[i]) * 1099511628211ULL;
+  };
+  mix(mesh.epoch());
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    mix(mesh.vertex_alive(v));
+    if (!mesh.vertex_alive(v)) continue;
+    for (int c = 0; c < 3; ++c) mix(mesh.point(v)[c]);
+    if (mesh.has_metric()) mix(mesh.metric(v));
+    mix(mesh.vertex_class(v));
+  }
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    mix(mesh.tet_alive(t));
+    if (!mesh.tet_alive(t)) continue;
+    mix(mesh.tet(t));
+    mix(mesh.tet_stamp(t));
+    for (int f = 0; f < 4; ++f) {
+      const FaceRef n = mesh.neighbour(t, f);
+      if (n.valid()) {
+        mix(n.tet());
+        mix(n.face());
+      } else {
+        mix(mesh.surface_id(t, f));
+      }
+    }
+  }
+  return h;
+}
+
 struct PlanCheck {
-  int plans = 0;    // items decide gave a plan
-  int applied = 0;  // plans applied on a copy
+  int plans = 0;        // items decide gave a plan
+  int applied = 0;      // plans applied on a copy
   std::string problem;  // the first problem found, empty when none
   bool ok() const { return problem.empty(); }
 };
 
 // Every item of `items` through decide (decide_item: no executor, no
-// locks). Each plan's tets, previewed at their final points, must be
+// locks), which must leave the mesh as it was but for its quality cache
+// (mesh_fingerprint). Each plan's tets, previewed at their final points, must be
 // positive under exact predicates and, when floor > 0, of mean ratio at
 // least min(floor, the mesh's worst before) in the metric of the tets they
 // come from (a tet with the plan's new vertex is skipped: its metric is not
@@ -99,6 +137,7 @@ PlanCheck check_plans(const Mesh& mesh, const Op& op, std::span<const typename O
   const auto areas = surface_areas(mesh);
   const double ridges = ridge_length(mesh);
   const double volume = mesh.volume();
+  const std::uint64_t fingerprint = mesh_fingerprint(mesh);
   auto close = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); };
   for (std::size_t i = 0; i < items.size() && r.ok(); ++i) {
     const auto& item = items[i];
@@ -136,6 +175,7 @@ PlanCheck check_plans(const Mesh& mesh, const Op& op, std::span<const typename O
     if (r.ok() && !close(ridge_length(copy), ridges))
       r.problem = fmt::format("item {}: applied, the ridges' length changed", i);
   }
+  if (r.ok() && mesh_fingerprint(mesh) != fingerprint) r.problem = "decide wrote to the mesh (not its quality cache)";
   return r;
 }
 

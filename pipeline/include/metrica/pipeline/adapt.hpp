@@ -299,7 +299,8 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
                            around.seed_below = 1.0;
                            for (int round = 1; round <= rounds; ++round) {
                              stats += a.project();
-                             const auto off = vertices_off_model<C>(a.mesh(), a.geometry(), ProjectionOptions{}.tolerance);
+                             const auto off =
+                                 vertices_off_model<C>(a.mesh(), a.geometry(), ProjectionOptions{}.tolerance);
                              TetList ball;
                              for (VertexId v : off) {
                                vertex_ball(a.mesh(), v, ball);

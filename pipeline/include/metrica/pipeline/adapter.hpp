@@ -258,7 +258,7 @@ class Adapter {
   // Boundary vertices off the model move onto it (none without a model).
   OperatorStats project(ProjectionOptions o = {}) {
     o.metric = metric_;
-    return project_to_model<P, C>(mesh_, o, geometry_);
+    return project_to_model<S, P, C>(mesh_, o, geometry_);
   }
 
   // Closes a cycle: compaction, counts, conformity and worst tet, the

@@ -40,8 +40,8 @@ struct LoopRow {
   int iteration = 0;
   double complexity = 0;  // target of this iteration
   std::size_t vertices = 0, tets = 0;
-  double seconds = 0;       // metric + adaptation
-  double l2_error = 0;      // || u - u_h || on the adapted mesh
+  double seconds = 0;          // metric + adaptation
+  double l2_error = 0;         // || u - u_h || on the adapted mesh
   double transfer_error = -1;  // || u - interpolated previous u_h || (when asked)
   double conformity = 0, min_quality = 0;
 };

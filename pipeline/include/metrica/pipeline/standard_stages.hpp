@@ -29,6 +29,8 @@ using Geometries = PolicyList<NoGeometry, CadGeometry>;
 
 }  // namespace metrica
 
+// The macros keep one instantiation a line, in the lists' order.
+// clang-format off
 // The standard stages of one tuple: `kind` is `extern` for the declaration,
 // empty for the definition.
 #define METRICA_STANDARD_STAGES(kind, S, P, C, G)                                                               \
@@ -58,3 +60,4 @@ using Geometries = PolicyList<NoGeometry, CadGeometry>;
 #define METRICA_STANDARD_STAGES_OF_DEFAULTS(kind)                                                        \
   METRICA_STANDARD_STAGES_AT(kind, 0, 0, 0, 0) METRICA_STANDARD_STAGES_AT(kind, 0, 0, 0, 1)              \
   METRICA_STANDARD_STAGES_AT(kind, 0, 0, 1, 0) METRICA_STANDARD_STAGES_AT(kind, 0, 0, 1, 1)
+// clang-format on

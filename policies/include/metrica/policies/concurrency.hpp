@@ -73,12 +73,17 @@ concept Concurrency = requires(typename C::Locks& locks, std::span<const VertexI
                                std::span<const int> items) {
   { C::name } -> std::convertible_to<std::string_view>;
   { C::threads() } -> std::same_as<int>;
-  { C::for_each(mesh, items, PassRoom{}, [](const int&, int, typename C::Locks&) { return Attempt::done; }) }
-      -> std::same_as<PassTally>;
+  {
+    C::for_each(mesh, items, PassRoom{}, [](const int&, int, typename C::Locks&) { return Attempt::done; })
+    } -> std::same_as<PassTally>;
   { locks.acquire({VertexId{0}}) } -> std::same_as<bool>;
-  { C::template collect<int>(std::size_t{0}, [](std::size_t, std::vector<int>&) {}) } -> std::same_as<std::vector<int>>;
+  {
+    C::template collect<int>(std::size_t{0}, [](std::size_t, std::vector<int>&) {})
+    } -> std::same_as<std::vector<int>>;
   { C::sort(std::declval<int*>(), std::declval<int*>(), std::less<int>{}) } -> std::same_as<void>;
-  { C::parallel_for(std::size_t{0}, [](std::size_t) {}) } -> std::same_as<void>;
+  {
+    C::parallel_for(std::size_t{0}, [](std::size_t) {})
+    } -> std::same_as<void>;
   { locks.acquire(vertices) } -> std::same_as<bool>;
   { locks.release() } -> std::same_as<void>;
 };

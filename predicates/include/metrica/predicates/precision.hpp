@@ -117,8 +117,9 @@ inline int insphere_filter(const Point& a, const Point& b, const Point& c, const
   const double aez_ = abs(aez), bez_ = abs(bez), cez_ = abs(cez), dez_ = abs(dez);
   const double ab_ = abs(aexbey) + abs(bexaey), bc_ = abs(bexcey) + abs(cexbey), cd_ = abs(cexdey) + abs(dexcey);
   const double da_ = abs(dexaey) + abs(aexdey), ac_ = abs(aexcey) + abs(cexaey), bd_ = abs(bexdey) + abs(dexbey);
-  const double permanent = (cd_ * bez_ + bd_ * cez_ + bc_ * dez_) * alift + (da_ * cez_ + ac_ * dez_ + cd_ * aez_) * blift +
-                           (ab_ * dez_ + bd_ * aez_ + da_ * bez_) * clift + (bc_ * aez_ + ac_ * bez_ + ab_ * cez_) * dlift;
+  const double permanent =
+      (cd_ * bez_ + bd_ * cez_ + bc_ * dez_) * alift + (da_ * cez_ + ac_ * dez_ + cd_ * aez_) * blift +
+      (ab_ * dez_ + bd_ * aez_ + da_ * bez_) * clift + (bc_ * aez_ + ac_ * bez_ + ab_ * cez_) * dlift;
   const double bound = kInsphereBound * permanent;
   if (permanent < kTinyPermanent) return 0;
   if (det > bound) return -1;
