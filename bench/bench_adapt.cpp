@@ -33,10 +33,10 @@ int main(int argc, char** argv) {
   const double t = bench::median_seconds(runs, [&] {
     Mesh mesh = bench::start_mesh(metric);
     AdaptOptions o;
-    o.metric = &metric;
+    AdaptInputs in{.metric = &metric};
     cycles.clear();
-    o.on_cycle = [&](const CycleReport& c) { cycles.push_back(c); };
-    last = adapt_by_name(mesh, o, policies);
+    in.on_cycle = [&](const CycleReport& c) { cycles.push_back(c); };
+    last = adapt_by_name(mesh, o, policies, in);
     tets = mesh.num_tets();
   });
   const auto& c = last.cycles.back();

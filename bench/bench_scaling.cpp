@@ -75,9 +75,8 @@ int main(int argc, char** argv) {
       bench::reset_peak();
       Mesh mesh = bench::start_mesh(metric);
       AdaptOptions o;
-      o.metric = &metric;
       Stopwatch clock;
-      AdaptReport rep = adapt_by_name(mesh, o, {.concurrency = c.concurrency});
+      AdaptReport rep = adapt_by_name(mesh, o, {.concurrency = c.concurrency}, {.metric = &metric});
       times[k].emplace_back(clock.seconds(), std::move(rep));
       run_seconds[k].push_back(times[k].back().first);
       Run& r = results[k];

@@ -70,6 +70,7 @@ void print_cycle(const CycleReport& c) {
 // (AdaptOptions{}).
 void declare_options(Options& o) {
   const AdaptOptions d;
+  const PolicyChoice policies;
   const auto text = [](double x) { return fmt::format("{}", x); };
   o.input("mesh (.mesh, .meshb)");
   o.output("adapted mesh (.mesh, .meshb, .vtu, .su2)",
@@ -78,11 +79,11 @@ void declare_options(Options& o) {
       "analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
       "iterations", po::value<int>()->default_value(1)->value_name("N"),
       "adaptations in a row, the metric re-evaluated between them (--analytic only)")(
-      "space", po::value<std::string>()->default_value("log-euclidean")->value_name("S"),
+      "space", po::value<std::string>()->default_value(policies.space)->value_name("S"),
       "metric interpolation: log-euclidean, anisotropic, isotropic")(
-      "precision", po::value<std::string>()->default_value("filtered")->value_name("P"),
+      "precision", po::value<std::string>()->default_value(policies.precision)->value_name("P"),
       "predicates: filtered (exact when it matters), exact, fast (plain double)")(
-      "concurrency", po::value<std::string>()->default_value("speculative")->value_name("C"),
+      "concurrency", po::value<std::string>()->default_value(policies.concurrency)->value_name("C"),
       "speculative (every operator on --threads threads, lock-free per-vertex try-locks) or serial "
       "(one thread, the same output to the bit on every run)")(
       "points", po::value<std::string>()->default_value(to_string(d.points))->value_name("RULE"),
@@ -244,7 +245,8 @@ int run_adapt(const std::vector<std::string>& args) {
   o.as_usage([&] { check_policy_choice(policies); });
   const bool serial = policies.concurrency == Serial::name;
 
-  AdaptOptions ao = adapt_options_from(o);
+  const AdaptOptions ao = adapt_options_from(o);
+  AdaptInputs inputs;
   const MetricBounds bounds = o.size_bounds();
   const auto analytic = o.named("analytic", analytic_metric_from_name);
 
@@ -255,7 +257,7 @@ int run_adapt(const std::vector<std::string>& args) {
   std::unique_ptr<CadModel> model;
   if (o.has("geometry")) {
     model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data);
-    ao.geometry = model.get();
+    inputs.model = model.get();
   }
   // The input's arrays are in the mesh now: only its vertex count and
   // version are read again.
@@ -268,10 +270,10 @@ int run_adapt(const std::vector<std::string>& args) {
       exact = [kind = *analytic, bounds](const Point& p) { return clamp_metric(evaluate(kind, p), bounds); };
     else
       exact = [kind = *analytic](const Point& p) { return evaluate(kind, p); };
-    ao.metric = &exact;
+    inputs.metric = &exact;
   }
   const bool talk = log::level() >= log::Level::normal;
-  if (talk) ao.on_cycle = print_cycle;
+  if (talk) inputs.on_cycle = print_cycle;
   for (int it = 0; it < iterations; ++it) {
     const std::vector<Sym6> field = metric_at_vertices(o, mesh, analytic, bounds, input_vertices);
     if (it == 0) {
@@ -295,7 +297,7 @@ int run_adapt(const std::vector<std::string>& args) {
                  serial                                ? std::string("serial")
                  : log::level() >= log::Level::verbose ? Speculative::describe()
                                                        : fmt::format("speculative, {} threads", thread_count()));
-    const auto report = adapt_by_name(mesh, ao, policies);
+    const auto report = adapt_by_name(mesh, ao, policies, inputs);
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
                  count_text(report.ops.get("collapse").applied + report.ops.get("lift").applied),

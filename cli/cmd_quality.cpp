@@ -28,7 +28,7 @@ int run_quality(const std::vector<std::string>& args) {
   o.input("mesh (.mesh, .meshb)");
   o.add()("metric,m", po::value<std::string>()->value_name("FILE"), "metric (.sol, .solb)")(
       "analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
-      "space", po::value<std::string>()->default_value("log-euclidean")->value_name("S"),
+      "space", po::value<std::string>()->default_value(std::string(Spaces::at<0>::name))->value_name("S"),
       "metric interpolation for Q: log-euclidean, anisotropic, isotropic")("hmin", po::value<double>()->value_name("H"),
                                                                            "clamp the metric's sizes to at least H")(
       "hmax", po::value<double>()->value_name("H"), "clamp the metric's sizes to at most H");

@@ -45,14 +45,14 @@ bool policies_compiled(const PolicyChoice& p) {
   return !METRICA_DEFAULT_POLICIES_ONLY || (p.space == Spaces::at<0>::name && p.precision == Precisions::at<0>::name);
 }
 
-AdaptReport adapt_by_name(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& p) {
+AdaptReport adapt_by_name(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& p, const AdaptInputs& inputs) {
   return with_policy<Spaces>("space", p.space, [&]<class S>() {
     return with_policy<Concurrencies>("concurrency", p.concurrency, [&]<class C>() -> AdaptReport {
       if constexpr (METRICA_DEFAULT_POLICIES_ONLY && !std::is_same_v<S, Spaces::at<0>>) {
         throw InputError(not_compiled_message("space", S::name, Spaces::at<0>::name));
       } else {
-        if (options.geometry != nullptr) return adapt_instance<S, C, CadGeometry>(mesh, options, p.precision);
-        return adapt_instance<S, C, NoGeometry>(mesh, options, p.precision);
+        if (inputs.model != nullptr) return adapt_instance<S, C, CadGeometry>(mesh, options, inputs, p.precision);
+        return adapt_instance<S, C, NoGeometry>(mesh, options, inputs, p.precision);
       }
     });
   });

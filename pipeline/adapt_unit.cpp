@@ -9,13 +9,14 @@
 namespace metrica {
 
 template <MetricSpace S, Concurrency C, Geometry G>
-AdaptReport adapt_instance(Mesh& mesh, const AdaptOptions& options, std::string_view precision) {
-  const G geometry = geometry_of<G>(options);
+AdaptReport adapt_instance(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& inputs,
+                           std::string_view precision) {
+  const G geometry = geometry_of<G>(inputs);
   return with_policy<Precisions>("precision", precision, [&]<class P>() -> AdaptReport {
     if constexpr (METRICA_DEFAULT_POLICIES_ONLY && !std::is_same_v<P, Precisions::at<0>>)
       throw InputError(not_compiled_message("precision", P::name, Precisions::at<0>::name));
     else
-      return adapt<S, P, C, G>(mesh, options, geometry);
+      return adapt<S, P, C, G>(mesh, options, inputs, geometry);
   });
 }
 
@@ -36,6 +37,6 @@ METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<2>, UnitConcurrency, UnitGeo
 #endif
 
 template AdaptReport adapt_instance<UnitSpace, UnitConcurrency, UnitGeometry>(Mesh&, const AdaptOptions&,
-                                                                              std::string_view);
+                                                                              const AdaptInputs&, std::string_view);
 
 }  // namespace metrica

@@ -38,7 +38,7 @@ std::vector<LoopRow> adaptive_loop(Mesh& mesh, const LoopOptions& o) {
     assign_metric(mesh, multiscale_metric(mesh, u, ms));
     Mesh previous;
     if (o.interpolate) previous = mesh;
-    const AdaptReport report = adapt_by_name(mesh, o.adapt, {.concurrency = o.concurrency});
+    const AdaptReport report = adapt_by_name(mesh, o.adapt, {.concurrency = o.concurrency}, {.model = o.model});
     row.seconds = clock.seconds();
     row.vertices = mesh.num_vertices();
     row.tets = mesh.num_tets();

@@ -397,9 +397,7 @@ TEST_SUITE("regression") {
     const MetricFunction metric = [](const Point& p) { return evaluate(AnalyticMetric::polar2, p); };
     test::set_metric_function(c.mesh, metric);
     AdaptOptions o;
-    o.metric = &metric;
-    o.geometry = &c.model;
-    adapt<LogEuclidean, Filtered, Serial, CadGeometry>(c.mesh, o, CadGeometry{&c.model});
+    adapt<LogEuclidean, Filtered, Serial, CadGeometry>(c.mesh, o, {.metric = &metric, .model = &c.model});
     const auto report = c.mesh.validate();
     INFO(report.to_string());
     REQUIRE(report.ok());
@@ -435,9 +433,7 @@ TEST_SUITE("regression") {
     const MetricFunction metric = [](const Point&) { return isotropic_metric(0.03); };
     test::set_metric_function(mesh, metric);
     AdaptOptions o;
-    o.metric = &metric;
-    o.geometry = &model;
-    adapt<LogEuclidean, Filtered, Serial, CadGeometry>(mesh, o, CadGeometry{&model});
+    adapt<LogEuclidean, Filtered, Serial, CadGeometry>(mesh, o, {.metric = &metric, .model = &model});
     const auto report = mesh.validate();
     INFO(report.to_string());
     REQUIRE(report.ok());

@@ -213,9 +213,7 @@ TEST_SUITE("invariant") {
     Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
     const MetricFunction metric = small_linear;
     set_metric_function(mesh, metric);
-    AdaptOptions o;
-    o.metric = &metric;
-    const AdaptReport r = adapt<LogEuclidean, Filtered, ReverseSerial>(mesh, o);
+    const AdaptReport r = adapt<LogEuclidean, Filtered, ReverseSerial>(mesh, AdaptOptions{}, {.metric = &metric});
     require_valid(mesh, 1.0);
     const CycleReport& last = r.cycles.back();
     INFO("in range " << last.conformity << ", min Q " << last.min_quality);

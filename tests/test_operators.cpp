@@ -417,10 +417,9 @@ TEST_SUITE("invariant") {
       Mesh mesh = build_mesh(data);
       set_metric_function(mesh, metric);
       AdaptOptions o;
-      o.metric = &metric;
       o.max_cycles = 0;  // the quality phase alone
       o.repair_rounds = rounds;
-      const AdaptReport r = adapt<S, P, C>(mesh, o);
+      const AdaptReport r = adapt<S, P, C>(mesh, o, {.metric = &metric});
       require_valid(mesh, 1.0);
       return std::pair{r.cycles.back(), worst_quality<S>(mesh)};
     };
@@ -448,9 +447,7 @@ TEST_SUITE("regression") {
     // Sizes x 2.5: the complexity falls by 2.5^3 (about 300 vertices).
     const MetricFunction metric = small_linear;
     set_metric_function(mesh, metric);
-    AdaptOptions o;
-    o.metric = &metric;
-    const auto report = adapt_by_name(mesh, o, {.concurrency = "serial"});
+    const auto report = adapt_by_name(mesh, AdaptOptions{}, {.concurrency = "serial"}, {.metric = &metric});
     require_valid(mesh, 1.0);
     const auto& last = report.cycles.back();
     INFO("vertices " << last.vertices << " conformity " << last.conformity << " min Q " << last.min_quality);

@@ -62,23 +62,23 @@ Adapted adapt_linear_by(Run&& run) {
   Adapted a{make_box({.nx = 3, .ny = 3, .nz = 3}), {}};
   const MetricFunction metric = small_linear;
   set_metric_function(a.mesh, metric);
-  AdaptOptions o;
-  o.metric = &metric;
-  a.report = run(a.mesh, o);
+  a.report = run(a.mesh, AdaptOptions{}, AdaptInputs{.metric = &metric});
   return a;
 }
 
 Adapted adapt_linear(const std::string& c) {
-  return adapt_linear_by([c](Mesh& mesh, const AdaptOptions& o) { return adapt_by_name(mesh, o, {.concurrency = c}); });
+  return adapt_linear_by([c](Mesh& mesh, const AdaptOptions& o, const AdaptInputs& in) {
+    return adapt_by_name(mesh, o, {.concurrency = c}, in);
+  });
 }
 
 // The pipeline with every list shared out however short (by default
 // Speculative runs lists under 8192 items on one thread, which at this
 // size is all of them): the parallel path under test.
 Adapted adapt_linear_shared() {
-  return adapt_linear_by([](Mesh& mesh, const AdaptOptions& o) {
+  return adapt_linear_by([](Mesh& mesh, const AdaptOptions& o, const AdaptInputs& in) {
     const SpeculativeScope shared({.small_list = 0});
-    return adapt<LogEuclidean, Filtered, Speculative>(mesh, o);
+    return adapt<LogEuclidean, Filtered, Speculative>(mesh, o, in);
   });
 }
 

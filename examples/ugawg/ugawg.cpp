@@ -85,10 +85,9 @@ int main(int argc, char** argv) try {
         if (mesh.vertex_alive(v)) field[v] = metric(mesh.point(v));
       assign_metric(mesh, field);
       AdaptOptions o;
-      o.metric = &metric;
       o.points = rule;
       Stopwatch clock;
-      adapt_by_name(mesh, o, policies);
+      adapt_by_name(mesh, o, policies, {.metric = &metric});
       const double seconds = clock.seconds();
       const auto r = quality_report(mesh, policies.space);
       fmt::print("  {:>4} {:>9} {:>10} {:>8.2f} {:>8.2f}% {:>7.3f} {:>7.3f} {:>8.3f} {:>8.1f}\n", it, r.vertices,

@@ -89,14 +89,31 @@ struct AdaptOptions : PipelineRules {
   // smoothing around the vertices still off the model); the last round
   // collapses those it leaves onto a boundary neighbour.
   int closing_rounds = 4;
-  // When set, new and moved vertices take this metric (analytic cases).
+};
+
+// What an adaptation works with besides its settings (AdaptOptions holds
+// settings only).
+struct AdaptInputs {
+  // When set, new and moved vertices take this metric (analytic cases);
+  // else the Space interpolates the vertices' metrics.
   const MetricFunction* metric = nullptr;
-  // When set, boundary vertices are placed on this model (CadGeometry);
-  // the mesh must be associated with it (geometry/association.hpp).
-  const CadModel* geometry = nullptr;
-  // Called after every cycle and quality pass (progress output).
+  // When set, boundary vertices are placed on this model (CadGeometry:
+  // adapt_by_name chooses it); the mesh must be associated with it
+  // (geometry/association.hpp).
+  const CadModel* model = nullptr;
+  // Called after every cycle, pass and round (progress output).
   std::function<void(const CycleReport&)> on_cycle;
 };
+
+// The Geometry policy object of `inputs`: G{inputs.model} when G is made
+// from a model (CadGeometry), else G{}.
+template <Geometry G>
+G geometry_of(const AdaptInputs& inputs) {
+  if constexpr (requires { G{inputs.model}; })
+    return G{inputs.model};
+  else
+    return G{};
+}
 
 // The tets whose mean ratio (cached, as adapt keeps it) is below `below`.
 template <MetricSpace S, Concurrency C>
@@ -318,12 +335,17 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   return p;
 }
 
-// The standard adaptation under <S, P, C, G>.
-template <MetricSpace S, Precision P, Concurrency C, Geometry G = NoGeometry>
-AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const G& geometry = {}) {
-  Adapter<S, P, C, G> a(mesh, options.metric, geometry);
-  a.on_cycle = options.on_cycle;
+// The standard adaptation under <S, P, C, G>, with the Geometry object
+// given, or made from inputs.model (geometry_of).
+template <MetricSpace S, Precision P, Concurrency C, Geometry G>
+AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& inputs, const G& geometry) {
+  Adapter<S, P, C, G> a(mesh, inputs.metric, geometry);
+  a.on_cycle = inputs.on_cycle;
   return run_pipeline(a, standard_pipeline<Adapter<S, P, C, G>>(options));
+}
+template <MetricSpace S, Precision P, Concurrency C, Geometry G = NoGeometry>
+AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& inputs = {}) {
+  return adapt<S, P, C, G>(mesh, options, inputs, geometry_of<G>(inputs));
 }
 
 // Compiled in the library (standard_stages.hpp).

@@ -1,6 +1,6 @@
 // Runtime choice of the policies (the CLI's --space, --precision and
 // --concurrency) by name, from the policy lists (Spaces, Precisions,
-// Concurrencies), and of the Geometry by AdaptOptions::geometry (a model:
+// Concurrencies), and of the Geometry by AdaptInputs::model (a model:
 // CadGeometry; none: NoGeometry). The pipeline is compiled once per
 // (space, concurrency, geometry) triple, in its own unit (adapt_unit.cpp,
 // built once per triple by CMake), so that a build on several cores
@@ -36,22 +36,15 @@ bool policies_compiled(const PolicyChoice& choice);
 std::string not_compiled_message(std::string_view what, std::string_view name, std::string_view compiled);
 
 // The standard adaptation with its policies chosen by name (the CLI's
-// --space, --precision, --concurrency; AdaptOptions::geometry chooses the
+// --space, --precision, --concurrency; inputs.model chooses the
 // Geometry): adapt<S, P, C, G> for the named policies.
-AdaptReport adapt_by_name(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& policies = {});
-
-// The Geometry policy object of `options`.
-template <Geometry G>
-G geometry_of(const AdaptOptions& options) {
-  if constexpr (G::on_model)
-    return G{options.geometry};
-  else
-    return G{};
-}
+AdaptReport adapt_by_name(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& policies = {},
+                          const AdaptInputs& inputs = {});
 
 // adapt<S, precision, C, G>, the precision chosen by name: declared here,
 // defined and instantiated for each triple of the lists in adapt_unit.cpp.
 template <MetricSpace S, Concurrency C, Geometry G>
-AdaptReport adapt_instance(Mesh& mesh, const AdaptOptions& options, std::string_view precision);
+AdaptReport adapt_instance(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& inputs,
+                           std::string_view precision);
 
 }  // namespace metrica

@@ -31,7 +31,9 @@ struct LoopOptions {
   // restart) and the transfer's L2 error reported.
   bool interpolate = false;
   std::string concurrency{Concurrencies::at<0>::name};
-  AdaptOptions adapt;  // thresholds, cycles (metric: none, interpolated)
+  AdaptOptions adapt;  // thresholds, cycles (the metric interpolated)
+  // When set, boundary vertices are placed on this model (CadGeometry).
+  const CadModel* model = nullptr;
   // Called after each iteration with its row and the adapted mesh.
   std::function<void(const struct LoopRow&, const Mesh&)> on_iteration;
 };

@@ -44,7 +44,7 @@ using Geometries = PolicyList<NoGeometry, CadGeometry>;
   kind template Pipeline<Adapter<S, P, C, G>> standard_pipeline<Adapter<S, P, C, G>>(const AdaptOptions&);     \
   kind template const AdaptReport& run_pipeline<Adapter<S, P, C, G>>(Adapter<S, P, C, G>&,                      \
                                                                      const Pipeline<Adapter<S, P, C, G>>&);    \
-  kind template AdaptReport adapt<S, P, C, G>(Mesh&, const AdaptOptions&, const G&);
+  kind template AdaptReport adapt<S, P, C, G>(Mesh&, const AdaptOptions&, const AdaptInputs&, const G&);
 
 // The tuple at indices (space, precision, concurrency, geometry) of the lists.
 #define METRICA_STANDARD_STAGES_AT(kind, s, p, c, g)                                                   \
