@@ -152,9 +152,9 @@ class Adapter {
 
   // Epochs of the incremental passes, by stage name: the epoch at which
   // the stage's pass last started (0: never, so it sees everything; after
-  // restart_all, that epoch).
-  // Stages of one name share their epoch (the cycle's two collapses; the
-  // quality phase's flips go on from the cycles').
+  // restart_all, that epoch). Stages of one name share their epoch (the
+  // cycle's two collapses; the quality phase's flips go on from the
+  // cycles').
   Mesh::Epoch since(std::string_view stage) const {
     const auto it = epochs_.find(stage);
     return it == epochs_.end() ? restarted_ : it->second;
@@ -177,13 +177,15 @@ class Adapter {
   // The stage running now (empty outside run_stages): the default key of
   // the passes it runs.
   const std::string& stage() const { return stage_; }
-  // Runs `f(*this)` as stage `name`.
+  // Runs `f(*this)` as stage `name` (no stage after it, thrown or not).
   template <class F>
   OperatorStats run_stage(const std::string& name, F&& f) {
+    struct Leave {
+      std::string& stage;
+      ~Leave() { stage.clear(); }
+    } leave{stage_};
     stage_ = name;
-    OperatorStats stats = f(*this);
-    stage_.clear();
-    return stats;
+    return f(*this);
   }
 
   // An incremental pass: `pass(mesh, options)` with options.changed_since
