@@ -195,6 +195,10 @@ double check_predicted_size(const Options& o, double complexity, const std::stri
   return predicted;
 }
 
+po::typed_value<double>* number_option(double default_value) {
+  return po::value<double>()->default_value(default_value, fmt::format("{}", default_value));
+}
+
 std::string bytes_text(double bytes) {
   if (bytes < 1024) return fmt::format("{:.0f} B", bytes);
   if (bytes < 1024.0 * 1024) return fmt::format("{:.1f} KiB", bytes / 1024);

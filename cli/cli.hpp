@@ -169,6 +169,10 @@ void require_on_model(const Mesh& mesh, const CadModel& model, const std::string
 // calling thread alone when `serial` (--concurrency serial).
 PartRunner sweep_runner(std::size_t n, bool serial = false);
 
+// A number option whose default the help shows as the library states it
+// ("0.3", not Boost's "0.29999999999999999").
+po::typed_value<double>* number_option(double default_value);
+
 // Human-readable sizes and numbers.
 std::string bytes_text(double bytes);
 std::string count_text(std::size_t n);

@@ -71,7 +71,6 @@ void print_cycle(const CycleReport& c) {
 void declare_options(Options& o) {
   const AdaptOptions d;
   const PolicyChoice policies;
-  const auto text = [](double x) { return fmt::format("{}", x); };
   o.input("mesh (.mesh, .meshb)");
   o.output("adapted mesh (.mesh, .meshb, .vtu, .su2)",
            {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2});
@@ -96,19 +95,17 @@ void declare_options(Options& o) {
       "repair-rounds", po::value<int>()->default_value(d.repair_rounds)->value_name("N"),
       "after the quality passes, at most N rounds of collapse, split, flips and smoothing around the tets "
       "still below --repair-below (none after two in a row that leave the worst tet)")(
-      "repair-below", po::value<double>()->default_value(d.repair_below, text(d.repair_below))->value_name("Q"),
+      "repair-below", number_option(d.repair_below)->value_name("Q"),
       "mean ratio below which a tet left by the quality passes gets repair rounds")(
       "max-length", po::value<double>()->value_name("L"),
       fmt::format("split edges longer than L (default {:.4g}: sqrt 2)", d.refine.max_length).c_str())(
       "min-length", po::value<double>()->value_name("L"),
       fmt::format("collapse edges shorter than L (default {:.4g}: 1/sqrt 2)", d.collapse.min_length).c_str())(
       "collapse-max-length", po::value<double>()->value_name("L"),
-      fmt::format("a collapse may not make an edge longer than L (default {})", text(d.collapse.max_new_length))
-          .c_str())(
-      "shape-floor",
-      po::value<double>()->default_value(d.collapse.shape_floor, text(d.collapse.shape_floor))->value_name("Q"),
+      fmt::format("a collapse may not make an edge longer than L (default {})", d.collapse.max_new_length).c_str())(
+      "shape-floor", number_option(d.collapse.shape_floor)->value_name("Q"),
       "a collapse may not make a tet worse than Q (unless the ball was already worse)")(
-      "smooth-below", po::value<double>()->default_value(d.smooth.below, text(d.smooth.below))->value_name("Q"),
+      "smooth-below", number_option(d.smooth.below)->value_name("Q"),
       "smooth the vertices of tets with mean ratio below Q during the cycles")(
       "hmin", po::value<double>()->value_name("H"), "clamp the metric's sizes to at least H")(
       "hmax", po::value<double>()->value_name("H"), "clamp the metric's sizes to at most H")(

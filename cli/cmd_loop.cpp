@@ -39,17 +39,14 @@ int run_loop(const std::vector<std::string>& args) {
             "  metrica loop --field sinatan3 -i start.meshb --iterations 20 --output-dir run/");
   // The defaults shown and used are the library's.
   const LoopOptions d;
-  const auto text = [](double x) { return fmt::format("{}", x); };
   o.input("start mesh (default: the 4x4x4 unit cube of the UGAWG)");
   o.add()("field", po::value<std::string>()->value_name("NAME"), "analytic field: sinfun3, tanh3, sinatan3")(
-      "complexity", po::value<double>()->default_value(d.complexity, text(d.complexity))->value_name("C0"),
-      "complexity of the first iteration")(
+      "complexity", number_option(d.complexity)->value_name("C0"), "complexity of the first iteration")(
       "double-every", po::value<int>()->default_value(d.double_every)->value_name("K"), "iterations per complexity")(
       "iterations", po::value<int>()->default_value(d.iterations)->value_name("N"), "iterations in all")(
-      "norm", po::value<double>()->default_value(d.norm, text(d.norm))->value_name("P"),
-      "L^p norm of the multiscale metric")(
-      "gradation", po::value<double>()->default_value(d.gradation, text(d.gradation))->value_name("BETA"),
-      "size gradation (0: none)")("quick", "6 iterations at complexity 1000, doubling every 3 (for CI)")(
+      "norm", number_option(d.norm)->value_name("P"), "L^p norm of the multiscale metric")(
+      "gradation", number_option(d.gradation)->value_name("BETA"), "size gradation (0: none)")(
+      "quick", "6 iterations at complexity 1000, doubling every 3 (for CI)")(
       "interpolate", "also transfer the previous field to each new mesh (a solver restart) and report its error")(
       "concurrency", po::value<std::string>()->default_value(d.concurrency)->value_name("C"),
       "speculative (--threads threads) or serial")(

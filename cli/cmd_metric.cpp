@@ -37,9 +37,8 @@ void declare_options(Options& o) {
       "metric,m", po::value<std::string>()->value_name("FILE"), "an existing metric to post-process")(
       "complexity", po::value<double>()->value_name("C"),
       fmt::format("target complexity (multiscale default {})", d.complexity).c_str())(
-      "norm", po::value<double>()->default_value(d.norm)->value_name("P"),
-      "L^p norm of the multiscale metric (p >= 1)")("gradation", po::value<double>()->value_name("BETA"),
-                                                    "size gradation (>= 1; none when not given)")(
+      "norm", number_option(d.norm)->value_name("P"), "L^p norm of the multiscale metric (p >= 1)")(
+      "gradation", po::value<double>()->value_name("BETA"), "size gradation (>= 1; none when not given)")(
       "gradation-space", po::value<std::string>()->default_value("mixed")->value_name("S"),
       "gradation space: mixed (Alauzet 2010, t = 1/8) or metric")(
       "hmin", po::value<double>()->value_name("H"), "smallest size")("hmax", po::value<double>()->value_name("H"),

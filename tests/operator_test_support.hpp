@@ -48,6 +48,22 @@ inline Sym6 small_linear(const Point& p) {
   return m;
 }
 
+// The 3x3x3-hex box with small_linear at its vertices (the pipeline tests'
+// start).
+inline Mesh small_linear_box() {
+  Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+  set_metric_function(mesh, small_linear);
+  return mesh;
+}
+
+// The live vertices, in id order.
+inline std::vector<VertexId> all_vertices(const Mesh& mesh) {
+  std::vector<VertexId> out;
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v)) out.push_back(v);
+  return out;
+}
+
 inline void require_valid(const Mesh& mesh, double volume) {
   ValidateOptions o;
   o.expected_volume = volume;

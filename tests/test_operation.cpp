@@ -54,13 +54,6 @@ std::vector<TetId> all_tets(const Mesh& mesh) {
   return out;
 }
 
-std::vector<VertexId> all_vertices(const Mesh& mesh) {
-  std::vector<VertexId> out;
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-    if (mesh.vertex_alive(v)) out.push_back(v);
-  return out;
-}
-
 // A scored criterion that prefers any new configuration (old tets score 0,
 // new ones 1): only the shape floor can refuse under it.
 struct PreferNew {
@@ -210,9 +203,8 @@ TEST_SUITE("property") {
 
 TEST_SUITE("invariant") {
   TEST_CASE("a toy executor (items in reverse order) adapts a box validly with no operator edited") {
-    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+    Mesh mesh = small_linear_box();
     const MetricFunction metric = small_linear;
-    set_metric_function(mesh, metric);
     const AdaptReport r = adapt<LogEuclidean, Filtered, ReverseSerial>(mesh, AdaptOptions{}, {.metric = &metric});
     require_valid(mesh, 1.0);
     const CycleReport& last = r.cycles.back();

@@ -59,9 +59,8 @@ struct Adapted {
 // The 4x4x4 cube adapted to small_linear by `run(mesh, options)`.
 template <class Run>
 Adapted adapt_linear_by(Run&& run) {
-  Adapted a{make_box({.nx = 3, .ny = 3, .nz = 3}), {}};
+  Adapted a{small_linear_box(), {}};
   const MetricFunction metric = small_linear;
-  set_metric_function(a.mesh, metric);
   a.report = run(a.mesh, AdaptOptions{}, AdaptInputs{.metric = &metric});
   return a;
 }

@@ -6,7 +6,6 @@
 //   - Adapter::run binds the adapter's metric and geometry.
 #include "operator_test_support.hpp"
 
-#include <metrica/box.hpp>
 #include <metrica/pipeline/adapt.hpp>
 
 #include <doctest/doctest.h>
@@ -18,13 +17,6 @@ using namespace metrica;
 using namespace metrica::test;
 
 namespace {
-
-std::vector<VertexId> all_vertices(const Mesh& mesh) {
-  std::vector<VertexId> v;
-  for (VertexId i = 0; i < mesh.vertex_capacity(); ++i)
-    if (mesh.vertex_alive(i)) v.push_back(i);
-  return v;
-}
 
 // The standard pipeline with every stage of the cycles renamed.
 template <class A>
@@ -41,9 +33,8 @@ TEST_SUITE("invariant") {
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using A = Adapter<typename T::Space, typename T::Precision, typename T::Concurrency>;
-    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
+    Mesh mesh = small_linear_box();
     const MetricFunction metric = small_linear;
-    set_metric_function(mesh, metric);
     A adapter(mesh, &metric);
     Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
     p.max_cycles = 6;
@@ -77,8 +68,7 @@ TEST_SUITE("invariant") {
     using A = Adapter<LogEuclidean, Filtered, Serial>;
     const MetricFunction metric = small_linear;
     auto run = [&](bool renamed) {
-      Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
-      set_metric_function(mesh, metric);
+      Mesh mesh = small_linear_box();
       A adapter(mesh, &metric);
       AdaptOptions o;
       o.quality_passes = 0;
@@ -96,8 +86,7 @@ TEST_SUITE("invariant") {
   TEST_CASE("a cycle that creates and removes no vertex is the last one; one that does goes on") {
     using A = Adapter<LogEuclidean, Filtered, Serial>;
     const MetricFunction metric = small_linear;
-    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
-    set_metric_function(mesh, metric);
+    Mesh mesh = small_linear_box();
     A adapter(mesh, &metric);
     Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
     p.quality_passes = 0;
@@ -116,8 +105,7 @@ TEST_SUITE("invariant") {
   TEST_CASE("stages of one name share their epoch; another name starts from everything") {
     using A = Adapter<LogEuclidean, Filtered, Serial>;
     const MetricFunction metric = small_linear;
-    Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
-    set_metric_function(mesh, metric);
+    Mesh mesh = small_linear_box();
     A adapter(mesh, &metric);
     CHECK(mesh.quality_cache_space() == LogEuclidean::name);  // the cache says whose mean ratios it holds
     const Stages<A> stages = {{"flip", [](A& a) { return a.flips({.seed_below = 1.0}); }},

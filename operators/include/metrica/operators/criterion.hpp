@@ -76,24 +76,11 @@ concept Criterion = ScoredCriterion<C> || ConfigurationCriterion<C>;
 // does not state them.
 template <class C>
 struct CriterionTraits {
-  static constexpr bool measures_shape = [] {
-    if constexpr (requires { C::measures_shape; })
-      return static_cast<bool>(C::measures_shape);
-    else
-      return false;
-  }();
-  static constexpr bool indifferent = [] {
-    if constexpr (requires { C::indifferent; })
-      return static_cast<bool>(C::indifferent);
-    else
-      return false;
-  }();
-  static constexpr bool score_is_mean_ratio_cubed = [] {
-    if constexpr (requires { C::score_is_mean_ratio_cubed; })
-      return static_cast<bool>(C::score_is_mean_ratio_cubed);
-    else
-      return false;
-  }();
+  static constexpr bool measures_shape = requires { requires static_cast<bool>(C::measures_shape); };
+  static constexpr bool indifferent = requires { requires static_cast<bool>(C::indifferent); };
+  static constexpr bool score_is_mean_ratio_cubed = requires {
+    requires static_cast<bool>(C::score_is_mean_ratio_cubed);
+  };
 };
 
 // The smallest score of `ids` (live tets) and of `tets` (new ones); the
@@ -175,6 +162,8 @@ struct ShapeOnly {
 };
 
 static_assert(ScoredCriterion<MinQuality> && ScoredCriterion<MaxMinEdgeWeight> && ScoredCriterion<ShapeOnly>);
+static_assert(CriterionTraits<MinQuality>::measures_shape && CriterionTraits<MinQuality>::score_is_mean_ratio_cubed &&
+              CriterionTraits<ShapeOnly>::indifferent && !CriterionTraits<MaxMinEdgeWeight>::measures_shape);
 
 // The shape floor of each operation, one default each, stated here (the
 // options' `shape_floor`): the mean ratio below which a new tet is
