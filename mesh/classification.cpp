@@ -69,7 +69,7 @@ Classification compute_classification(const Mesh& mesh) {
 void Mesh::classify() {
   auto c = compute_classification(*this);
   vertex_class_.assign(c.vertex_class.begin(), c.vertex_class.end());
-  ridges_ = std::move(c.ridges);
+  edge_tags_.set_ridges(std::move(c.ridges));
 }
 
 std::size_t count_ridge_curves(const Mesh& mesh) {

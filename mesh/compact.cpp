@@ -206,18 +206,7 @@ void Mesh::compact(const PartRunner& given) {
     }
   });
 
-  auto remap = [&](const std::unordered_set<std::uint64_t>& edges) {
-    std::unordered_set<std::uint64_t> out;
-    out.reserve(edges.size());
-    for (auto key : edges) {
-      const auto e = edge_from_key(key);
-      if (new_vertex[e[0]] != kNoId && new_vertex[e[1]] != kNoId)
-        out.insert(edge_key(new_vertex[e[0]], new_vertex[e[1]]));
-    }
-    return out;
-  };
-  ridges_ = remap(ridges_);
-  feature_edges_ = remap(feature_edges_);
+  edge_tags_.renumber(new_vertex);
   free_vertices_.clear();
   free_tets_.clear();
   live_vertices_ = nv;

@@ -22,16 +22,11 @@ const char* to_string(VertexClass c) {
 }
 
 namespace {
-// The pool of the calling thread while a parallel pass runs.
-thread_local Mesh::AllocationPool* tls_pool = nullptr;
-
 // Tet ids and the adjacency words (FaceRef) end at kMaxTets.
 [[noreturn]] void throw_too_many_tets(std::size_t n) {
   throw std::length_error(fmt::format("Mesh: {} tets asked for, more than the {} a mesh holds", n, kMaxTets));
 }
 }  // namespace
-
-void Mesh::bind_pool(AllocationPool* pool) { tls_pool = pool; }
 
 void Mesh::reserve(std::size_t vertices, std::size_t tets) {
   points_.reserve(vertices);
@@ -67,12 +62,8 @@ void Mesh::init_vertex(VertexId v, const Point& p, int ref) {
 }
 
 VertexId Mesh::add_vertex(const Point& p, int ref) {
-  if (AllocationPool* pool = tls_pool) {
-    if (pool->vertices.empty() && !fill_pool(*pool, 1, 0))
-      throw std::length_error("Mesh: parallel vertex reserve exhausted");
-    const VertexId v = pool->vertices.back();
-    pool->vertices.pop_back();
-    ++pool->vertex_delta;
+  if (id_source_) {
+    const VertexId v = id_source_->take_vertex();
     init_vertex(v, p, ref);
     return v;
   }
@@ -102,9 +93,8 @@ VertexId Mesh::add_vertex(const Point& p, int ref) {
 void Mesh::remove_vertex(VertexId v) {
   vertex_flags_[v] = 0;
   vert2tet_[v] = kNoId;
-  if (AllocationPool* pool = tls_pool) {
-    pool->removed_vertices.push_back(v);
-    --pool->vertex_delta;
+  if (id_source_) {
+    id_source_->give_vertex(v);
     return;
   }
   free_vertices_.push_back(v);
@@ -137,11 +127,8 @@ void Mesh::init_tet(TetId t, const TetVertices& vertices, int ref) {
 }
 
 TetId Mesh::add_tet(const TetVertices& vertices, int ref) {
-  if (AllocationPool* pool = tls_pool) {
-    if (pool->tets.empty() && !fill_pool(*pool, 0, 1)) throw std::length_error("Mesh: parallel tet reserve exhausted");
-    const TetId t = pool->tets.back();
-    pool->tets.pop_back();
-    ++pool->tet_delta;
+  if (id_source_) {
+    const TetId t = id_source_->take_tet();
     init_tet(t, vertices, ref);
     return t;
   }
@@ -165,39 +152,17 @@ TetId Mesh::add_tet(const TetVertices& vertices, int ref) {
 void Mesh::remove_tet(TetId t) {
   store_tet(t, {kNoId, kNoId, kNoId, kNoId});
   tet2tets_[t] = {};
-  if (AllocationPool* pool = tls_pool) {
-    // A tet id may be reused at once by this thread: whoever still holds
-    // it as a seed peeks it, locks, and checks it again.
-    pool->tets.push_back(t);
-    --pool->tet_delta;
+  if (id_source_) {
+    id_source_->give_tet(t);
     return;
   }
   free_tets_.push_back(t);
   --live_tets_;
 }
 
-// --- parallel passes -------------------------------------------------------
+// --- ids from a concurrency policy -----------------------------------------
 
-bool Mesh::Reserve::take(std::vector<std::uint32_t>& out, std::size_t want) {
-  // Whole chunks: one atomic step per few thousand allocations.
-  constexpr std::size_t kChunk = 1024;
-  const std::size_t n = std::max(want, kChunk);
-  const std::size_t first = cursor.fetch_add(n, std::memory_order_relaxed);
-  if (first >= ids.size()) return false;
-  const std::size_t last = std::min(first + n, ids.size());
-  out.insert(out.end(), ids.begin() + static_cast<std::ptrdiff_t>(first),
-             ids.begin() + static_cast<std::ptrdiff_t>(last));
-  return last - first >= want;
-}
-
-void Mesh::Reserve::drain_into(MeshArray<std::uint32_t>& out) {
-  const std::size_t first = std::min(cursor.load(), ids.size());
-  out.insert(out.end(), ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end());
-  ids.clear();
-  cursor = 0;
-}
-
-void Mesh::append_dead(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run) {
+DeadRoom Mesh::add_dead_room(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run) {
   const std::size_t nv = points_.size(), nt = tets_.size();
   // Grow by an eighth more than asked, not by doubling: the room is
   // mostly handed back, and doubling every array would double the peak.
@@ -224,87 +189,39 @@ void Mesh::append_dead(std::size_t vertex_room, std::size_t tet_room, const Part
   extend_array(tet_ref_, t_size, t_cap, run);
   extend_array(tet_stamp_, t_size, t_cap, run);
   extend_array(tet_quality_, t_size, t_cap, run);
-  // Unused reserve first, then the new ids.
-  for (auto [reserve, first, room] :
-       {std::tuple{&vertex_reserve_, nv, vertex_room}, std::tuple{&tet_reserve_, nt, tet_room}}) {
-    MeshArray<std::uint32_t> ids;
-    reserve->drain_into(ids);
-    const std::size_t kept = ids.size();
-    ids.resize(kept + room);
-    const std::size_t parts = std::max<std::size_t>(run.parts, 1);
-    run(parts, [&, first = first, room = room](std::size_t p) {
-      const auto [lo, hi] = part_slice(room, parts, p);
-      for (std::size_t i = lo; i < hi; ++i) ids[kept + i] = static_cast<std::uint32_t>(first + i);
-    });
-    reserve->ids = std::move(ids);
-  }
+  return {nv, nt};
 }
 
-void Mesh::begin_parallel(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run) {
-  if (parallel_) throw std::logic_error("Mesh::begin_parallel: a parallel pass is already running");
-  parallel_ = true;
-  // The free lists first, then as many new ids as they lack.
-  vertex_reserve_.ids.assign(free_vertices_.rbegin(), free_vertices_.rend());
-  tet_reserve_.ids.assign(free_tets_.rbegin(), free_tets_.rend());
-  vertex_reserve_.cursor = 0;
-  tet_reserve_.cursor = 0;
-  const std::size_t free_v = free_vertices_.size(), free_t = free_tets_.size();
-  free_vertices_.clear();
-  free_tets_.clear();
-  append_dead(vertex_room > free_v ? vertex_room - free_v : 0, tet_room > free_t ? tet_room - free_t : 0, run);
+IdLedger Mesh::attach_id_source(IdSource& source) {
+  if (id_source_) throw std::logic_error("Mesh::attach_id_source: a source is already attached");
+  id_source_ = &source;
+  IdLedger ledger;
+  std::swap(ledger.free_vertices, free_vertices_);
+  std::swap(ledger.free_tets, free_tets_);
+  return ledger;
 }
 
-void Mesh::grow_parallel(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run) {
-  append_dead(vertex_room, tet_room, run);
-}
-
-bool Mesh::fill_pool(AllocationPool& pool, std::size_t vertices, std::size_t tets) {
-  bool ok = true;
-  if (pool.vertices.size() < vertices) ok = vertex_reserve_.take(pool.vertices, vertices - pool.vertices.size()) && ok;
-  if (pool.tets.size() < tets) ok = tet_reserve_.take(pool.tets, tets - pool.tets.size()) && ok;
-  return ok;
-}
-
-void Mesh::end_parallel(std::span<AllocationPool> pools) {
-  for (AllocationPool& p : pools) {
-    free_vertices_.insert(free_vertices_.end(), p.vertices.begin(), p.vertices.end());
-    free_vertices_.insert(free_vertices_.end(), p.removed_vertices.begin(), p.removed_vertices.end());
-    free_tets_.insert(free_tets_.end(), p.tets.begin(), p.tets.end());
-    live_vertices_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(live_vertices_) + p.vertex_delta);
-    // created = delta + removed
-    vertex_changes_ +=
-        static_cast<std::uint64_t>(p.vertex_delta + 2 * static_cast<std::ptrdiff_t>(p.removed_vertices.size()));
-    live_tets_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(live_tets_) + p.tet_delta);
-    p = AllocationPool{};
-  }
-  vertex_reserve_.drain_into(free_vertices_);
-  tet_reserve_.drain_into(free_tets_);
-  parallel_ = false;
+void Mesh::detach_id_source(IdLedger returned) {
+  id_source_ = nullptr;
+  free_vertices_.insert(free_vertices_.end(), returned.free_vertices.begin(), returned.free_vertices.end());
+  free_tets_.insert(free_tets_.end(), returned.free_tets.begin(), returned.free_tets.end());
+  live_vertices_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(live_vertices_) + returned.vertex_delta);
+  live_tets_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(live_tets_) + returned.tet_delta);
+  vertex_changes_ += returned.vertex_changes;
 }
 
 void Mesh::split_ridge(VertexId a, VertexId b, VertexId m) {
   // Ridge edges join ridge or corner vertices (classification): without
-  // input feature edges (which may lie inside), most splits need not take
-  // the lock that parallel passes share.
-  if (feature_edges_empty_ && (vertex_class_[a] < VertexClass::ridge || vertex_class_[b] < VertexClass::ridge)) return;
-  std::lock_guard guard(tags_lock_);
-  if (ridges_.erase(edge_key(a, b))) {
-    ridges_.insert(edge_key(a, m));
-    ridges_.insert(edge_key(m, b));
-  }
-  if (feature_edges_.erase(edge_key(a, b))) {
-    feature_edges_.insert(edge_key(a, m));
-    feature_edges_.insert(edge_key(m, b));
-  }
+  // input feature edges (which may lie inside), most splits need not reach
+  // the shared sets.
+  if (!edge_tags_.has_features() && (vertex_class_[a] < VertexClass::ridge || vertex_class_[b] < VertexClass::ridge))
+    return;
+  edge_tags_.split(a, b, m);
 }
 
 void Mesh::merge_edge_tags(VertexId from, VertexId to, std::span<const VertexId> neighbours) {
-  if (feature_edges_empty_ && vertex_class_[from] < VertexClass::ridge) return;  // on no tagged edge
-  std::lock_guard guard(tags_lock_);
-  for (auto* tags : {&ridges_, &feature_edges_}) {
-    for (VertexId x : neighbours)
-      if (tags->erase(edge_key(from, x)) && x != to) tags->insert(edge_key(to, x));
-  }
+  if (!edge_tags_.has_features() && vertex_class_[from] < VertexClass::ridge) return;  // on no tagged edge
+  edge_tags_.merge(from, to, neighbours);
 }
 
 BoundingBox bounding_box(const Mesh& mesh) {

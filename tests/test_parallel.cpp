@@ -205,6 +205,37 @@ TEST_SUITE("parallel") {
     for (TetId t : made_t) REQUIRE(mesh.tet_alive(t));
   }
 
+  TEST_CASE("allocation pools: a pass that throws hands every id back, its changes counted, one source at a time") {
+    Mesh mesh = make_box({.nx = 2, .ny = 2, .nz = 2});
+    const std::size_t v0 = mesh.num_vertices(), t0 = mesh.num_tets(), cap = mesh.vertex_capacity();
+    const std::uint64_t changes0 = mesh.vertex_changes();
+    std::vector<std::uint32_t> index(20000);
+    for (std::size_t i = 0; i < index.size(); ++i) index[i] = static_cast<std::uint32_t>(i);
+    // Every item makes a vertex and removes it; item 15000 throws.
+    auto work = [&](std::uint32_t i, int, SpeculativeLocks&) {
+      mesh.remove_vertex(mesh.add_vertex(Point(2.0, 2.0, 2.0)));
+      if (i == 15000) throw std::runtime_error("item 15000");
+      return Attempt::done;
+    };
+    const PassRoom room{.max_vertices = 1, .max_tets = 0, .vertices_per_item = 0.5};
+    CHECK_THROWS_WITH(SpeculativeOn<8>::for_each(mesh, std::span<const std::uint32_t>(index), room, work),
+                      "item 15000");
+    CHECK(mesh.num_vertices() == v0);
+    CHECK(mesh.num_tets() == t0);
+    CHECK(mesh.vertex_changes() > changes0);
+    CHECK((mesh.vertex_changes() - changes0) % 2 == 0);  // each made and removed
+    // Detached: the mesh allocates from its free lists (which got the room back).
+    const VertexId v = mesh.add_vertex(Point(0.5, 0.5, 0.5));
+    CHECK(v >= cap);
+    CHECK(mesh.vertex_capacity() > cap);
+    mesh.remove_vertex(v);
+    {
+      ParallelIds ids(mesh, 1, 0, 0, PartRunner{});
+      CHECK_THROWS_AS(ParallelIds(mesh, 1, 0, 0, PartRunner{}), std::logic_error);
+    }
+    require_valid(mesh, 1.0);
+  }
+
   TEST_CASE("the policies' sort orders a work list as std::sort does, on 1, 2, 3 and 8 threads") {
     // Long enough for the parallel slices and merges (3 threads: a merge
     // round with an odd slice left over).

@@ -13,10 +13,11 @@
 // none of them allocates per call once capacity is reserved.
 #pragma once
 
+#include <metrica/edge_tags.hpp>
 #include <metrica/geometry.hpp>
+#include <metrica/id_source.hpp>
 #include <metrica/ids.hpp>
 #include <metrica/mesh_array.hpp>
-#include <metrica/spin_lock.hpp>
 #include <metrica/tet_topology.hpp>
 
 #include <algorithm>
@@ -26,6 +27,7 @@
 #include <span>
 #include <string_view>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 namespace metrica {
@@ -162,21 +164,15 @@ class Mesh {
   // feature edges the input gave (Edges / Ridges keywords).
   // Safe in a parallel pass for a caller holding a and b (both ends of a
   // ridge edge are ridge or corner vertices, so most calls never reach the
-  // shared set; the others take a spin lock).
+  // shared set, edge_tags.hpp).
   bool is_ridge(VertexId a, VertexId b) const {
     if (vertex_class_[a] < VertexClass::ridge || vertex_class_[b] < VertexClass::ridge) return false;
-    tags_lock_.lock();
-    const bool ridge = ridges_.count(edge_key(a, b)) != 0;
-    tags_lock_.unlock();
-    return ridge;
+    return edge_tags_.is_ridge(a, b);
   }
   // The sets themselves: only outside parallel passes.
-  const std::unordered_set<std::uint64_t>& ridge_edges() const { return ridges_; }
-  const std::unordered_set<std::uint64_t>& feature_edges() const { return feature_edges_; }
-  void add_feature_edge(VertexId a, VertexId b) {
-    feature_edges_.insert(edge_key(a, b));
-    feature_edges_empty_ = false;
-  }
+  const std::unordered_set<std::uint64_t>& ridge_edges() const { return edge_tags_.ridges(); }
+  const std::unordered_set<std::uint64_t>& feature_edges() const { return edge_tags_.features(); }
+  void add_feature_edge(VertexId a, VertexId b) { edge_tags_.add_feature(a, b); }
 
   // Recomputes ridges and vertex classes from the surface ids, feature
   // edges and required vertices (classification.cpp). The one function
@@ -204,7 +200,7 @@ class Mesh {
   // (0..kMaxSurfaceId; one slot holds the neighbour or the id).
   void set_surface_id(TetId t, int face, SurfaceId id) { tet2tets_[t][face] = FaceRef::boundary(id); }
   void set_vertex_class(VertexId v, VertexClass c) { vertex_class_[v] = c; }
-  void set_ridges(std::unordered_set<std::uint64_t> ridges) { ridges_ = std::move(ridges); }
+  void set_ridges(std::unordered_set<std::uint64_t> ridges) { edge_tags_.set_ridges(std::move(ridges)); }
   // Replaces ridge (and feature) edge ab by am and mb when an operator
   // puts vertex m on it, keeping the classification up to date.
   void split_ridge(VertexId a, VertexId b, VertexId m);
@@ -213,38 +209,18 @@ class Mesh {
   // are the vertices joined to `from` by an edge.
   void merge_edge_tags(VertexId from, VertexId to, std::span<const VertexId> neighbours);
 
-  // --- parallel passes -----------------------------------------------------
-  // While a parallel pass runs (policies/speculative.hpp), every thread
-  // creates vertices and tets from its own pool of dead ids, so that
-  // add_vertex / add_tet / remove_tet / remove_vertex take no lock and
-  // never reallocate under running threads. The arrays grow only between
-  // rounds (begin_parallel, grow_parallel), when no thread runs. Vertices
-  // removed during the pass are recycled only after it (end_parallel): a
-  // thread may still hold a removed vertex's id in its work list.
-  // One cache line (or more) each: every creation and removal writes its
-  // thread's pool, which must not share a line with another's.
-  struct alignas(64) AllocationPool {
-    std::vector<VertexId> vertices;
-    std::vector<TetId> tets;
-    std::vector<VertexId> removed_vertices;
-    std::ptrdiff_t vertex_delta = 0, tet_delta = 0;
-  };
-  // Moves the free lists and `vertex_room` / `tet_room` new dead ids to
-  // the shared reserve the pools draw from. The arrays grow (copy, fill)
-  // in `run`'s parts, on the policy's threads.
-  void begin_parallel(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run = {});
-  // Adds more room between rounds (no thread in a pass).
-  void grow_parallel(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run = {});
-  // Tops `pool` up to at least the given numbers of ids from the reserve
-  // (lock-free); false when the reserve cannot: the caller waits for the
-  // next round.
-  bool fill_pool(AllocationPool& pool, std::size_t vertices, std::size_t tets);
-  // Returns every unused and removed id to the free lists and counts the
-  // pools' creations and removals.
-  void end_parallel(std::span<AllocationPool> pools);
-  // The pool the calling thread allocates from (null: the serial free
-  // lists).
-  static void bind_pool(AllocationPool* pool);
+  // --- ids from a concurrency policy --------------------------------------
+  // While a source is attached (a parallel pass), add_vertex, add_tet,
+  // remove_vertex and remove_tet take and give ids through it
+  // (id_source.hpp), and the free lists and counts wait. Attaching hands
+  // the source the free lists; detaching takes back the ids it holds and
+  // adds its counts. Neither while threads run; one source at a time.
+  IdLedger attach_id_source(IdSource& source);
+  void detach_id_source(IdLedger returned);
+  // Appends `vertex_room` and `tet_room` dead entities (ids no list holds:
+  // the caller hands them out) without moving a live one's data; the
+  // arrays grow (copy, fill) in `run`'s parts. Only while no thread runs.
+  DeadRoom add_dead_room(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run = {});
 
   // Removes dead entities and renumbers vertices along a Morton curve and
   // tets by their vertices, so that neighbours in space are neighbours in
@@ -273,7 +249,6 @@ class Mesh {
   }
   void init_vertex(VertexId v, const Point& p, int ref);
   void init_tet(TetId t, const TetVertices& vertices, int ref);
-  void append_dead(std::size_t vertex_room, std::size_t tet_room, const PartRunner& run);
 
   MeshArray<Point> points_;
   MeshArray<int> vertex_ref_;
@@ -302,27 +277,9 @@ class Mesh {
   std::uint64_t vertex_changes_ = 0;
   std::size_t live_tets_ = 0;
 
-  std::unordered_set<std::uint64_t> ridges_;
-  std::unordered_set<std::uint64_t> feature_edges_;
-  mutable SpinLock tags_lock_;       // guards the two sets in parallel passes
-  bool feature_edges_empty_ = true;  // never input feature edges
+  EdgeTags edge_tags_;
 
-  // The reserve of a parallel pass: ids handed out from `cursor` on.
-  struct Reserve {
-    MeshArray<std::uint32_t> ids;
-    std::atomic<std::size_t> cursor{0};
-    Reserve() = default;
-    Reserve(const Reserve& o) : ids(o.ids), cursor(o.cursor.load()) {}
-    Reserve& operator=(const Reserve& o) {
-      ids = o.ids;
-      cursor = o.cursor.load();
-      return *this;
-    }
-    bool take(std::vector<std::uint32_t>& out, std::size_t want);
-    void drain_into(MeshArray<std::uint32_t>& out);
-  };
-  Reserve vertex_reserve_, tet_reserve_;
-  bool parallel_ = false;
+  IdSource* id_source_ = nullptr;
 
   friend class MeshCompactor;
 };

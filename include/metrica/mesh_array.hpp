@@ -6,7 +6,7 @@
 // (and page-fault) every new element on its own. grow_array then copies
 // and fills in parts on a PartRunner's threads. Why: at 4.4M tets a
 // 2-thread adaptation spent 2.0 s of 71 s on one thread growing the
-// arrays before its passes (begin_parallel: a split pass reserves room for
+// arrays before its passes (Mesh::add_dead_room: a split pass reserves room for
 // 3.3M tets, the reallocation copied every array and std::vector's resize
 // wrote the room), and compaction zero-filled each gathered array before
 // the parallel gather overwrote it.

@@ -9,9 +9,9 @@
 // when a round clears less than a tenth of its list (the same few
 // cavities keep colliding) the rest runs on one thread, which cannot
 // conflict. Allocation: each thread creates vertices and tets from its own
-// pool (Mesh::AllocationPool), topped up from a shared reserve by one
-// atomic step per chunk; the reserve grows between rounds only, so no
-// array is reallocated under a running thread.
+// pool, topped up from a shared reserve by one atomic step per chunk; the
+// reserve grows between rounds only, so no array is reallocated under a
+// running thread (parallel_ids.hpp).
 //
 // Memory order: a successful acquisition is an acquire, a release a
 // release, so whoever locks a vertex sees every write made by its
@@ -19,6 +19,7 @@
 #pragma once
 
 #include <metrica/policies/concurrency.hpp>
+#include <metrica/policies/parallel_ids.hpp>
 #include <metrica/policies/threads.hpp>
 #include <metrica/policy_list.hpp>
 #include <metrica/small_vector.hpp>
@@ -246,10 +247,8 @@ struct Speculative {
       return std::pair{need(room.vertices_per_item, room.max_vertices), need(room.tets_per_item, room.max_tets)};
     };
     const auto [v0, t0] = room_for(items.size(), nt);
-    // The arrays grow on the pass's threads (Mesh::begin_parallel).
-    const PartRunner grow_run = part_runner<Speculative>(mesh.tet_capacity());
-    mesh.begin_parallel(v0, t0, grow_run);
-    std::vector<Mesh::AllocationPool> pools(static_cast<std::size_t>(nt));
+    // The arrays grow on the pass's threads.
+    ParallelIds ids(mesh, nt, v0, t0, part_runner<Speculative>(mesh.tet_capacity()));
     struct alignas(64) PerThread {
       std::vector<Item> deferred;
       std::size_t conflicts = 0;
@@ -277,13 +276,12 @@ struct Speculative {
       {
         const int tid = omp_get_thread_num();
         PerThread& mine = per[static_cast<std::size_t>(tid)];
-        Mesh::AllocationPool& pool = pools[static_cast<std::size_t>(tid)];
-        Mesh::bind_pool(&pool);
+        ids.bind(tid);
         Locks locks(words, static_cast<std::uint32_t>(tid) + 1, threads_now == 1);
 #pragma omp for schedule(dynamic, chunk) nowait
         for (long i = 0; i < n; ++i) {
           const Item& item = current[static_cast<std::size_t>(i)];
-          if (mine.error || !mesh.fill_pool(pool, room.max_vertices, room.max_tets)) {
+          if (mine.error || !ids.fill(room.max_vertices, room.max_tets)) {
             mine.out_of_room = mine.out_of_room || !mine.error;
             mine.deferred.push_back(item);
             continue;
@@ -298,7 +296,7 @@ struct Speculative {
           }
           locks.release();
         }
-        Mesh::bind_pool(nullptr);
+        ParallelIds::unbind();
         mine.busy += round_clock.seconds();  // until this thread ran out of items
       }
       tally.thread_seconds += round_clock.seconds() * threads_now;
@@ -306,10 +304,7 @@ struct Speculative {
       bool out_of_room = false;
       std::size_t round_conflicts = 0;
       for (PerThread& p : per) {
-        if (p.error) {
-          mesh.end_parallel(pools);
-          std::rethrow_exception(p.error);
-        }
+        if (p.error) std::rethrow_exception(p.error);
         next.insert(next.end(), p.deferred.begin(), p.deferred.end());
         p.deferred.clear();
         round_conflicts += p.conflicts;
@@ -324,12 +319,11 @@ struct Speculative {
       if (10 * round_conflicts > 9 * current.size()) threads_now = 1;
       if (out_of_room) {
         const auto [v, t] = room_for(next.size(), threads_now);
-        mesh.grow_parallel(v, t, grow_run);
+        ids.grow(v, t);
       }
       std::swap(list, next);
       current = std::span<const Item>(list);
     }
-    mesh.end_parallel(pools);
     for (const PerThread& p : per) tally.busy_seconds += p.busy;
     tally.seconds = clock.seconds();
     return tally;
