@@ -4,7 +4,8 @@
 //     never inverts a tet and never drops below the shape floor; applied on
 //     a copy, it keeps the mesh valid, the boundary areas per surface id and
 //     the ridges;
-//   - the shape floor of 2-3 flips under every criterion;
+//   - Acceptance (the shape floor and the criterion's bar) and the shape
+//     floor of 2-3 flips under every criterion;
 //   - a toy executor (items in reverse order) adapts a box with no
 //     operator edited.
 #include "laplacian_move.hpp"  // examples/operation: the tutorial's operation
@@ -198,6 +199,43 @@ TEST_SUITE("property") {
     FlipOptions no_floor = fo;
     no_floor.shape_floor = 0.0;
     CHECK(static_cast<bool>(decide_flip23<S, P, PreferNew>(mesh, t, face, s, no_floor)));
+  }
+}
+
+TEST_SUITE("property") {
+  TEST_CASE_TEMPLATE("Acceptance: the floor unless an old tet was worse, implied by a shape criterion, 0 asks nothing",
+                     T, METRICA_SPACE_PRECISION) {
+    using S = typename T::Space;
+    Mesh mesh = sliver_pair();
+    set_uniform_metric(mesh, 1.0);
+    const std::array<TetId, 1> old{0};
+    const double q_old = S::mean_ratio(mesh, mesh.tet(0));
+    const TetPoints x = detail::tet_points(mesh, mesh.tet(0));
+    for (const double q : {0.5 * q_old, 0.999 * q_old, q_old, 1.001 * q_old}) {
+      // Below the floor: admitted only when not worse than the old tet.
+      auto r = Acceptance<S, ShapeOnly>(2.0 * q_old).replacing(mesh, old);
+      CHECK(r.shape_admits(q) == (q >= q_old));
+      // Above the floor: admitted.
+      CHECK(Acceptance<S, ShapeOnly>(0.25 * q_old).replacing(mesh, old).shape_admits(q));
+      // A floor of 0, or a criterion that measures shape: the floor asks nothing.
+      CHECK(Acceptance<S, ShapeOnly>(0.0).replacing(mesh, old).shape_admits(q));
+      CHECK(Acceptance<S, MinQuality>(2.0 * q_old).replacing(mesh, old).shape_admits(q));
+    }
+    CHECK_FALSE(Acceptance<S, ShapeOnly>(0.0).decides());
+    CHECK(Acceptance<S, ShapeOnly>(0.1).decides());
+    CHECK(Acceptance<S, MinQuality>(0.0).decides());
+    // The criterion's bar: the old tet does not beat itself under a strict
+    // criterion; an indifferent one takes it.
+    CHECK_FALSE(Acceptance<S, MinQuality>(0.0).replacing(mesh, old).beats(mesh.tet(0), x));
+    CHECK(Acceptance<S, ShapeOnly>(0.0).replacing(mesh, old).beats(mesh.tet(0), x));
+    // keeps_shape over the mesh's tets: the sliver pair's worse tet against the better one.
+    const TetId worse = S::mean_ratio(mesh, mesh.tet(0)) < S::mean_ratio(mesh, mesh.tet(1)) ? 0 : 1;
+    const std::array<TetId, 1> better{1 - worse};
+    const std::array<TetVertices, 1> candidate{mesh.tet(worse)};
+    const double q_worse = S::mean_ratio(mesh, mesh.tet(worse));
+    CHECK(Acceptance<S, ShapeOnly>(0.5 * q_worse).keeps_shape(mesh, better, candidate));
+    CHECK(Acceptance<S, ShapeOnly>(2.0 * q_worse).keeps_shape(mesh, better, candidate) ==
+          (q_worse >= S::mean_ratio(mesh, mesh.tet(1 - worse))));
   }
 }
 

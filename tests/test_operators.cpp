@@ -43,14 +43,14 @@ FlipResult outcome(const Decision<Plan>& d) {
 template <MetricSpace S, Precision P, class Criterion>
 FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const FlipOptions& o) {
   const auto d = decide_edge_removal<S, P, Criterion>(mesh, a, b, s, o);
-  if (d) apply_edge_removal<Criterion>(mesh, d.plan(), s);
+  if (d) apply_edge_removal<S, Criterion>(mesh, d.plan(), s);
   return outcome(d);
 }
 
 template <MetricSpace S, Precision P, class Criterion>
 FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptions& o = {}) {
   const auto d = decide_flip23<S, P, Criterion>(mesh, t, face, s, o);
-  if (d) apply_flip23<Criterion>(mesh, d.plan(), s);
+  if (d) apply_flip23<S, Criterion>(mesh, d.plan(), s);
   return outcome(d);
 }
 

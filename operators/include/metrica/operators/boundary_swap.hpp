@@ -10,8 +10,8 @@
 #pragma once
 
 #include <metrica/geometry/model.hpp>
+#include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/cavity.hpp>
-#include <metrica/operators/criterion.hpp>
 #include <metrica/operators/flips.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/work_list.hpp>
@@ -74,7 +74,7 @@ struct BoundarySwap {
     if (after > options.gain * before) return Refusal::rejected;
     fan_tets(s.ring, 0, a, b, sign, s.candidate);
     if (!all_positive<P>(mesh, view(s.candidate))) return Refusal::rejected;
-    if (!keeps_shape<S, ShapeOnly>(mesh, view(shell.tets), view(s.candidate), options.shape_floor))
+    if (!Acceptance<S, ShapeOnly>(options.shape_floor).keeps_shape(mesh, view(shell.tets), view(s.candidate)))
       return Refusal::rejected;
     // The new boundary edge must not exist already.
     if (tet_with_edge(mesh, v0, v2, s.ball) != kNoId) return Refusal::rejected;

@@ -17,8 +17,8 @@
 // two interior ends merge at the edge's metric midpoint instead.
 #pragma once
 
+#include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/cavity.hpp>
-#include <metrica/operators/criterion.hpp>
 #include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
@@ -163,37 +163,21 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
     }
   }
   if (!plan_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, a, b)) return Refusal::rejected;
-  // The shape floor: refused when some new tet is below both the floor
-  // and the worst old one. With require_gain, refused unless every new
-  // tet beats the worst old.
-  double q_old = Mesh::kUnknownQuality;
-  auto worst_old = [&] {
-    if (q_old == Mesh::kUnknownQuality) {
-      q_old = std::numeric_limits<double>::infinity();
-      for (TetId u : s.ball) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, u));
-      if (moved != nullptr)
-        for (TetId u : s.ball_b) q_old = std::min(q_old, cached_mean_ratio<S>(mesh, u));
-    }
-    return q_old;
-  };
-  const ShapeFloor shape(o.shape_floor);
+  // Accepted when every new tet passes the shape floor and beats the old
+  // ball (both balls when b moves) under the criterion; with
+  // require_gain, refused unless every new tet beats the worst old in
+  // mean ratio. The mean ratios are kept for the quality cache.
+  auto r = Acceptance<S, Criterion>(o.shape_floor)
+               .replacing(mesh, view(s.ball), moved != nullptr ? view(s.ball_b) : std::span<const TetId>{});
   s.new_quality.clear();
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
-      const double q = S::mean_ratio(mesh, t, tet_points_moved(mesh, t, b, pb));
+      const TetPoints x = tet_points_moved(mesh, t, b, pb);
+      const double q = S::mean_ratio(mesh, t, x);
       if (list == &s.new_tets) s.new_quality.emplace_back(q);
-      if (o.require_gain && q <= worst_old()) return Refusal::rejected;
-      if (!shape.admits(q, worst_old)) return Refusal::rejected;
+      if (o.require_gain && q <= r.worst_old()) return Refusal::rejected;
+      if (!r.shape_admits(q) || !r.beats(t, x)) return Refusal::rejected;
     }
-  if constexpr (!CriterionTraits<Criterion>::indifferent) {
-    double old_score = min_score_of<Criterion, S>(mesh, view(s.ball));
-    if (moved != nullptr) old_score = std::min(old_score, min_score_of<Criterion, S>(mesh, view(s.ball_b)));
-    const double bar = Criterion::bar(old_score);
-    for (const auto* list : {&s.new_tets, &s.dragged})
-      for (const auto& t : *list)
-        if (Criterion::template tet_score_at<S>(mesh, t, tet_points_moved(mesh, t, b, pb)) <= bar)
-          return Refusal::rejected;
-  }
   CollapsePlan plan{a, b, moved != nullptr, pb, {}};
   if (moved_metric != nullptr) plan.metric = *moved_metric;
   return plan;

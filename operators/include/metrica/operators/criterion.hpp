@@ -35,9 +35,8 @@
 //                    empty-sphere criterion of eqs. (3)-(4) across one of its
 //                    inner faces and the new one across none.
 //
-// The shape floor (ShapeFloor below) wraps every criterion that does not
-// measure shape: no new tet below a mean ratio floor, unless the old
-// configuration already had a worse one.
+// An operation applies its criterion together with a shape floor through
+// one object, Acceptance (acceptance.hpp).
 #pragma once
 
 #include <metrica/metrics/space.hpp>
@@ -164,95 +163,6 @@ struct ShapeOnly {
 static_assert(ScoredCriterion<MinQuality> && ScoredCriterion<MaxMinEdgeWeight> && ScoredCriterion<ShapeOnly>);
 static_assert(CriterionTraits<MinQuality>::measures_shape && CriterionTraits<MinQuality>::score_is_mean_ratio_cubed &&
               CriterionTraits<ShapeOnly>::indifferent && !CriterionTraits<MaxMinEdgeWeight>::measures_shape);
-
-// The shape floor of each operation, one default each, stated here (the
-// options' `shape_floor`): the mean ratio below which a new tet is
-// refused unless the configuration it replaces already had a worse one.
-struct ShapeFloors {
-  // A split refines what it is given: its tets are as good as their
-  // parents allow.
-  static constexpr double split = 0.0;
-  // A collapse can make what later cycles cannot undo.
-  static constexpr double collapse = 0.1;
-  // Flips and smoothing under a criterion that does not measure shape must
-  // not fold a flat boundary (tets of Q ~ 1e-11 without a floor).
-  static constexpr double flip = 1e-3;
-  static constexpr double smoothing = 1e-3;
-  // A boundary swap and a projection follow the model: no criterion
-  // decides them, and by default no floor but a positive tet (the flips
-  // and smoothing around them lift what they leave).
-  static constexpr double boundary_swap = 0.0;
-  static constexpr double projection = 0.0;
-};
-
-// The shape floor every criterion gets: a new configuration may not have a
-// tet below min(floor, the worst old tet) in mean ratio. Without it, metric
-// Delaunay or edge-weight flips on a flat boundary made tets of Q ~ 1e-11
-// (positive for the exact predicate, a fold of the surface for the rest).
-// A criterion that measures shape (MinQuality) already implies it.
-class ShapeFloor {
- public:
-  // `worst_old` is computed on first use.
-  explicit ShapeFloor(double floor) : floor_(floor) {}
-  template <class Worst>
-  bool admits(double q_new, Worst&& worst_old) const {
-    if (q_new >= floor_) return true;
-    return !(q_new < worst_old());
-  }
-
- private:
-  double floor_;
-};
-
-// The worst (cached) mean ratio of live tets, measured on first use: the
-// shape floor needs it only when a new tet is below the floor.
-template <MetricSpace S>
-class WorstOld {
- public:
-  WorstOld(const Mesh& mesh, std::span<const TetId> tets) : mesh_(mesh), tets_(tets) {}
-  double operator()() {
-    if (!known_) {
-      for (TetId t : tets_) worst_ = std::min(worst_, cached_mean_ratio<S>(mesh_, t));
-      known_ = true;
-    }
-    return worst_;
-  }
-
- private:
-  const Mesh& mesh_;
-  std::span<const TetId> tets_;
-  double worst_ = std::numeric_limits<double>::infinity();
-  bool known_ = false;
-};
-
-// The shape floor over the new tets of a replacement of live `old_tets`
-// (at the mesh's points), with `Criterion`: always true for a criterion
-// that measures shape.
-template <MetricSpace S, class Criterion>
-bool keeps_shape(const Mesh& mesh, std::span<const TetId> old_tets, std::span<const TetVertices> new_tets,
-                 double floor) {
-  if constexpr (CriterionTraits<Criterion>::measures_shape) {
-    return true;
-  } else {
-    const ShapeFloor shape(floor);
-    WorstOld<S> worst_old(mesh, old_tets);
-    for (const auto& t : new_tets)
-      if (!shape.admits(S::mean_ratio(mesh, t), worst_old)) return false;
-    return true;
-  }
-}
-
-// After a change under Criterion is applied: when its scores are Q^3, the
-// quality cache gets the new tets' mean ratios (in the order `created`
-// lists them) for a cube root each instead of a fresh mean ratio later.
-// Without a score per new tet, or under other criteria: nothing.
-template <class Criterion>
-void cache_new_qualities(const Mesh& mesh, std::span<const TetId> created, std::span<const double> scores) {
-  if constexpr (CriterionTraits<Criterion>::score_is_mean_ratio_cubed) {
-    if (scores.size() != created.size()) return;
-    for (std::size_t i = 0; i < created.size(); ++i) mesh.cache_quality(created[i], std::cbrt(scores[i]));
-  }
-}
 
 struct MetricDelaunay {
   static constexpr std::string_view name = "delaunay";

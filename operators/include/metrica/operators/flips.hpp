@@ -24,8 +24,8 @@
 
 #include <metrica/geometry.hpp>
 #include <metrica/geometry/model.hpp>
+#include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/cavity.hpp>
-#include <metrica/operators/criterion.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/shell.hpp>
 #include <metrica/operators/work_list.hpp>
@@ -214,6 +214,7 @@ template <MetricSpace S, Precision P, class Criterion, Geometry G = NoGeometry>
 Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, VertexId b, FlipScratch& s,
                                               const FlipOptions& o, const G& geometry = {}) {
   const Shell& shell = s.shell;
+  const Acceptance<S, Criterion> accept(o.shape_floor);
   SurfaceId surface = 0;
   if (!detail::edge_removal_applies<S>(mesh, a, b, shell, o, surface)) return Refusal::not_applicable;
   const int ref = mesh.tet_ref(shell.tets[0]);
@@ -280,7 +281,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
       const NewTets& reference = found ? s.best : s.old_tets;
       if (!Criterion::template prefers<S, P>(mesh, view(reference), view(s.candidate))) continue;
     }
-    if (!keeps_shape<S, Criterion>(mesh, view(shell.tets), view(s.candidate), o.shape_floor)) continue;
+    if (!accept.keeps_shape(mesh, view(shell.tets), view(s.candidate))) continue;
     s.best = s.candidate;
     s.best_scores.clear();
     if (memo)
@@ -293,10 +294,10 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
   return EdgeRemovalPlan{a, b, ref};
 }
 
-template <class Criterion>
+template <MetricSpace S, class Criterion>
 void apply_edge_removal(Mesh& mesh, const EdgeRemovalPlan& plan, FlipScratch& s) {
   apply_cavity(mesh, view(s.shell.tets), view(s.best), s.plan, plan.ref, s.created);
-  cache_new_qualities<Criterion>(mesh, view(s.created), view(s.best_scores));
+  Acceptance<S, Criterion>::after_apply(mesh, view(s.created), view(s.best_scores));
 }
 
 // The 2-3 flip of the inner face `face` of tet t: the two tets sharing it
@@ -324,9 +325,10 @@ Decision<Flip23Plan> decide_flip23(const Mesh& mesh, TetId t, int face, FlipScra
   }
   if (!all_positive<P>(mesh, view(s.candidate))) return Refusal::rejected;
   const std::array<TetId, 2> old{t, nb.tet()};
+  const Acceptance<S, Criterion> accept(o.shape_floor);
   s.best_scores.clear();
   if constexpr (ScoredCriterion<Criterion>) {
-    const double bar = Criterion::bar(min_score_of<Criterion, S>(mesh, old));
+    const double bar = accept.replacing(mesh, old).bar();
     for (std::size_t c = 0; c < 3; ++c) {
       s.best_scores.emplace_back(Criterion::template tet_score<S>(mesh, s.candidate[c]));
       if (s.best_scores.back() <= bar) return Refusal::rejected;
@@ -337,16 +339,16 @@ Decision<Flip23Plan> decide_flip23(const Mesh& mesh, TetId t, int face, FlipScra
     s.old_tets.emplace_back(mesh.tet(nb.tet()));
     if (!Criterion::template prefers<S, P>(mesh, view(s.old_tets), view(s.candidate))) return Refusal::rejected;
   }
-  if (!keeps_shape<S, Criterion>(mesh, old, view(s.candidate), o.shape_floor)) return Refusal::rejected;
+  if (!accept.keeps_shape(mesh, old, view(s.candidate))) return Refusal::rejected;
   if (!plan_cavity(mesh, old, view(s.candidate), s.plan)) return Refusal::rejected;
   return Flip23Plan{t, nb.tet(), face};
 }
 
-template <class Criterion>
+template <MetricSpace S, class Criterion>
 void apply_flip23(Mesh& mesh, const Flip23Plan& plan, FlipScratch& s) {
   const std::array<TetId, 2> old{plan.t, plan.other};
   apply_cavity(mesh, old, view(s.candidate), s.plan, mesh.tet_ref(plan.t), s.created);
-  cache_new_qualities<Criterion>(mesh, view(s.created), view(s.best_scores));
+  Acceptance<S, Criterion>::after_apply(mesh, view(s.created), view(s.best_scores));
 }
 
 inline void preview_tets(const Mesh& mesh, std::span<const TetVertices> tets, PlannedTets& out) {
@@ -398,7 +400,7 @@ struct EdgeRemoval {
     return decide_edge_removal<S, P, Criterion>(mesh, a, b, s, options, geometry);
   }
   void apply(Mesh& mesh, const Item&, const Plan& plan, Scratch& s) const {
-    apply_edge_removal<Criterion>(mesh, plan, s);
+    apply_edge_removal<S, Criterion>(mesh, plan, s);
   }
   void preview(const Mesh& mesh, const Item&, const Plan&, const Scratch& s, PlannedTets& out) const {
     preview_tets(mesh, view(s.best), out);
@@ -454,7 +456,7 @@ struct FaceFlip {
     }
     return {rejected ? Refusal::rejected : Refusal::not_applicable, tries};
   }
-  void apply(Mesh& mesh, TetId, const Plan& plan, Scratch& s) const { apply_flip23<Criterion>(mesh, plan, s); }
+  void apply(Mesh& mesh, TetId, const Plan& plan, Scratch& s) const { apply_flip23<S, Criterion>(mesh, plan, s); }
   void preview(const Mesh& mesh, TetId, const Plan&, const Scratch& s, PlannedTets& out) const {
     preview_tets(mesh, view(s.candidate), out);
   }

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <metrica/geometry/model.hpp>
+#include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/operation.hpp>
@@ -49,13 +50,10 @@ struct Projection {
     const Point x = mesh.point(v);
     const Point target = geometry.point(mesh.geo_param(v));
     if ((target - x).norm() <= options.tolerance) return Refusal::not_applicable;
-    WorstOld<S> worst_old(mesh, view(s.ball));
-    const ShapeFloor shape(options.shape_floor);
+    auto r = Acceptance<S, ShapeOnly>(options.shape_floor).replacing(mesh, view(s.ball));
     auto keeps_shape_at = [&](const Point& p) {
-      if (options.shape_floor <= 0.0) return true;
       for (TetId t : s.ball)
-        if (!shape.admits(S::mean_ratio(mesh, mesh.tet(t), tet_points_moved(mesh, mesh.tet(t), v, p)), worst_old))
-          return false;
+        if (!r.shape_admits(mesh.tet(t), tet_points_moved(mesh, mesh.tet(t), v, p))) return false;
       return true;
     };
     const auto q = backtrack_toward(

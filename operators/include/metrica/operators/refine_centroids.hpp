@@ -167,6 +167,7 @@ struct CentroidInsertion {
   Mesh::Epoch start = 0;  // when the candidates were made
   G geometry{};
 
+  Acceptance<S, Criterion> acceptance() const { return Acceptance<S, Criterion>(options.shape_floor); }
   PassRoom room() const { return {.vertices_per_item = 1.0, .tets_per_item = 4.0}; }
   Found seed(const Mesh& mesh, const Item& c, Scratch& x, VertexList& hold) const {
     x.seen = mesh.peek_tet(c.tet);
@@ -187,8 +188,8 @@ struct CentroidInsertion {
   Decision<Plan> decide(const Mesh& mesh, const Item& c, Scratch& x) const {
     const TetVertices& v = x.seen;
     if (c.a != kNoId) {
-      const auto d = decide_edge_point<S, P, Criterion>(mesh, x.shell, c.a, c.b, c.t, c.p, options, geometry,
-                                                        [](const Point&) { return false; });
+      const auto d = decide_edge_point<S, P>(mesh, x.shell, c.a, c.b, c.t, c.p, options, acceptance(), geometry,
+                                             [](const Point&) { return false; });
       if (!d) return d.why();
       return Plan{d.plan().metric, d.plan().p, d.plan().geo};
     }
@@ -207,7 +208,7 @@ struct CentroidInsertion {
     const BoundaryPoint at = place_boundary_vertex(
         geometry, param, c.p, [&](const Point& q) { return cell_split_is_valid<P>(mesh, c.tet, c.face, q); });
     if (!cell_split_is_valid<P>(mesh, c.tet, c.face, at.p)) return Refusal::rejected;
-    if (!cell_split_accepted<S, Criterion>(mesh, c.tet, c.face, at.p, options.shape_floor)) return Refusal::rejected;
+    if (!cell_split_accepted(mesh, c.tet, c.face, at.p, acceptance())) return Refusal::rejected;
     return Plan{new_vertex_metric<S>(mesh, options.metric, parents, weights, at.p), at.p, at.geo};
   }
   void apply(Mesh& mesh, const Item& c, const Plan& plan, Scratch& x) const {

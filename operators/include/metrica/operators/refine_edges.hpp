@@ -53,19 +53,20 @@ struct EdgeSplitPlan {
 // A new vertex on edge ab (its shell held) at a + t (b - a), `straight`:
 // placed by the Geometry (boundary_placement.hpp), refused when
 // `too_close(p)`, when a tet of the split would not be positive (P), or by
-// the criterion and shape floor; its metric from `metric` or interpolated
+// `accept`; its metric from `options.metric` or interpolated
 // with the weights (1 - t, t). The decision of an edge split and of a
 // centroid candidate moved onto a ridge.
 template <MetricSpace S, Precision P, class Criterion, Geometry G, class TooClose>
 Decision<EdgeSplitPlan> decide_edge_point(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, double t,
-                                          const Point& straight, const RefineOptions& options, const G& geometry,
+                                          const Point& straight, const RefineOptions& options,
+                                          const Acceptance<S, Criterion>& accept, const G& geometry,
                                           TooClose&& too_close) {
   const BoundaryPoint at =
       place_boundary_vertex(geometry, edge_vertex_param(geometry, mesh, shell, a, b, t), straight,
                             [&](const Point& q) { return split_is_valid<P>(mesh, shell, a, b, q); });
   if (too_close(at.p)) return Refusal::rejected;
   if (!split_is_valid<P>(mesh, shell, a, b, at.p)) return Refusal::rejected;
-  if (!split_accepted<S, Criterion>(mesh, shell, a, b, at.p, options.shape_floor)) return Refusal::rejected;
+  if (!split_accepted(mesh, shell, a, b, at.p, accept)) return Refusal::rejected;
   const std::array<VertexId, 2> ends{a, b};
   const std::array<double, 2> w{1.0 - t, t};
   return EdgeSplitPlan{at.p, new_vertex_metric<S>(mesh, options.metric, ends, w, at.p), at.geo};
@@ -92,6 +93,7 @@ struct EdgeSplit {
   Mesh::Epoch pass_epoch = 0;
   G geometry{};
 
+  Acceptance<S, Criterion> acceptance() const { return Acceptance<S, Criterion>(options.shape_floor); }
   // A split of a shell of n tets (5 on average) makes n new ones; the
   // proximity filter defers about half of the candidates. More comes
   // between rounds when needed.
@@ -123,8 +125,8 @@ struct EdgeSplit {
       }
       return false;
     };
-    return decide_edge_point<S, P, Criterion>(mesh, x.shell, c.a, c.b, t, Point(mesh.point(c.a) + t * e), options,
-                                              geometry, too_close);
+    return decide_edge_point<S, P>(mesh, x.shell, c.a, c.b, t, Point(mesh.point(c.a) + t * e), options, acceptance(),
+                                   geometry, too_close);
   }
   void apply(Mesh& mesh, const Item& c, const Plan& plan, Scratch& x) const {
     const VertexId n = split_edge(mesh, x.shell, c.a, c.b, plan.p, plan.metric);

@@ -22,7 +22,7 @@
 #pragma once
 
 #include <metrica/geometry/model.hpp>
-#include <metrica/operators/criterion.hpp>
+#include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/shell.hpp>
@@ -324,17 +324,17 @@ Decision<SmoothPlan> best_trial_by_mean_ratio(const Mesh& mesh, VertexId v, cons
 }
 
 // The best of s.trials under any other criterion: its smallest score over
-// the ball at each trial, with the shape floor `floor`.
+// the ball at each trial, each new tet passing `accept`'s shape floor.
 template <MetricSpace S, class Criterion, class Admissible>
 Decision<SmoothPlan> best_trial_by_criterion(const Mesh& mesh, VertexId v, const SmoothScratch& s,
-                                             std::size_t secondary, double floor, Admissible&& admissible) {
-  WorstOld<S> q_old(mesh, view(s.ball));
-  const ShapeFloor shape(floor);
+                                             std::size_t secondary, const Acceptance<S, Criterion>& accept,
+                                             Admissible&& admissible) {
+  auto r = accept.replacing(mesh, view(s.ball));
   auto score_at = [&](const Point& p) {
     double q = std::numeric_limits<double>::infinity();
     for (TetId t : s.ball) {
       const TetPoints pts = tet_points_moved(mesh, mesh.tet(t), v, p);
-      if (!shape.admits(S::mean_ratio(mesh, mesh.tet(t), pts), q_old)) return -std::numeric_limits<double>::infinity();
+      if (!r.shape_admits(mesh.tet(t), pts)) return -std::numeric_limits<double>::infinity();
       q = std::min(q, Criterion::template tet_score_at<S>(mesh, mesh.tet(t), pts));
     }
     return q;
@@ -399,7 +399,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   if constexpr (CriterionTraits<Criterion>::score_is_mean_ratio_cubed)
     return detail::best_trial_by_mean_ratio(mesh, v, s, secondary, admissible);
   else
-    return detail::best_trial_by_criterion<S, Criterion>(mesh, v, s, secondary, o.shape_floor, admissible);
+    return detail::best_trial_by_criterion(mesh, v, s, secondary, Acceptance<S, Criterion>(o.shape_floor), admissible);
 }
 
 // The trials of boundary vertex v on the model (s.trials and their

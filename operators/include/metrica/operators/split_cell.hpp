@@ -10,8 +10,8 @@
 #pragma once
 
 #include <metrica/metrics/space.hpp>
+#include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/cavity.hpp>
-#include <metrica/operators/criterion.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/shell.hpp>
 #include <metrica/predicates/precision.hpp>
@@ -66,20 +66,15 @@ inline void preview_cell_split(const Mesh& mesh, TetId t, int face, const Point&
   });
 }
 
-// Decide, criterion half: the children pass the shape floor (floor > 0)
-// and beat t under Criterion (unless it is indifferent), in t's metric.
+// Decide, criterion half: the children are accepted (the shape floor and
+// the criterion against t), measured in t's metric.
 template <MetricSpace S, class Criterion>
-bool cell_split_accepted(const Mesh& mesh, TetId t, int face, const Point& p, double floor) {
-  if (floor <= 0.0 && CriterionTraits<Criterion>::indifferent) return true;
-  const ShapeFloor shape(floor);
+bool cell_split_accepted(const Mesh& mesh, TetId t, int face, const Point& p, const Acceptance<S, Criterion>& accept) {
+  if (!accept.decides()) return true;
   const std::array<TetId, 1> parent{t};
-  WorstOld<S> worst_old(mesh, parent);
-  const double bar =
-      CriterionTraits<Criterion>::indifferent ? 0.0 : Criterion::bar(Criterion::template tet_score_of<S>(mesh, t));
-  return all_cell_children(mesh, t, face, p, [&](const TetVertices&, const TetPoints& x) {
-    if (floor > 0.0 && !shape.admits(S::mean_ratio(mesh, mesh.tet(t), x), worst_old)) return false;
-    return CriterionTraits<Criterion>::indifferent || Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) > bar;
-  });
+  auto r = accept.replacing(mesh, parent);
+  return all_cell_children(mesh, t, face, p,
+                           [&](const TetVertices&, const TetPoints& x) { return r.admits(mesh.tet(t), x); });
 }
 
 struct CellSplitScratch {

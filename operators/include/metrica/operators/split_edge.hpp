@@ -9,7 +9,7 @@
 #pragma once
 
 #include <metrica/metrics/space.hpp>
-#include <metrica/operators/criterion.hpp>
+#include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/shell.hpp>
 #include <metrica/predicates/precision.hpp>
@@ -54,26 +54,15 @@ inline void preview_split(const Mesh& mesh, const Shell& shell, VertexId a, Vert
   });
 }
 
-// Decide, criterion half: the children pass the shape floor (floor > 0)
-// and beat the shell under Criterion (unless it is indifferent). The
-// children are measured in their parent's metric.
+// Decide, criterion half: the children are accepted (the shape floor and
+// the criterion against the shell), measured in their parent's metric.
 template <MetricSpace S, class Criterion>
-bool split_accepted(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p, double floor) {
-  if (floor > 0.0) {
-    const ShapeFloor shape(floor);
-    WorstOld<S> worst_old(mesh, view(shell.tets));
-    if (!all_split_children(mesh, shell, a, b, p, [&](TetId t, const TetVertices&, const TetPoints& x) {
-          return shape.admits(S::mean_ratio(mesh, mesh.tet(t), x), worst_old);
-        }))
-      return false;
-  }
-  if constexpr (!CriterionTraits<Criterion>::indifferent) {
-    const double bar = Criterion::bar(min_score_of<Criterion, S>(mesh, view(shell.tets)));
-    return all_split_children(mesh, shell, a, b, p, [&](TetId t, const TetVertices&, const TetPoints& x) {
-      return Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) > bar;
-    });
-  }
-  return true;
+bool split_accepted(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p,
+                    const Acceptance<S, Criterion>& accept) {
+  if (!accept.decides()) return true;
+  auto r = accept.replacing(mesh, view(shell.tets));
+  return all_split_children(mesh, shell, a, b, p,
+                            [&](TetId t, const TetVertices&, const TetPoints& x) { return r.admits(mesh.tet(t), x); });
 }
 
 // Apply: inserts the vertex at p with metric `m` on edge ab (shell from
