@@ -132,6 +132,30 @@ TEST_SUITE("property") {
     CHECK(plans_checked<S>(mesh, CentroidInsertion<S, P>{{}, mesh.next_epoch()}, candidates, 0.0) > 0);
   }
 
+  TEST_CASE("a plan is applied only with its scratch as decided: after another seed or decide it is refused") {
+    using S = LogEuclidean;
+    Mesh mesh = jittered_box(3, 0.3, 11);
+    set_uniform_metric(mesh, 0.12);
+    const auto long_edges = edges_beyond<S>(mesh, kUnitBand.hi, EdgeOrder::longest_first);
+    REQUIRE(long_edges.size() >= 2);
+    const EdgeSplit<S, Filtered> split{{}, mesh.next_epoch()};
+    EdgeSplitScratch s;
+    const auto first = decide_item(mesh, split, long_edges[0], s);
+    REQUIRE(first);
+    const auto second = decide_item(mesh, split, long_edges[1], s);
+    REQUIRE(second);
+    Mesh copy = mesh;
+    PlannedTets planned;
+    CHECK_THROWS_AS(apply_plan(copy, split, long_edges[0], first, s), std::logic_error);
+    CHECK_THROWS_AS(preview_plan(mesh, split, long_edges[0], first, s, planned), std::logic_error);
+    CHECK_THROWS_AS(apply_plan(copy, split, long_edges[0], Decision<EdgeSplitPlan>(Refusal::rejected), s),
+                    std::logic_error);
+    CHECK(copy.num_vertices() == mesh.num_vertices());
+    apply_plan(copy, split, long_edges[1], second, s);
+    CHECK(copy.num_vertices() == mesh.num_vertices() + 1);
+    require_valid(copy, 1.0);
+  }
+
   TEST_CASE_TEMPLATE("a decided collapse never inverts nor drops below its floor - applied it keeps areas and ridges",
                      T, METRICA_SPACE_PRECISION) {
     using S = typename T::Space;

@@ -14,7 +14,7 @@ namespace metrica::example {
 template <MetricSpace S, Precision P, class Criterion = MinQuality>
 struct LaplacianMove {
   using Item = VertexId;
-  struct Scratch {
+  struct Scratch : ScratchGeneration {
     TetList ball;
     VertexList neighbours;
   };

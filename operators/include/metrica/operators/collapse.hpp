@@ -58,7 +58,7 @@ struct CollapseOptions {
   const OutOfBandEdges* known = nullptr;
 };
 
-struct CollapseScratch {
+struct CollapseScratch : ScratchGeneration {
   TetList ball, ball_b;
   Shell shell;
   VertexList neighbours, neighbours_b;  // of a, of b

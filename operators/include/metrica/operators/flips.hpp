@@ -102,7 +102,7 @@ inline void tet_vertices_of(const Mesh& mesh, std::span<const TetId> ids, NewTet
 }
 
 // Scratch space of one worker, reused across calls (no allocation).
-struct FlipScratch {
+struct FlipScratch : ScratchGeneration {
   TetList ball;
   Shell shell;
   VertexList ring;

@@ -20,7 +20,11 @@
 // seed, find or decide on that scratch: larger configurations (the best
 // triangulation of a shell, a collapse's balls, a split's shell) stay in
 // the scratch and the plan refers to them. run_pass applies each plan
-// right after its decide, with the same scratch.
+// right after its decide, with the same scratch. A scratch that derives
+// from ScratchGeneration (every scratch of the library) has the contract
+// enforced: through the protocol's helpers (prepare_item, decide_plan,
+// apply_plan, preview_plan) a plan whose scratch has moved on is refused
+// with std::logic_error.
 //
 // preview(mesh, item, plan, scratch, out) lists the tets a plan would
 // make, at their final points, so a plan is checked (orientation, shape
@@ -38,9 +42,12 @@
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
+#include <fmt/format.h>
+
 #include <concepts>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -62,7 +69,8 @@ enum class Refusal : std::uint8_t {
 };
 
 // A plan, or the reason there is none; `tries` counts the candidates an
-// item weighed (a tet's four faces for the 2-3 flips).
+// item weighed (a tet's four faces for the 2-3 flips). decide_plan stamps
+// it with its scratch's generation.
 template <class Plan>
 class Decision {
  public:
@@ -72,13 +80,44 @@ class Decision {
   const Plan& plan() const { return plan_; }
   Refusal why() const { return why_; }
   int tries() const { return tries_; }
+  std::uint32_t generation() const { return generation_; }
+  void stamp(std::uint32_t generation) { generation_ = generation; }
 
  private:
   Plan plan_{};
   int tries_ = 1;
+  std::uint32_t generation_ = 0;
   Refusal why_ = Refusal::rejected;
   bool has_plan_ = false;
 };
+
+// The generation of a scratch: each seed and decide through the
+// protocol's helpers starts a new one, and a plan is valid only in the
+// generation it was decided in (one increment and one compare per item).
+struct ScratchGeneration {
+  std::uint32_t generation = 0;
+};
+
+namespace detail {
+template <class Scratch>
+void next_generation(Scratch& s) {
+  if constexpr (std::derived_from<Scratch, ScratchGeneration>) ++s.generation;
+}
+template <class Scratch>
+std::uint32_t generation_of(const Scratch& s) {
+  if constexpr (std::derived_from<Scratch, ScratchGeneration>) {
+    return s.generation;
+  } else {
+    return 0;
+  }
+}
+template <class Plan, class Scratch>
+void require_current(const Decision<Plan>& d, const Scratch& s, std::string_view op, const char* step) {
+  if (!d) throw std::logic_error(fmt::format("{}: {} of a refusal (no plan)", op, step));
+  if (d.generation() != generation_of(s))
+    throw std::logic_error(fmt::format("{}: {} of a plan whose scratch was seeded or decided on since", op, step));
+}
+}  // namespace detail
 
 // The tets a plan makes: vertices (kNoId for the vertex it creates) and
 // final points.
@@ -111,6 +150,7 @@ template <Operation Op, class Hold>
 Prepared prepare_item(const Mesh& mesh, const Op& op, const typename Op::Item& item, typename Op::Scratch& s,
                       VertexList& list, Hold&& hold) {
   list.clear();
+  detail::next_generation(s);
   Found f = op.seed(mesh, item, s, list);
   if (f == Found::cavity) {
     if (!hold(view(list))) return Prepared::conflict;
@@ -124,6 +164,31 @@ Prepared prepare_item(const Mesh& mesh, const Op& op, const typename Op::Item& i
   return hold(view(list)) ? Prepared::ready : Prepared::conflict;
 }
 
+// Decide, stamped with the scratch's new generation.
+template <Operation Op>
+Decision<typename Op::Plan> decide_plan(const Mesh& mesh, const Op& op, const typename Op::Item& item,
+                                        typename Op::Scratch& s) {
+  detail::next_generation(s);
+  Decision<typename Op::Plan> d = op.decide(mesh, item, s);
+  d.stamp(detail::generation_of(s));
+  return d;
+}
+
+// Apply and preview a decided plan, refused (std::logic_error) when its
+// scratch was seeded or decided on since.
+template <Operation Op>
+void apply_plan(Mesh& mesh, const Op& op, const typename Op::Item& item, const Decision<typename Op::Plan>& d,
+                typename Op::Scratch& s) {
+  detail::require_current(d, s, Op::name, "apply");
+  op.apply(mesh, item, d.plan(), s);
+}
+template <Operation Op>
+void preview_plan(const Mesh& mesh, const Op& op, const typename Op::Item& item, const Decision<typename Op::Plan>& d,
+                  const typename Op::Scratch& s, PlannedTets& out) {
+  detail::require_current(d, s, Op::name, "preview");
+  op.preview(mesh, item, d.plan(), s, out);
+}
+
 // One item through seed, find and decide on one thread, without locks
 // (tests, and a caller that ranks candidates before applying any).
 template <Operation Op>
@@ -131,7 +196,7 @@ Decision<typename Op::Plan> decide_item(const Mesh& mesh, const Op& op, const ty
                                         typename Op::Scratch& s) {
   VertexList list;
   switch (prepare_item(mesh, op, item, s, list, [](std::span<const VertexId>) { return true; })) {
-    case Prepared::ready: return op.decide(mesh, item, s);
+    case Prepared::ready: return decide_plan(mesh, op, item, s);
     case Prepared::deferred: return Refusal::deferred;
     default: return Refusal::not_applicable;
   }
@@ -160,9 +225,9 @@ OperatorStats run_pass(Mesh& mesh, const Op& op, std::span<const typename Op::It
         return Attempt::done;
       case Prepared::ready: break;
     }
-    const Decision<typename Op::Plan> d = op.decide(view_only, item, x.scratch);
+    const Decision<typename Op::Plan> d = decide_plan(view_only, op, item, x.scratch);
     if (d) {
-      op.apply(mesh, item, d.plan(), x.scratch);
+      apply_plan(mesh, op, item, d, x.scratch);
       ++st.applied;
     } else if (d.why() == Refusal::rejected) {
       ++st.rejected;

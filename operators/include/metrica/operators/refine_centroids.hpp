@@ -143,7 +143,7 @@ std::vector<PointCandidate> centroid_candidates(const Mesh& mesh, const RefineOp
   return out;
 }
 
-struct CentroidScratch {
+struct CentroidScratch : ScratchGeneration {
   CellSplitScratch cell;
   Shell shell;
   TetVertices seen{};  // the candidate's tet as the seed step read it

@@ -72,7 +72,7 @@ Decision<EdgeSplitPlan> decide_edge_point(const Mesh& mesh, const Shell& shell, 
   return EdgeSplitPlan{at.p, new_vertex_metric<S>(mesh, options.metric, ends, w, at.p), at.geo};
 }
 
-struct EdgeSplitScratch {
+struct EdgeSplitScratch : ScratchGeneration {
   TetList ball;  // the walk to the shell
   Shell shell;
   VertexList cavity;  // the shell's vertices, each once

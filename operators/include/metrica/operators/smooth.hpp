@@ -100,7 +100,7 @@ inline BallTerm ball_term(const Point& x, const Point& f0, const Point& f1, cons
   return b;
 }
 
-struct SmoothScratch {
+struct SmoothScratch : ScratchGeneration {
   TetList ball;
   VertexList neighbours;
   boost::container::small_vector<Point, 96> trials;

@@ -144,7 +144,7 @@ PlanCheck check_plans(const Mesh& mesh, const Op& op, std::span<const typename O
     const auto d = decide_item(mesh, op, item, s);
     if (!d) continue;
     ++r.plans;
-    op.preview(mesh, item, d.plan(), s, planned);
+    preview_plan(mesh, op, item, d, s, planned);
     if (planned.empty()) r.problem = fmt::format("item {}: a plan that makes no tet", i);
     for (const PlannedTet& t : planned) {
       const auto& x = t.points;
@@ -162,7 +162,7 @@ PlanCheck check_plans(const Mesh& mesh, const Op& op, std::span<const typename O
       r.problem = fmt::format("item {}: decided again on a copy, no plan", i);
       continue;
     }
-    op.apply(copy, item, d2.plan(), s2);
+    apply_plan(copy, op, item, d2, s2);
     ++r.applied;
     ValidateOptions vo;
     vo.expected_volume = volume;
