@@ -75,13 +75,13 @@ TEST_SUITE("invariant") {
     for (int i = 0; i < 20; ++i) {
       const Mesh::Epoch start = mesh.next_epoch();
       const auto st = reconnect<S, P, C, MinQuality>(mesh, flips);
-      flips.changed_since = start;
+      flips.scope.changed_since = start;
       CHECK(require_cache_fresh<S>(mesh) > 0);
       if (st.applied == 0) break;
     }
     const Mesh::Epoch start = mesh.next_epoch();
     CHECK(reconnect<S, P, C, MinQuality>(mesh, flips).tried == 0);
-    flips.changed_since = start;
+    flips.scope.changed_since = start;
     CHECK(reconnect<S, P, C, MinQuality>(mesh, flips).tried == 0);
     // Smoothing: moves touch the balls; after a pass with no move, nothing
     // is left to try. (A pass may touch every tet: the cache may be empty
@@ -91,7 +91,7 @@ TEST_SUITE("invariant") {
     for (int i = 0; i < 50; ++i) {
       const Mesh::Epoch s0 = mesh.next_epoch();
       const auto st = smooth_vertices<S, P, C>(mesh, smooth);
-      smooth.changed_since = s0;
+      smooth.scope.changed_since = s0;
       cached += require_cache_fresh<S>(mesh);
       if (st.applied == 0) break;
     }

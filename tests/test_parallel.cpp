@@ -654,10 +654,10 @@ TEST_SUITE("parallel") {
       if (mesh.tet_alive(t) && mesh.tet_point(t, 0).y() > 0.85 && mesh.tet_point(t, 0).z() > 0.85) mesh.touch_tet(t);
     const Mesh::Epoch changes = mesh.next_epoch();
     const OperatorStats collapsed = collapse_edges<LogEuclidean, Filtered, Serial>(
-        mesh, {.max_new_length = 3.0, .shape_floor = 0.0, .changed_since = local});
+        mesh, {.max_new_length = 3.0, .shape_floor = 0.0, .scope = {.changed_since = local}});
     INFO("collapses tried " << collapsed.tried);
     CHECK(collapsed.applied > 0);
-    CHECK(refine_edges<LogEuclidean, Filtered, Serial>(mesh, {.changed_since = local}).applied > 0);
+    CHECK(refine_edges<LogEuclidean, Filtered, Serial>(mesh, {.scope = {.changed_since = local}}).applied > 0);
     TetList ball;
     std::size_t moved = 0;
     for (VertexId v = 0; v < mesh.vertex_capacity() && moved < 20; ++v) {

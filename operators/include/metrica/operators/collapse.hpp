@@ -22,6 +22,7 @@
 #include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
+#include <metrica/operators/pass_scope.hpp>
 #include <metrica/operators/refine_edges.hpp>
 #include <metrica/operators/shell.hpp>
 #include <metrica/policies/concurrency.hpp>
@@ -48,14 +49,10 @@ struct CollapseOptions {
   // for a merge at the midpoint): the repair rounds collapse edges of any
   // length at a poor tet, and only to lift it.
   bool require_gain = false;
-  // When set, a vertex merged at an edge's midpoint takes this metric.
-  const MetricFunction* metric = nullptr;
-  // Only edges with an end whose ball changed since this epoch are tried
-  // (0: all); a collapse reads the two balls only.
-  Mesh::Epoch changed_since = 0;
-  // When set, the work list comes from these edges where it can
-  // (edges_beyond): an adaptation's cycle keeps them from its last count.
-  const OutOfBandEdges* known = nullptr;
+  // The metric of a vertex merged at an edge's midpoint; only edges with
+  // an end whose ball changed since scope.changed_since (a collapse reads
+  // the two balls only); the list from scope.known where it can.
+  PassScope scope;
 };
 
 struct CollapseScratch : ScratchGeneration {
@@ -262,7 +259,7 @@ struct Collapse {
         const Point p = mesh.point(from) + t * e;
         const std::array<VertexId, 2> ends{from, to};
         const std::array<double, 2> w{1.0 - t, t};
-        const VertexMetric m = new_vertex_metric<S>(mesh, options.metric, ends, w, p);
+        const VertexMetric m = new_vertex_metric<S>(mesh, options.scope.metric, ends, w, p);
         d = decide_collapse<S, P, Criterion>(mesh, from, to, s, options, &p, &m, geometry);
       }
       if (d) return d;
@@ -284,7 +281,8 @@ struct Collapse {
 template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
-  const auto todo = edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first, o.changed_since, o.known);
+  const auto todo =
+      edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first, o.scope.changed_since, o.scope.known);
   OperatorStats stats = run_pass<C>(mesh, Collapse<S, P, Criterion, G>{o, geometry}, todo);
   stats.seconds = clock.seconds();
   return stats;

@@ -12,6 +12,7 @@
 #include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/operation.hpp>
+#include <metrica/operators/pass_scope.hpp>
 #include <metrica/operators/smooth.hpp>
 
 namespace metrica {
@@ -22,8 +23,8 @@ struct ProjectionOptions {
   // A move may not make a tet of the ball worse than this (unless one
   // already was).
   double shape_floor = ShapeFloors::projection;
-  // When set, a moved vertex takes this metric at its new position.
-  const MetricFunction* metric = nullptr;
+  // The metric a moved vertex takes at its new position.
+  PassScope scope;
 };
 
 template <MetricSpace S, Precision P, Geometry G>
@@ -62,7 +63,7 @@ struct Projection {
     return Plan{*q, GeoParam{}};  // the vertex keeps its parameters
   }
   void apply(Mesh& mesh, VertexId v, const Plan& plan, Scratch& s) const {
-    apply_smoothing(mesh, v, plan, s, SmoothOptions{.metric = options.metric});
+    apply_smoothing(mesh, v, plan, s, SmoothOptions{.scope = {.metric = options.scope.metric}});
   }
   void preview(const Mesh& mesh, VertexId v, const Plan& plan, const Scratch& s, PlannedTets& out) const {
     ball_moved_to(mesh, v, s.ball, plan.to, out);

@@ -8,6 +8,7 @@
 
 #include <metrica/operators/flips.hpp>
 #include <metrica/operators/operation.hpp>
+#include <metrica/operators/pass_scope.hpp>
 #include <metrica/operators/work_list.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
@@ -20,10 +21,9 @@ struct ReconnectOptions {
   FlipOptions flips;
   // Tets with mean ratio >= this are not seeds (1: every tet is).
   double seed_below = 1.0;
-  // Only tets written since this epoch are seeds (Mesh::next_epoch; 0:
-  // all). A flip's decision reads only its shell, so an edge none of whose
-  // tets changed since it was last tried would be refused again.
-  Mesh::Epoch changed_since = 0;
+  // Only tets written since scope.changed_since are seeds (a flip's
+  // decision reads only its shell).
+  PassScope scope;
   // Sweeps: the first over the seeds, each later one over the tets the
   // previous sweep wrote; stops early when a sweep changes less than
   // min_change of the tets.
@@ -45,7 +45,7 @@ OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}, const G& geo
   const FaceFlip<S, P, Criterion, G> face_flip{o.flips, o.face_flip_below, geometry};
   std::vector<TetId> seeds;
   MeshArray<EdgeSeed> edges;
-  Mesh::Epoch since = o.changed_since;
+  Mesh::Epoch since = o.scope.changed_since;
   for (int sweep = 0; sweep < o.max_sweeps; ++sweep) {
     const Mesh::Epoch sweep_epoch = mesh.next_epoch();
     seeds = C::template collect<TetId>(mesh.tet_capacity(), [&](std::size_t i, std::vector<TetId>& part) {

@@ -10,6 +10,7 @@
 #include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
+#include <metrica/operators/pass_scope.hpp>
 #include <metrica/operators/split_edge.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
@@ -24,14 +25,10 @@ struct RefineOptions {
   double max_length = kUnitBand.hi;
   double min_new_distance = kUnitBand.lo;
   double shape_floor = ShapeFloors::split;
-  // When set, new vertices take this metric instead of an interpolated one.
-  const MetricFunction* metric = nullptr;
-  // Only edges with an end whose ball changed since this epoch are split
-  // (0: all): the quality phase's repair works near its poor tets only.
-  Mesh::Epoch changed_since = 0;
-  // When set, the work list comes from these edges where it can
-  // (edges_beyond): an adaptation's cycle keeps them from its last count.
-  const OutOfBandEdges* known = nullptr;
+  // The metric of new vertices; only edges with an end whose ball changed
+  // since scope.changed_since (the quality phase's repair works near its
+  // poor tets only); the list from scope.known where it can.
+  PassScope scope;
 };
 
 // The parameter t in [0,1] of the point of ab at equal metric distance from
@@ -53,7 +50,7 @@ struct EdgeSplitPlan {
 // A new vertex on edge ab (its shell held) at a + t (b - a), `straight`:
 // placed by the Geometry (boundary_placement.hpp), refused when
 // `too_close(p)`, when a tet of the split would not be positive (P), or by
-// `accept`; its metric from `options.metric` or interpolated
+// `accept`; its metric from `options.scope.metric` or interpolated
 // with the weights (1 - t, t). The decision of an edge split and of a
 // centroid candidate moved onto a ridge.
 template <MetricSpace S, Precision P, class Criterion, Geometry G, class TooClose>
@@ -69,7 +66,7 @@ Decision<EdgeSplitPlan> decide_edge_point(const Mesh& mesh, const Shell& shell, 
   if (!split_accepted(mesh, shell, a, b, at.p, accept)) return Refusal::rejected;
   const std::array<VertexId, 2> ends{a, b};
   const std::array<double, 2> w{1.0 - t, t};
-  return EdgeSplitPlan{at.p, new_vertex_metric<S>(mesh, options.metric, ends, w, at.p), at.geo};
+  return EdgeSplitPlan{at.p, new_vertex_metric<S>(mesh, options.scope.metric, ends, w, at.p), at.geo};
 }
 
 struct EdgeSplitScratch : ScratchGeneration {
@@ -140,7 +137,8 @@ struct EdgeSplit {
 template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
-  const auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first, o.changed_since, o.known);
+  const auto todo =
+      edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first, o.scope.changed_since, o.scope.known);
   const EdgeSplit<S, P, Criterion, G> split{o, mesh.next_epoch(), geometry};
   OperatorStats stats = run_pass<C>(mesh, split, todo);
   stats.seconds = clock.seconds();

@@ -25,6 +25,7 @@
 #include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
+#include <metrica/operators/pass_scope.hpp>
 #include <metrica/operators/shell.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
@@ -41,14 +42,12 @@ struct SmoothOptions {
   // Boundary faces (and ridge edges) around a vertex count as flat when
   // 1 - |cos| between them is below this.
   double flat_tolerance = 1e-12;
-  // When set, a moved vertex takes this metric at its new position.
-  const MetricFunction* metric = nullptr;
   double shape_floor = ShapeFloors::smoothing;
-  // Only vertices with a tet written since this epoch are tried (0: all):
-  // smoothing v reads only v's ball, so an unchanged ball gives the same
-  // refusal as last time. Valid only when `below` is no larger than in the
-  // pass that tried them.
-  Mesh::Epoch changed_since = 0;
+  // The metric a moved vertex takes at its new position; only vertices
+  // with a tet written since scope.changed_since (smoothing v reads only
+  // v's ball; valid only when `below` is no larger than in the pass that
+  // tried them).
+  PassScope scope;
 };
 
 // What the mean ratio of a ball tet needs when only v moves, as functions
@@ -464,8 +463,8 @@ inline void apply_smoothing(Mesh& mesh, VertexId v, const SmoothPlan& plan, cons
   mesh.point(v) = plan.to;
   if (plan.geo.valid()) mesh.set_geo_param(v, plan.geo);
   for (TetId t : s.ball) mesh.touch_tet(t);
-  if (o.metric != nullptr && *o.metric) {
-    const Sym6 m = (*o.metric)(plan.to);
+  if (o.scope.metric != nullptr && *o.scope.metric) {
+    const Sym6 m = (*o.scope.metric)(plan.to);
     mesh.set_metric(v, m, spd_log(m));
   }
 }
@@ -503,7 +502,7 @@ struct Smoothing {
 template <MetricSpace S, Precision P, Concurrency C, class Criterion = MinQuality, Geometry G = NoGeometry>
 OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
-  const std::vector<std::uint8_t> changed = changed_vertices<C>(mesh, o.changed_since);
+  const std::vector<std::uint8_t> changed = changed_vertices<C>(mesh, o.scope.changed_since);
   // The vertices to try, marked by a sweep over the tets (relaxed byte
   // stores: two parts may mark one vertex), then listed from the marks
   // in id order: sorted and unique without a list of four ids per tet

@@ -295,7 +295,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   p.repair.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   p.repair.push_back({"split", [=](A& a) {
                         RefineOptions r = refine;
-                        r.changed_since = a.since("repair");
+                        r.scope.changed_since = a.since("repair");
                         return a.split(r);
                       }});
   p.repair.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips); }});

@@ -188,11 +188,12 @@ class Adapter {
     return f(*this);
   }
 
-  // An incremental pass: `pass(mesh, options)` with options.changed_since
-  // set to when the pass of stage `key` last started, then recorded.
+  // An incremental pass: `pass(mesh, options)` with
+  // options.scope.changed_since set to when the pass of stage `key` last
+  // started, then recorded.
   template <class Options, class Pass>
   OperatorStats incremental(std::string_view key, Options options, Pass&& pass) {
-    options.changed_since = since(key);
+    options.scope.changed_since = since(key);
     const Mesh::Epoch start = mesh_.next_epoch();
     OperatorStats stats = pass(mesh_, options);
     epochs_[std::string(key)] = start;
@@ -200,12 +201,13 @@ class Adapter {
   }
 
   // Any operation over a work list, on the adapter's executor, with the
-  // adapter's metric (options.metric, when the operation has one and it is
-  // not set) and geometry (the member `geometry`, when it has one).
+  // adapter's metric (options.scope.metric, when the operation has one
+  // and it is not set) and geometry (the member `geometry`, when it has
+  // one).
   template <Operation Op>
   OperatorStats run(Op op, std::span<const typename Op::Item> items) {
-    if constexpr (requires { op.options.metric; })
-      if (op.options.metric == nullptr) op.options.metric = metric_;
+    if constexpr (requires { op.options.scope.metric; })
+      if (op.options.scope.metric == nullptr) op.options.scope.metric = metric_;
     if constexpr (requires { op.geometry; }) {
       static_assert(std::same_as<std::remove_cvref_t<decltype(op.geometry)>, G>,
                     "the operation's Geometry must be the adapter's");
@@ -221,24 +223,25 @@ class Adapter {
   // The standard passes. Collapse, flips and smoothing are incremental
   // under `key`: by default the running stage's name (outside a stage, the
   // operation's); another stage's name shares that stage's epoch. Splits
-  // see the whole mesh unless o.changed_since says.
+  // see the whole mesh unless o.scope.changed_since says. The adapter
+  // binds each pass's scope: its metric and its cycle's edge counts.
   template <class Criterion = ShapeOnly>
   OperatorStats collapse(CollapseOptions o, std::string_view key = {}) {
-    o.metric = metric_;
-    o.known = &out_of_band_;
+    o.scope.metric = metric_;
+    o.scope.known = &out_of_band_;
     return incremental(key_or(key, "collapse"), o, [this](Mesh& m, const CollapseOptions& x) {
       return collapse_edges<S, P, C, Criterion>(m, x, geometry_);
     });
   }
   template <class Criterion = ShapeOnly>
   OperatorStats split(RefineOptions o) {
-    o.metric = metric_;
-    o.known = &out_of_band_;
+    o.scope.metric = metric_;
+    o.scope.known = &out_of_band_;
     return refine_edges<S, P, C, Criterion>(mesh_, o, geometry_);
   }
   template <class Criterion = ShapeOnly>
   OperatorStats insert_centroids(RefineOptions o) {
-    o.metric = metric_;
+    o.scope.metric = metric_;
     return refine_centroids<S, P, C, Criterion>(mesh_, o, geometry_);
   }
   template <class Criterion = MinQuality>
@@ -249,7 +252,7 @@ class Adapter {
   }
   template <class Criterion = MinQuality>
   OperatorStats smooth(SmoothOptions o, std::string_view key = {}) {
-    o.metric = metric_;
+    o.scope.metric = metric_;
     return incremental(key_or(key, "smooth"), o, [this](Mesh& m, const SmoothOptions& x) {
       return smooth_vertices<S, P, C, Criterion>(m, x, geometry_);
     });
@@ -259,7 +262,7 @@ class Adapter {
   OperatorStats swap(const BoundarySwapOptions& o = {}) { return swap_toward_model<S, P, C>(mesh_, o, geometry_); }
   // Boundary vertices off the model move onto it (none without a model).
   OperatorStats project(ProjectionOptions o = {}) {
-    o.metric = metric_;
+    o.scope.metric = metric_;
     return project_to_model<S, P, C>(mesh_, o, geometry_);
   }
 
