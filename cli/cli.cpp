@@ -150,6 +150,17 @@ std::string Options::required(const char* name, const char* what) const {
   return vm_[name].as<std::string>();
 }
 
+void Options::one_of(std::initializer_list<const char*> names, const char* what) const {
+  int given = 0;
+  for (const char* name : names) given += has(name) ? 1 : 0;
+  if (given != 1) throw UsageError(fmt::format("{}: give {}", command_, what));
+}
+
+void Options::metric_source(const char* file_what) {
+  add()("metric,m", po::value<std::string>()->value_name("FILE"), file_what)(
+      "analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2");
+}
+
 LoadedMesh load_mesh(const std::string& path, Valid valid) {
   LoadedMesh out;
   Stopwatch clock;

@@ -81,6 +81,13 @@ class Options {
   }
   // A required string option, with a usage error naming it if missing.
   std::string required(const char* name, const char* what) const;
+  // Exactly one of the options `names` given, else a usage error that
+  // lists them (`what`: how the help spells them, "-m METRIC or
+  // --analytic NAME").
+  void one_of(std::initializer_list<const char*> names, const char* what) const;
+  // The metric a command reads: -m FILE (`file_what` says what the file
+  // holds) or --analytic NAME; one_of checks that one is given.
+  void metric_source(const char* file_what);
   // A numeric option's value checked against its domain [lo, hi] (NaN is
   // refused): a usage error names the option, the domain and the value.
   template <class T>

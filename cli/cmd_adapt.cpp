@@ -74,9 +74,8 @@ void declare_options(Options& o) {
   o.input("mesh (.mesh, .meshb)");
   o.output("adapted mesh (.mesh, .meshb, .vtu, .su2)",
            {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2});
-  o.add()("metric,m", po::value<std::string>()->value_name("FILE"), "metric at the input's vertices (.sol, .solb)")(
-      "analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
-      "iterations", po::value<int>()->default_value(1)->value_name("N"),
+  o.metric_source("metric at the input's vertices (.sol, .solb)");
+  o.add()("iterations", po::value<int>()->default_value(1)->value_name("N"),
       "adaptations in a row, the metric re-evaluated between them (--analytic only)")(
       "space", po::value<std::string>()->default_value(policies.space)->value_name("S"),
       "metric interpolation: log-euclidean, anisotropic, isotropic")(
@@ -233,7 +232,7 @@ int run_adapt(const std::vector<std::string>& args) {
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   const auto output = o.required("output", "the output mesh (-o)");
-  if (o.has("metric") == o.has("analytic")) throw UsageError("adapt: give one of -m METRIC or --analytic NAME");
+  o.one_of({"metric", "analytic"}, "one of -m METRIC or --analytic NAME");
   const int iterations = o.in_range("iterations", 1, 1000);
   if (iterations > 1 && !o.has("analytic"))
     throw UsageError("adapt: --iterations needs --analytic (a metric file holds values at the input's vertices only)");

@@ -146,8 +146,7 @@ int run_metric(const std::vector<std::string>& args) {
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   const auto output = o.required("output", "the output metric (-o)");
-  const int sources = static_cast<int>(o.has("analytic") + o.has("field") + o.has("field-file") + o.has("metric"));
-  if (sources != 1) throw UsageError("metric: give exactly one source: --analytic, --field, --field-file or -m");
+  o.one_of({"analytic", "field", "field-file", "metric"}, "exactly one source: --analytic, --field, --field-file or -m");
   if (o.has("fields") && !o.has("field-file")) throw UsageError("metric: --fields chooses among --field-file's fields");
   // The form of the list before any file is read (which fields exist is
   // the file's to say).

@@ -26,16 +26,15 @@ int run_quality(const std::vector<std::string>& args) {
             "  metrica quality cube-linear-00.meshb -m cube-linear-00.solb\n"
             "  metrica quality adapted.meshb --analytic polar-1 --csv report.csv");
   o.input("mesh (.mesh, .meshb)");
-  o.add()("metric,m", po::value<std::string>()->value_name("FILE"), "metric (.sol, .solb)")(
-      "analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2")(
-      "space", po::value<std::string>()->default_value(std::string(Spaces::at<0>::name))->value_name("S"),
+  o.metric_source("metric (.sol, .solb)");
+  o.add()("space", po::value<std::string>()->default_value(std::string(Spaces::at<0>::name))->value_name("S"),
       "metric interpolation for Q: log-euclidean, anisotropic, isotropic")("hmin", po::value<double>()->value_name("H"),
                                                                            "clamp the metric's sizes to at least H")(
       "hmax", po::value<double>()->value_name("H"), "clamp the metric's sizes to at most H");
   o.output_option("csv", "also write the report as CSV (section,key,lo,hi,value)", {});
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
-  if (o.has("metric") == o.has("analytic")) throw UsageError("quality: give one of -m METRIC or --analytic NAME");
+  o.one_of({"metric", "analytic"}, "one of -m METRIC or --analytic NAME");
   const auto space = o.get<std::string>("space");
   if (!Spaces::contains(space))
     throw UsageError(fmt::format("quality: unknown space '{}' ({})", space, Spaces::names()));

@@ -189,8 +189,8 @@ TEST_SUITE("property") {
     CHECK(plans_checked<S>(mesh, FaceFlip<S, P, PreferNew>{fo}, tets, fo.shape_floor) > 0);
     const auto vertices = all_vertices(mesh);
     const SmoothOptions so{.below = 1.0};
-    CHECK(plans_checked<S>(mesh, Smoothing<S, P>{so}, vertices, 0.0) > 0);
-    CHECK(plans_checked<S>(mesh, Smoothing<S, P, MaxMinEdgeWeight>{so}, vertices, so.shape_floor) > 0);
+    CHECK(plans_checked<S>(mesh, Smoothing<S, P>{{}, so}, vertices, 0.0) > 0);
+    CHECK(plans_checked<S>(mesh, Smoothing<S, P, MaxMinEdgeWeight>{{}, so}, vertices, so.shape_floor) > 0);
   }
 
   TEST_CASE_TEMPLATE("the 2-3 flip keeps the shape floor under every criterion", T, METRICA_SPACE_PRECISION) {

@@ -50,7 +50,7 @@ TEST_SUITE("invariant") {
                {"my-smooth", [&custom_runs](A& a) {
                   ++custom_runs;
                   const std::vector<VertexId> vertices = all_vertices(a.mesh());
-                  return a.run(Smoothing<typename A::Space, typename A::Precision>{{.below = 1.0}},
+                  return a.run(Smoothing<typename A::Space, typename A::Precision>{{}, {.below = 1.0}},
                                std::span<const VertexId>(vertices));
                 }}};
     const AdaptReport& r = run_pipeline(adapter, p);

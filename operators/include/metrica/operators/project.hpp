@@ -28,24 +28,11 @@ struct ProjectionOptions {
 };
 
 template <MetricSpace S, Precision P, Geometry G>
-struct Projection {
-  using Item = VertexId;
-  using Scratch = SmoothScratch;
-  using Plan = SmoothPlan;
+struct Projection : VertexMoveSteps {
   static constexpr std::string_view name = "project";
   ProjectionOptions options;
   G geometry{};
 
-  PassRoom room() const { return {.max_vertices = 0, .max_tets = 0, .vertices_per_item = 0, .tets_per_item = 0}; }
-  Found seed(const Mesh&, VertexId v, Scratch&, VertexList& hold) const {
-    hold.emplace_back(v);
-    return Found::cavity;
-  }
-  Found find(const Mesh& mesh, VertexId v, Scratch& s, VertexList& hold) const {
-    find_smoothing_cavity(mesh, v, s);
-    hold.insert(hold.end(), s.neighbours.begin(), s.neighbours.end());
-    return Found::cavity;
-  }
   Decision<Plan> decide(const Mesh& mesh, VertexId v, Scratch& s) const {
     if (!mesh.has_geo_params() || !mesh.geo_param(v).valid()) return Refusal::not_applicable;
     const Point x = mesh.point(v);
@@ -64,9 +51,6 @@ struct Projection {
   }
   void apply(Mesh& mesh, VertexId v, const Plan& plan, Scratch& s) const {
     apply_smoothing(mesh, v, plan, s, SmoothOptions{.scope = {.metric = options.scope.metric}});
-  }
-  void preview(const Mesh& mesh, VertexId v, const Plan& plan, const Scratch& s, PlannedTets& out) const {
-    ball_moved_to(mesh, v, s.ball, plan.to, out);
   }
 };
 
@@ -87,7 +71,7 @@ OperatorStats project_to_model(Mesh& mesh, const ProjectionOptions& o, const G& 
   Stopwatch clock;
   const auto todo = vertices_off_model<C>(mesh, geometry, o.tolerance);
   OperatorStats stats;
-  if (!todo.empty()) stats = run_pass<C>(mesh, Projection<S, P, G>{o, geometry}, todo);
+  if (!todo.empty()) stats = run_pass<C>(mesh, Projection<S, P, G>{{}, o, geometry}, todo);
   stats.seconds = clock.seconds();
   return stats;
 }

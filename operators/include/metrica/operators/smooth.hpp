@@ -469,15 +469,15 @@ inline void apply_smoothing(Mesh& mesh, VertexId v, const SmoothPlan& plan, cons
   }
 }
 
-// Vertex smoothing as an operation.
-template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G = NoGeometry>
-struct Smoothing {
+// The steps every move of one vertex shares (smoothing, projection onto
+// the model): the item is the vertex, held first; its cavity is its ball,
+// whose other vertices are held next; nothing is created; the plan's tets
+// are the ball with the vertex moved. An operation that derives from it
+// writes its own decide and apply (and is built as Op{{}, options, ...}).
+struct VertexMoveSteps {
   using Item = VertexId;
   using Scratch = SmoothScratch;
   using Plan = SmoothPlan;
-  static constexpr std::string_view name = "smooth";
-  SmoothOptions options;
-  G geometry{};
 
   PassRoom room() const { return {.max_vertices = 0, .max_tets = 0, .vertices_per_item = 0, .tets_per_item = 0}; }
   Found seed(const Mesh&, VertexId v, Scratch&, VertexList& hold) const {
@@ -489,13 +489,22 @@ struct Smoothing {
     hold.insert(hold.end(), s.neighbours.begin(), s.neighbours.end());
     return Found::cavity;
   }
+  void preview(const Mesh& mesh, VertexId v, const Plan& plan, const Scratch& s, PlannedTets& out) const {
+    ball_moved_to(mesh, v, s.ball, plan.to, out);
+  }
+};
+
+// Vertex smoothing as an operation.
+template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G = NoGeometry>
+struct Smoothing : VertexMoveSteps {
+  static constexpr std::string_view name = "smooth";
+  SmoothOptions options;
+  G geometry{};
+
   Decision<Plan> decide(const Mesh& mesh, VertexId v, Scratch& s) const {
     return decide_smoothing<S, P, Criterion>(mesh, v, s, options, geometry);
   }
   void apply(Mesh& mesh, VertexId v, const Plan& plan, Scratch& s) const { apply_smoothing(mesh, v, plan, s, options); }
-  void preview(const Mesh& mesh, VertexId v, const Plan& plan, const Scratch& s, PlannedTets& out) const {
-    ball_moved_to(mesh, v, s.ball, plan.to, out);
-  }
 };
 
 // The smoothing pass over the vertices of tets below o.below.
@@ -521,7 +530,7 @@ OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}, const G& 
       C::template collect<VertexId>(marked.size(), [&](std::size_t v, std::vector<VertexId>& part) {
         if (marked[v] != 0) part.emplace_back(static_cast<VertexId>(v));
       });
-  OperatorStats stats = run_pass<C>(mesh, Smoothing<S, P, Criterion, G>{o, geometry}, todo);
+  OperatorStats stats = run_pass<C>(mesh, Smoothing<S, P, Criterion, G>{{}, o, geometry}, todo);
   stats.seconds = clock.seconds();
   return stats;
 }
