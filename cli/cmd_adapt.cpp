@@ -76,7 +76,7 @@ void declare_options(Options& o) {
            {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2});
   o.metric_source("metric at the input's vertices (.sol, .solb)");
   o.add()("iterations", po::value<int>()->default_value(1)->value_name("N"),
-      "adaptations in a row, the metric re-evaluated between them (--analytic only)")(
+          "adaptations in a row, the metric re-evaluated between them (--analytic only)")(
       "space", po::value<std::string>()->default_value(policies.space)->value_name("S"),
       "metric interpolation: log-euclidean, anisotropic, isotropic")(
       "precision", po::value<std::string>()->default_value(policies.precision)->value_name("P"),

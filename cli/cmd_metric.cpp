@@ -146,7 +146,8 @@ int run_metric(const std::vector<std::string>& args) {
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   const auto output = o.required("output", "the output metric (-o)");
-  o.one_of({"analytic", "field", "field-file", "metric"}, "exactly one source: --analytic, --field, --field-file or -m");
+  o.one_of({"analytic", "field", "field-file", "metric"},
+           "exactly one source: --analytic, --field, --field-file or -m");
   if (o.has("fields") && !o.has("field-file")) throw UsageError("metric: --fields chooses among --field-file's fields");
   // The form of the list before any file is read (which fields exist is
   // the file's to say).

@@ -28,8 +28,8 @@ int run_quality(const std::vector<std::string>& args) {
   o.input("mesh (.mesh, .meshb)");
   o.metric_source("metric (.sol, .solb)");
   o.add()("space", po::value<std::string>()->default_value(std::string(Spaces::at<0>::name))->value_name("S"),
-      "metric interpolation for Q: log-euclidean, anisotropic, isotropic")("hmin", po::value<double>()->value_name("H"),
-                                                                           "clamp the metric's sizes to at least H")(
+          "metric interpolation for Q: log-euclidean, anisotropic, isotropic")(
+      "hmin", po::value<double>()->value_name("H"), "clamp the metric's sizes to at least H")(
       "hmax", po::value<double>()->value_name("H"), "clamp the metric's sizes to at most H");
   o.output_option("csv", "also write the report as CSV (section,key,lo,hi,value)", {});
   if (!o.parse(args)) return kOk;
