@@ -52,7 +52,7 @@ struct CollapseOptions {
   // The metric of a vertex merged at an edge's midpoint; only edges with
   // an end whose ball changed since scope.changed_since (a collapse reads
   // the two balls only); the list from scope.known where it can.
-  PassScope scope;
+  PassScope scope{};
 };
 
 struct CollapseScratch : ScratchGeneration {

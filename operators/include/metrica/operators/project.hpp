@@ -24,7 +24,7 @@ struct ProjectionOptions {
   // already was).
   double shape_floor = ShapeFloors::projection;
   // The metric a moved vertex takes at its new position.
-  PassScope scope;
+  PassScope scope{};
 };
 
 template <MetricSpace S, Precision P, Geometry G>

@@ -23,7 +23,7 @@ struct ReconnectOptions {
   double seed_below = 1.0;
   // Only tets written since scope.changed_since are seeds (a flip's
   // decision reads only its shell).
-  PassScope scope;
+  PassScope scope{};
   // Sweeps: the first over the seeds, each later one over the tets the
   // previous sweep wrote; stops early when a sweep changes less than
   // min_change of the tets.

@@ -28,7 +28,7 @@ struct RefineOptions {
   // The metric of new vertices; only edges with an end whose ball changed
   // since scope.changed_since (the quality phase's repair works near its
   // poor tets only); the list from scope.known where it can.
-  PassScope scope;
+  PassScope scope{};
 };
 
 // The parameter t in [0,1] of the point of ab at equal metric distance from

@@ -47,7 +47,7 @@ struct SmoothOptions {
   // with a tet written since scope.changed_since (smoothing v reads only
   // v's ball; valid only when `below` is no larger than in the pass that
   // tried them).
-  PassScope scope;
+  PassScope scope{};
 };
 
 // What the mean ratio of a ball tet needs when only v moves, as functions
