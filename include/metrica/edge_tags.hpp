@@ -28,7 +28,9 @@ class EdgeTags {
 
   const Set& ridges() const { return ridges_; }
   const Set& features() const { return features_; }
-  bool has_features() const { return !features_.empty() || ever_features_; }
+  // Whether a feature edge was ever added: read without the lock (only
+  // add_feature writes it, never during a parallel pass).
+  bool has_features() const { return ever_features_; }
   void set_ridges(Set ridges) { ridges_ = std::move(ridges); }
   void add_feature(VertexId a, VertexId b) {
     features_.insert(edge_key(a, b));
