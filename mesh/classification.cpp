@@ -18,14 +18,17 @@ Classification compute_classification(const Mesh& mesh) {
   Classification c;
   c.vertex_class.assign(mesh.vertex_capacity(), VertexClass::interior);
 
-  // Every boundary face contributes its three edges with its surface id.
+  // Every surface face contributes its three edges with its surface id.
+  if (mesh.has_internal_surfaces()) c.on_internal_surface.assign(mesh.vertex_capacity(), 0);
   std::vector<EdgeSide> sides;
-  for_each_boundary_face(mesh, [&](TetId t, int f) {
+  for_each_surface_face(mesh, [&](TetId t, int f) {
     const auto tri = face_vertices(mesh.tet(t), f);
-    const SurfaceId s = mesh.surface_id(t, f);
+    const SurfaceId s = mesh.face_surface_id(t, f);
+    const bool internal = mesh.neighbour(t, f).valid();
     for (int i = 0; i < 3; ++i) {
       sides.push_back({edge_key(tri[i], tri[(i + 1) % 3]), s});
       c.vertex_class[tri[i]] = VertexClass::surface;
+      if (internal) c.on_internal_surface[tri[i]] = 1;
     }
   });
   std::sort(sides.begin(), sides.end());
@@ -70,6 +73,8 @@ void Mesh::classify() {
   auto c = compute_classification(*this);
   vertex_class_.assign(c.vertex_class.begin(), c.vertex_class.end());
   edge_tags_.set_ridges(std::move(c.ridges));
+  for (VertexId v = 0; v < vertex_capacity(); ++v)
+    set_on_internal_surface(v, !c.on_internal_surface.empty() && c.on_internal_surface[v]);
 }
 
 std::size_t count_ridge_curves(const Mesh& mesh) {

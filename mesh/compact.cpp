@@ -197,6 +197,7 @@ void Mesh::compact(const PartRunner& given) {
   permute_to(tet_ref_, new_tet, live, run);
   permute_to(tet_stamp_, new_tet, live, run);
   permute_to(tet_quality_, new_tet, live, run);
+  if (has_internal_surfaces()) permute_to(internal_, new_tet, live, run);
   run(parts, [&](std::size_t p) {
     const auto [first, last] = part_slice(live, parts, p);
     for (std::size_t t = first; t < last; ++t) {

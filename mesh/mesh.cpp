@@ -45,6 +45,7 @@ void Mesh::reserve(std::size_t vertices, std::size_t tets) {
   tet_ref_.reserve(tets);
   tet_stamp_.reserve(tets);
   tet_quality_.reserve(tets);
+  if (has_internal_surfaces()) internal_.reserve(tets);
 }
 
 void Mesh::init_vertex(VertexId v, const Point& p, int ref) {
@@ -109,6 +110,21 @@ void Mesh::set_required(VertexId v, bool required) {
     vertex_flags_[v] &= static_cast<std::uint8_t>(~kRequired);
 }
 
+void Mesh::set_on_internal_surface(VertexId v, bool on) {
+  if (on)
+    vertex_flags_[v] |= kInternalSurface;
+  else
+    vertex_flags_[v] &= static_cast<std::uint8_t>(~kInternalSurface);
+}
+
+void Mesh::set_internal_surface_id(TetId t, int face, SurfaceId id) {
+  if (internal_.empty()) {
+    if (id == 0) return;
+    internal_.assign(tets_.size(), std::array<SurfaceId, 4>{});
+  }
+  internal_[t][face] = id;
+}
+
 void Mesh::set_metric(VertexId v, const Sym6& m, const Sym6& log_m) {
   if (metric_.empty()) {
     metric_.assign(points_.size(), Sym6{});
@@ -124,6 +140,7 @@ void Mesh::init_tet(TetId t, const TetVertices& vertices, int ref) {
   tet_ref_[t] = ref;
   tet_stamp_[t] = epoch_;
   cache_quality(t, kUnknownQuality);
+  if (has_internal_surfaces()) internal_[t] = {};
 }
 
 TetId Mesh::add_tet(const TetVertices& vertices, int ref) {
@@ -146,6 +163,7 @@ TetId Mesh::add_tet(const TetVertices& vertices, int ref) {
   tet_ref_.push_back(ref);
   tet_stamp_.push_back(epoch_);
   tet_quality_.push_back(kUnknownQuality);
+  if (has_internal_surfaces()) internal_.push_back({});
   return t;
 }
 
@@ -189,6 +207,7 @@ DeadRoom Mesh::add_dead_room(std::size_t vertex_room, std::size_t tet_room, cons
   extend_array(tet_ref_, t_size, t_cap, run);
   extend_array(tet_stamp_, t_size, t_cap, run);
   extend_array(tet_quality_, t_size, t_cap, run);
+  if (has_internal_surfaces()) extend_array(internal_, t_size, t_cap, run);
   return {nv, nt};
 }
 

@@ -147,19 +147,43 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
   if (nonpositive > 0)
     log::warn("{}: {} boundary triangles have a reference <= 0; they get surface id {}", src, nonpositive, default_id);
 
-  std::size_t internal = 0;
+  // Internal surfaces: a triangle on a face with a tet on both sides, and
+  // every face between two regions (tet refs), which takes the default id
+  // when no triangle covers it.
+  std::size_t between_regions_untagged = 0;
   for (std::size_t i = 0; i < d.triangles.size(); ++i) {
     if (used[i]) continue;
     const auto& tri = d.triangles[i];
-    bool is_face = false;
-    for (TetId u : incidence.of(tri[0]))
-      if (local_index(tets[u], tri[1]) >= 0 && local_index(tets[u], tri[2]) >= 0) is_face = true;
-    if (!is_face)
+    FaceRef face;
+    for (TetId u : incidence.of(tri[0])) {
+      const int ib = local_index(tets[u], tri[1]), ic = local_index(tets[u], tri[2]);
+      if (ib >= 0 && ic >= 0) face = FaceRef(u, 6 - local_index(tets[u], tri[0]) - ib - ic);
+    }
+    if (!face.valid())
       throw InputError(fmt::format("{}: triangle {} (vertices {} {} {}) is not a face of any tetrahedron", src, i + 1,
                                    tri[0] + 1, tri[1] + 1, tri[2] + 1));
-    ++internal;
+    const int ref = i < d.triangle_refs.size() ? d.triangle_refs[i] : 0;
+    const SurfaceId id = ref > 0 ? ref : default_id;
+    const FaceRef other = mesh.neighbour(face);
+    const SurfaceId before = mesh.internal_surface_id(face.tet(), face.face());
+    if (before != 0 && before != id)
+      throw InputError(fmt::format("{}: triangle {} (vertices {} {} {}) is given twice, with surface ids {} and {}",
+                                   src, i + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1, before, id));
+    mesh.set_internal_surface_id(face.tet(), face.face(), id);
+    mesh.set_internal_surface_id(other.tet(), other.face(), id);
   }
-  if (internal > 0) log::warn("{}: {} triangles lie inside the volume (internal surfaces are not kept)", src, internal);
+  for (TetId t = 0; t < tets.size(); ++t)
+    for (int f = 0; f < 4; ++f) {
+      const FaceRef n = mesh.neighbour(t, f);
+      if (!n.valid() || n.tet() < t || mesh.tet_ref(n.tet()) == mesh.tet_ref(t)) continue;
+      if (mesh.internal_surface_id(t, f) != 0) continue;
+      mesh.set_internal_surface_id(t, f, default_id);
+      mesh.set_internal_surface_id(n.tet(), n.face(), default_id);
+      ++between_regions_untagged;
+    }
+  if (between_regions_untagged > 0)
+    log::warn("{}: {} faces between two regions have no input triangle; they get surface id {}", src,
+              between_regions_untagged, default_id);
 
   for (const auto& e : d.edges) mesh.add_feature_edge(e[0], e[1]);
   for (VertexId v : d.corners) mesh.set_required(v, true);
@@ -195,10 +219,13 @@ io::MeshData extract_mesh_data(const Mesh& mesh) {
     d.tets.push_back({new_id[tv[0]], new_id[tv[1]], new_id[tv[2]], new_id[tv[3]]});
     d.tet_refs.push_back(mesh.tet_ref(t));
     for (int f = 0; f < 4; ++f) {
-      if (mesh.neighbour(t, f).valid()) continue;
+      // Boundary faces, and each internal-surface face once (from the
+      // smaller tet id).
+      const FaceRef n = mesh.neighbour(t, f);
+      if (n.valid() && (mesh.internal_surface_id(t, f) == 0 || n.tet() < t)) continue;
       const auto tri = face_vertices(tv, f);
       d.triangles.push_back({new_id[tri[0]], new_id[tri[1]], new_id[tri[2]]});
-      d.triangle_refs.push_back(mesh.surface_id(t, f));
+      d.triangle_refs.push_back(mesh.face_surface_id(t, f));
     }
   }
   std::vector<std::uint64_t> ridges(mesh.ridge_edges().begin(), mesh.ridge_edges().end());

@@ -33,15 +33,19 @@ MeshSummary summarize(const Mesh& m) {
     s.volume += vol;
     s.min_tet_volume = std::min(s.min_tet_volume, vol);
     s.max_tet_volume = std::max(s.max_tet_volume, vol);
-    for (int f = 0; f < 4; ++f) {
-      if (m.neighbour(t, f).valid()) continue;
-      ++s.boundary_faces;
-      const auto tri = face_vertices(v, f);
-      auto& surf = s.surfaces[m.surface_id(t, f)];
-      ++surf.faces;
-      surf.area += triangle_area(m.point(tri[0]), m.point(tri[1]), m.point(tri[2]));
-    }
+    auto& region = s.regions[m.tet_ref(t)];
+    ++region.tets;
+    region.volume += vol;
   }
+  for_each_surface_face(m, [&](TetId t, int f) {
+    const bool internal = m.neighbour(t, f).valid();
+    ++(internal ? s.internal_faces : s.boundary_faces);
+    const auto tri = face_vertices(m.tet(t), f);
+    auto& surf = s.surfaces[m.face_surface_id(t, f)];
+    ++surf.faces;
+    surf.internal = surf.internal || internal;
+    surf.area += triangle_area(m.point(tri[0]), m.point(tri[1]), m.point(tri[2]));
+  });
   s.ridge_edges = m.ridge_edges().size();
   s.ridge_curves = count_ridge_curves(m);
   return s;

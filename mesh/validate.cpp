@@ -130,6 +130,12 @@ class Checker {
         if (m_.neighbour(n) != FaceRef(t, f))
           fail_in(r, "adjacency", "tet {} face {} -> tet {} face {}, which does not point back", t, f, n.tet(),
                   n.face());
+        else if (m_.internal_surface_id(t, f) != m_.internal_surface_id(n.tet(), n.face()))
+          fail_in(r, "internal surface", "tet {} face {}: internal surface id {}, {} on the other side (tet {})", t, f,
+                  m_.internal_surface_id(t, f), m_.internal_surface_id(n.tet(), n.face()), n.tet());
+        else if (m_.tet_ref(t) != m_.tet_ref(n.tet()) && m_.internal_surface_id(t, f) == 0)
+          fail_in(r, "internal surface", "tet {} face {}: between regions {} and {} without a surface id", t, f,
+                  m_.tet_ref(t), m_.tet_ref(n.tet()));
         if (sorted(face_vertices(m_.tet(t), f)) != sorted(face_vertices(m_.tet(n.tet()), n.face())))
           fail_in(r, "adjacency", "tet {} face {} and tet {} face {} hold different vertices", t, f, n.tet(), n.face());
       }
@@ -201,6 +207,9 @@ class Checker {
       if (c.vertex_class[v] != m_.vertex_class(v))
         fail("classification", "vertex {}: classified {}, should be {}", v, metrica::to_string(m_.vertex_class(v)),
              metrica::to_string(c.vertex_class[v]));
+      const bool internal = !c.on_internal_surface.empty() && c.on_internal_surface[v];
+      if (internal != m_.on_internal_surface(v))
+        fail("classification", "vertex {}: {} an internal surface, marked otherwise", v, internal ? "on" : "not on");
     }
     for (auto key : c.ridges)
       if (!m_.ridge_edges().count(key)) {

@@ -16,9 +16,13 @@
 
 namespace metrica {
 
+// Internal surfaces (Mesh::internal_surface_id) count as surfaces: their
+// vertices are surface, ridge or corner vertices like the outer boundary's,
+// with ridges where internal and outer surfaces meet.
 struct Classification {
   std::vector<VertexClass> vertex_class;  // by vertex id (dead vertices: interior)
   std::unordered_set<std::uint64_t> ridges;
+  std::vector<char> on_internal_surface;  // by vertex id (empty: none)
 };
 
 // Computes the classification from surface ids, feature edges and required

@@ -76,6 +76,15 @@ class Mesh {
   // or removed by an operator.
   bool is_required(VertexId v) const { return (vertex_flags_[v] & kRequired) != 0; }
   void set_required(VertexId v, bool required);
+  // Vertices on an internal surface (classify() marks them, a split of an
+  // internal-surface edge marks its new vertex): internal surfaces are
+  // kept exactly, so the operators neither move nor remove them; splits
+  // refine them.
+  bool on_internal_surface(VertexId v) const { return (vertex_flags_[v] & kInternalSurface) != 0; }
+  void set_on_internal_surface(VertexId v, bool on);
+  // Never moved or removed by an operator: required, or on an internal
+  // surface.
+  bool stays_in_place(VertexId v) const { return (vertex_flags_[v] & (kRequired | kInternalSurface)) != 0; }
 
   // Metric field: empty until set (metrics/ fills it).
   bool has_metric() const { return !metric_.empty(); }
@@ -110,6 +119,30 @@ class Mesh {
   // for a face with one.
   SurfaceId surface_id(TetId t, int face) const { return tet2tets_[t][face].surface(); }
   Point tet_point(TetId t, int i) const { return points_[tets_[t][i]]; }
+
+  // --- internal surfaces ---------------------------------------------------
+  // A face with a neighbour may lie on a surface too: between two regions
+  // (tets of different refs), or a surface the input gave inside one
+  // region. Both tets' slots hold its surface id (internal_surface_id; 0
+  // elsewhere) and the adjacency still says who the neighbour is. Such a
+  // face counts as a surface face for classification, validation and
+  // output (is_surface_face, face_surface_id); the operations keep it. The
+  // ids are stored once the first one is set: a mesh without internal
+  // surfaces pays nothing for them.
+  bool has_internal_surfaces() const { return !internal_.empty(); }
+  SurfaceId internal_surface_id(TetId t, int face) const { return internal_.empty() ? 0 : internal_[t][face]; }
+  // Allocates the ids on first use (outside parallel passes); afterwards
+  // safe for a caller holding t's vertices.
+  void set_internal_surface_id(TetId t, int face, SurfaceId id);
+  // A face on a surface: without a neighbour, or on an internal surface.
+  bool is_surface_face(TetId t, int face) const {
+    return !tet2tets_[t][face].valid() || internal_surface_id(t, face) != 0;
+  }
+  // The surface id of a surface face (outer or internal), 0 for another.
+  SurfaceId face_surface_id(TetId t, int face) const {
+    const FaceRef n = tet2tets_[t][face];
+    return n.valid() ? internal_surface_id(t, face) : n.surface();
+  }
 
   // --- change stamps -----------------------------------------------------
   // Every tet carries the epoch in which it was last written (created,
@@ -243,6 +276,7 @@ class Mesh {
  private:
   static constexpr std::uint8_t kAlive = 1;
   static constexpr std::uint8_t kRequired = 2;
+  static constexpr std::uint8_t kInternalSurface = 4;
 
   void store_tet(TetId t, const TetVertices& v) {
     for (int i = 0; i < 4; ++i) std::atomic_ref<VertexId>(tets_[t][i]).store(v[i], std::memory_order_relaxed);
@@ -264,6 +298,7 @@ class Mesh {
   MeshArray<std::array<FaceRef, 4>> tet2tets_;
   MeshArray<int> tet_ref_;
   MeshArray<Epoch> tet_stamp_;
+  MeshArray<std::array<SurfaceId, 4>> internal_;  // empty: no internal surface
   // Written through const access (a cache), one writer per tet at a time:
   // the holder of the tet's vertices' locks.
   mutable MeshArray<double> tet_quality_;
@@ -301,6 +336,24 @@ void for_each_boundary_face(const Mesh& mesh, F&& f) {
     if (!mesh.tet_alive(t)) continue;
     for (int face = 0; face < 4; ++face)
       if (!mesh.neighbour(t, face).valid()) f(t, face);
+  }
+}
+
+// Calls f(tet, face) for every surface face once: the boundary faces, and
+// each internal-surface face from the side of the smaller tet id (its
+// vertices in that tet's outward order).
+template <class F>
+void for_each_surface_face(const Mesh& mesh, F&& f) {
+  if (!mesh.has_internal_surfaces()) {
+    for_each_boundary_face(mesh, f);
+    return;
+  }
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    for (int face = 0; face < 4; ++face) {
+      const FaceRef n = mesh.neighbour(t, face);
+      if (!n.valid() || (mesh.internal_surface_id(t, face) != 0 && t < n.tet())) f(t, face);
+    }
   }
 }
 

@@ -22,14 +22,17 @@ struct BuildOptions {
 
 // Builds the Mesh from raw arrays: adjacency by matching faces through
 // the vertex-to-tet incidence, boundary faces tagged from the triangles,
-// ridges and corners classified. Throws InputError on inverted or
+// internal surfaces from the triangles on faces with a tet on both sides
+// and from the faces between regions (tet refs), ridges and corners
+// classified. Throws InputError on inverted or
 // degenerate tets, faces shared by more than two tets, or triangles that
 // are not faces of the mesh. If every tet is negatively oriented (another
 // tool's convention) all are reoriented, with a warning.
 Mesh build_mesh(const io::MeshData& data, const BuildOptions& options = {});
 
 // The file content of a Mesh: live entities renumbered densely, boundary
-// faces as Triangles oriented outwards with their surface id, ridge edges
+// faces as Triangles oriented outwards with their surface id (and each
+// internal-surface face once, with its id), ridge edges
 // as Edges listed in Ridges, corners and required vertices.
 io::MeshData extract_mesh_data(const Mesh& mesh);
 

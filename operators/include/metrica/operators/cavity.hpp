@@ -41,7 +41,7 @@ struct CavityPlan {
   struct OuterFace {
     TriangleVertices key;   // sorted, after renaming
     FaceRef outside;        // neighbour outside the cavity, or none (boundary)
-    SurfaceId surface = 0;  // its surface id when on the boundary
+    SurfaceId surface = 0;  // its surface id: on the boundary, or an internal surface's
   };
   struct Entry {
     TriangleVertices key;
@@ -99,7 +99,9 @@ inline bool match_faces(CavityPlan& plan) {
 // vertex `from` renamed `to` (an edge collapse; kNoId for none). A new face
 // that matches no outer face becomes a boundary face of surface
 // `new_boundary_surface` when that is > 0 (the 2-2 flip), else the plan is
-// refused. False: the replacement is not a valid re-triangulation.
+// refused. False: the replacement is not a valid re-triangulation, or it
+// would erase a face of an internal surface (one between two old tets):
+// internal surfaces are kept, their faces carried to the new tets.
 inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::span<const TetVertices> new_tets,
                         CavityPlan& plan, VertexId from = kNoId, VertexId to = kNoId,
                         SurfaceId new_boundary_surface = 0) {
@@ -107,11 +109,15 @@ inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::
   plan.entries.clear();
   plan.new_boundary_surface = new_boundary_surface;
   auto in_cavity = [&](TetId t) { return std::find(old_tets.begin(), old_tets.end(), t) != old_tets.end(); };
+  const bool internal = mesh.has_internal_surfaces();
   for (TetId t : old_tets) {
     const auto& v = mesh.tet(t);
     for (int f = 0; f < 4; ++f) {
       const FaceRef n = mesh.neighbour(t, f);
-      if (n.valid() && in_cavity(n.tet())) continue;
+      if (n.valid() && in_cavity(n.tet())) {
+        if (internal && mesh.internal_surface_id(t, f) != 0) return false;
+        continue;
+      }
       TriangleVertices key = face_vertices(v, f);
       for (auto& x : key)
         if (x == from) x = to;
@@ -123,7 +129,7 @@ inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::
         continue;
       }
       plan.entries.emplace_back(CavityPlan::Entry{key, static_cast<int>(plan.outer.size())});
-      plan.outer.emplace_back(CavityPlan::OuterFace{key, n, n.valid() ? 0 : mesh.surface_id(t, f)});
+      plan.outer.emplace_back(CavityPlan::OuterFace{key, n, mesh.face_surface_id(t, f)});
     }
   }
   for (std::size_t k = 0; k < new_tets.size(); ++k)
@@ -146,8 +152,12 @@ inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::
       const auto& y = plan.entries[static_cast<std::size_t>(m.second)];
       if (x.index >= 0 && y.index >= 0) {
         // Two outer faces meet (the cavity of a collapse pinched to a
-        // face): at most one of them may be a boundary face.
-        if (!plan.outer[x.index].outside.valid() && !plan.outer[y.index].outside.valid()) return false;
+        // face): at most one of them may be a boundary face, and neither
+        // an internal surface's.
+        const auto& o1 = plan.outer[x.index];
+        const auto& o2 = plan.outer[y.index];
+        if (!o1.outside.valid() && !o2.outside.valid()) return false;
+        if ((o1.outside.valid() && o1.surface != 0) || (o2.outside.valid() && o2.surface != 0)) return false;
       }
     }
   }
@@ -193,6 +203,7 @@ void apply_cavity(Mesh& mesh, std::span<const TetId> old_tets, std::span<const T
       const auto& o = plan.outer[y.index];
       if (o.outside.valid()) {
         mesh.link(f, o.outside);
+        if (o.surface != 0) mesh.set_internal_surface_id(f.tet(), f.face(), o.surface);
       } else {
         mesh.set_neighbour(f.tet(), f.face(), FaceRef::none());
         mesh.set_surface_id(f.tet(), f.face(), o.surface);

@@ -68,7 +68,7 @@ struct CollapseScratch : ScratchGeneration {
 // May vertex a move onto b by the class rules? `boundary_edge`: ab has an
 // open shell.
 inline bool collapse_allowed(const Mesh& mesh, VertexId a, VertexId b, bool boundary_edge) {
-  if (mesh.is_required(a)) return false;
+  if (mesh.stays_in_place(a)) return false;
   switch (mesh.vertex_class(a)) {
     case VertexClass::corner: return false;
     case VertexClass::ridge: return mesh.is_ridge(a, b);
@@ -106,7 +106,7 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
     for (TetId t : s.shell.tets) on_shell = on_shell || local_index(mesh.tet(t), x) >= 0;
     if (!on_shell) return Refusal::not_applicable;
   }
-  if (moved != nullptr && (mesh.vertex_class(b) != VertexClass::interior || mesh.is_required(b)))
+  if (moved != nullptr && (mesh.vertex_class(b) != VertexClass::interior || mesh.stays_in_place(b)))
     return Refusal::not_applicable;
   const int ref = mesh.tet_ref(s.ball[0]);
   s.old_tets.clear();

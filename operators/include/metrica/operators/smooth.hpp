@@ -368,7 +368,7 @@ template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G =
 Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o,
                                       const G& geometry = {}) {
   const VertexClass cls = mesh.vertex_class(v);
-  if (cls == VertexClass::corner || mesh.is_required(v)) return Refusal::not_applicable;
+  if (cls == VertexClass::corner || mesh.stays_in_place(v)) return Refusal::not_applicable;
   if (s.ball.empty()) return Refusal::not_applicable;
   const Point x = mesh.point(v);
   s.trials.clear();

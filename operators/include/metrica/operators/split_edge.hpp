@@ -1,7 +1,7 @@
 // Insertion of a vertex on an edge: every tet of the edge's shell is cut in
 // two (seed, section 3.2's insertion by split; the edge-based rule of Mmg,
-// Omega_h and refine). Boundary faces of the shell are cut too and keep
-// their surface ids; a ridge edge becomes two ridge edges and the new
+// Omega_h and refine). Boundary and internal-surface faces of the shell
+// are cut too and keep their surface ids; a ridge edge becomes two ridge edges and the new
 // vertex is a ridge vertex, so the classification stays up to date.
 //
 // The topology (apply) is one function for every policy; the geometric
@@ -85,10 +85,23 @@ inline VertexId split_edge(Mesh& mesh, const Shell& shell, VertexId a, VertexId 
     v2[local_index(v2, a)] = n;
     twin[k] = mesh.add_tet(v2, mesh.tet_ref(t));
   }
+  const bool internal = mesh.has_internal_surfaces();
+  bool on_internal = false;  // the edge lies on an internal surface
   for (std::size_t k = 0; k < shell.tets.size(); ++k) {
     const TetId t1 = shell.tets[k], t2 = twin[k];
     const TetVertices old = mesh.tet(t1);
     const int ia = local_index(old, a), ib = local_index(old, b);
+    // Internal-surface faces: t2 takes t1's face opposite a and both halves
+    // of the faces through the edge; the face between t1 and t2 is new.
+    if (internal) {
+      for (int f = 0; f < 4; ++f) {
+        const SurfaceId id = mesh.internal_surface_id(t1, f);
+        if (f == ib || id == 0) continue;
+        mesh.set_internal_surface_id(t2, f, id);
+        if (f != ia) on_internal = true;
+      }
+      mesh.set_internal_surface_id(t1, ia, 0);
+    }
     // Outer faces: opposite b for t1 (it holds a), opposite a for t2.
     const FaceRef out_a = mesh.neighbour(t1, ia);
     const SurfaceId sid_a = mesh.surface_id(t1, ia);
@@ -117,8 +130,9 @@ inline VertexId split_edge(Mesh& mesh, const Shell& shell, VertexId a, VertexId 
   mesh.set_vert2tet(b, twin.front());  // the other shell vertices are in both children
   if (mesh.is_ridge(a, b))
     mesh.set_vertex_class(n, VertexClass::ridge);
-  else if (!shell.closed)
+  else if (!shell.closed || on_internal)
     mesh.set_vertex_class(n, VertexClass::surface);
+  if (on_internal) mesh.set_on_internal_surface(n, true);
   mesh.split_ridge(a, b, n);
   return n;
 }

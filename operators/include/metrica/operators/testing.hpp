@@ -48,12 +48,12 @@ inline Mesh jittered_box(int n, double amount, std::mt19937_64& rng) {
   return mesh;
 }
 
-// Area of the boundary faces of each surface id.
+// Area of the surface faces (boundary and internal) of each surface id.
 inline std::map<SurfaceId, double> surface_areas(const Mesh& mesh) {
   std::map<SurfaceId, double> area;
-  for_each_boundary_face(mesh, [&](TetId t, int f) {
+  for_each_surface_face(mesh, [&](TetId t, int f) {
     const auto v = face_vertices(mesh.tet(t), f);
-    area[mesh.surface_id(t, f)] +=
+    area[mesh.face_surface_id(t, f)] +=
         0.5 * (mesh.point(v[1]) - mesh.point(v[0])).cross(mesh.point(v[2]) - mesh.point(v[0])).norm();
   });
   return area;
