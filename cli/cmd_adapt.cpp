@@ -71,9 +71,10 @@ void print_cycle(const CycleReport& c) {
 void declare_options(Options& o) {
   const AdaptOptions d;
   const PolicyChoice policies;
-  o.input("mesh (.mesh, .meshb)");
-  o.output("adapted mesh (.mesh, .meshb, .vtu, .su2)",
-           {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2});
+  o.input("mesh (.mesh, .meshb, .msh)");
+  o.output(
+      "adapted mesh (.mesh, .meshb, .msh, .vtu, .su2)",
+      {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::msh, io::FileFormat::vtu, io::FileFormat::su2});
   o.metric_source("metric at the input's vertices (.sol, .solb)");
   o.add()("iterations", po::value<int>()->default_value(1)->value_name("N"),
           "adaptations in a row, the metric re-evaluated between them (--analytic only)")(

@@ -26,8 +26,9 @@ int run_bootstrap(const std::vector<std::string>& args) {
             "  metrica bootstrap cube-cylinder.step -o start.meshb --size 0.2\n"
             "  metrica adapt start.meshb --geometry cube-cylinder.step --analytic polar-2 -o cc.meshb");
   o.input("CAD model (.step .stp .iges .igs .brep .geo)");
-  o.output("mesh (.mesh, .meshb; .vtu, .su2 without the association)",
-           {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2});
+  o.output(
+      "mesh (.mesh, .meshb; .vtu, .su2 without the association)",
+      {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::msh, io::FileFormat::vtu, io::FileFormat::su2});
   o.add()("size", po::value<double>()->value_name("H"),
           "target edge length (default: a tenth of the model's diagonal)");
   o.format_version("libMeshb version to write, 1-4 (default 2)");

@@ -19,7 +19,7 @@ int run_check(const std::vector<std::string>& args) {
             "Examples:\n"
             "  metrica check cube.meshb\n"
             "  metrica check adapted.meshb --geometry cube-cylinder.step");
-  o.input("mesh to check (.mesh, .meshb)");
+  o.input("mesh to check (.mesh, .meshb, .msh)");
   o.add()("max-messages", po::value<int>()->default_value(20)->value_name("N"),
           "problems listed per check (counts stay exact)")("geometry", po::value<std::string>()->value_name("MODEL"),
                                                            "CAD model the boundary must lie on")(

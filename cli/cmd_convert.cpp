@@ -23,8 +23,8 @@ int run_convert(const std::vector<std::string>& args) {
             "          metrica convert metric.solb metric.sol --format-version 2");
   o.input("input file");
   o.output("output file; its extension picks the format",
-           {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2, io::FileFormat::sol,
-            io::FileFormat::solb});
+           {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::msh, io::FileFormat::vtu, io::FileFormat::su2,
+            io::FileFormat::sol, io::FileFormat::solb});
   o.format_version("libMeshb version to write (default: the input's)");
   o.add()("no-check", "write even if the mesh fails its checks");
   if (!o.parse(args)) return kOk;
@@ -41,7 +41,7 @@ int run_convert(const std::vector<std::string>& args) {
         fmt::format("convert: cannot convert {} to {} (a solution converts to a solution, a mesh to a mesh)",
                     io::to_string(in_format), io::to_string(out_format)));
   if (in_format == io::FileFormat::unknown || in_format == io::FileFormat::vtu || in_format == io::FileFormat::su2)
-    throw UsageError(fmt::format("convert: cannot read {} (Metrica reads .mesh, .meshb, .sol and .solb)", input));
+    throw UsageError(fmt::format("convert: cannot read {} (Metrica reads .mesh, .meshb, .msh, .sol and .solb)", input));
   if (in_sol) {
     const auto sol = io::read_sol(input);
     if (o.dry_run()) return kOk;

@@ -24,8 +24,9 @@ int run_cube(const std::vector<std::string>& args) {
           "hexes per direction (one value for all three, or three)")(
       "lo", po::value<std::string>()->value_name("X,Y,Z"), "lower corner (default 0,0,0; negative: --lo=-1,-1,-1)")(
       "hi", po::value<std::string>()->value_name("X,Y,Z"), "upper corner (default 1,1,1)");
-  o.output("output mesh (.mesh, .meshb, .vtu, .su2)",
-           {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::vtu, io::FileFormat::su2});
+  o.output(
+      "output mesh (.mesh, .meshb, .msh, .vtu, .su2)",
+      {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::msh, io::FileFormat::vtu, io::FileFormat::su2});
   o.format_version("libMeshb version to write, 1-4 (default 2)");
   if (!o.parse(args)) return kOk;
 

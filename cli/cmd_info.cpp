@@ -16,7 +16,7 @@ int run_info(const std::vector<std::string>& args) {
             "Prints what a mesh file holds (keyword counts) and what Metrica derives from it: vertex\n"
             "classes, surface ids with their areas, ridge curves, corners, extent and volume.\n\n"
             "Example: metrica info cube.meshb");
-  o.input("mesh (.mesh, .meshb)");
+  o.input("mesh (.mesh, .meshb, .msh)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
 
@@ -31,9 +31,13 @@ int run_info(const std::vector<std::string>& args) {
 
   auto row = [](const char* label, const std::string& value) { fmt::print("  {:<20} {}\n", label, value); };
   fmt::print("{}\n", input);
-  row("format",
-      fmt::format("libMeshb v{} {}, {}", d.version, io::format_of(input) == io::FileFormat::meshb ? "binary" : "ASCII",
-                  ec ? std::string("?") : bytes_text(double(file_size))));
+  const io::FileFormat format = io::format_of(input);
+  const std::string size_text = ec ? std::string("?") : bytes_text(double(file_size));
+  if (format == io::FileFormat::msh)
+    row("format", fmt::format("gmsh .msh, {}", size_text));
+  else
+    row("format",
+        fmt::format("libMeshb v{} {}, {}", d.version, format == io::FileFormat::meshb ? "binary" : "ASCII", size_text));
   row("read", fmt::format("{:.3f} s (+ {:.3f} s adjacency)", loaded.read_seconds, loaded.build_seconds));
   fmt::print("File\n");
   row("vertices", count_text(d.vertices.size()));
@@ -49,6 +53,7 @@ int run_info(const std::vector<std::string>& args) {
                               count_text(s.ridge_vertices), count_text(s.corners)));
   row("tetrahedra", count_text(s.tets));
   row("boundary faces", count_text(s.boundary_faces));
+  if (s.internal_faces > 0) row("internal faces", count_text(s.internal_faces));
   row("ridges", fmt::format("{} curves, {} edges", s.ridge_curves, count_text(s.ridge_edges)));
   row("corners", count_text(s.corners));
   row("bounding box", fmt::format("[{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]", s.lo.x(), s.hi.x(),
@@ -57,7 +62,13 @@ int run_info(const std::vector<std::string>& args) {
   row("tet volume", fmt::format("min {:.4g}, max {:.4g}", s.min_tet_volume, s.max_tet_volume));
   fmt::print("Surfaces ({} ids)\n  {:>8} {:>12} {:>14}\n", s.surfaces.size(), "id", "faces", "area");
   for (const auto& [id, surf] : s.surfaces)
-    fmt::print("  {:>8} {:>12} {:>14.6g}\n", id, count_text(surf.faces), surf.area);
+    fmt::print("  {:>8} {:>12} {:>14.6g}{}\n", id, count_text(surf.faces), surf.area,
+               surf.internal ? "  internal" : "");
+  if (s.regions.size() > 1) {
+    fmt::print("Regions ({} refs)\n  {:>8} {:>12} {:>14}\n", s.regions.size(), "ref", "tets", "volume");
+    for (const auto& [ref, region] : s.regions)
+      fmt::print("  {:>8} {:>12} {:>14.6g}\n", ref, count_text(region.tets), region.volume);
+  }
   return kOk;
 }
 

@@ -24,11 +24,11 @@ int run_interpolate(const std::vector<std::string>& args) {
             "transferred by adapt --metric-out, in its own space.\n\n"
             "Example:\n"
             "  metrica interpolate old.meshb --field old.solb --to adapted.meshb -o restart.solb");
-  o.input("source mesh (.mesh, .meshb)");
+  o.input("source mesh (.mesh, .meshb, .msh)");
   o.output("interpolated field (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
   o.add()("field", po::value<std::string>()->value_name("FILE"),
           "scalar and vector fields at the source's vertices (.sol, .solb)")(
-      "to", po::value<std::string>()->value_name("MESH"), "target mesh (.mesh, .meshb)");
+      "to", po::value<std::string>()->value_name("MESH"), "target mesh (.mesh, .meshb, .msh)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the source mesh (-i)");
   const auto output = o.required("output", "the output field (-o)");

@@ -9,15 +9,16 @@
 
 namespace metrica::io {
 
-enum class FileFormat { mesh, meshb, sol, solb, vtu, su2, unknown };
+enum class FileFormat { mesh, meshb, msh, sol, solb, vtu, su2, unknown };
 
 FileFormat format_of(const std::string& path);
 const char* to_string(FileFormat f);
 
-// .mesh or .meshb; IoError for other formats.
+// .mesh, .meshb or gmsh's .msh; IoError for other formats.
 MeshData read_mesh_file(const std::string& path);
 
-// .mesh, .meshb (libMeshb `version`, 0 = keep data.version), .vtu, .su2;
+// .mesh, .meshb (libMeshb `version`, 0 = keep data.version), .msh (4.1;
+// `version` 2: 2.2), .vtu, .su2;
 // a .mesh's rows formatted on run's parts.
 // "-" writes standard_output_format (ASCII .mesh unless said) to standard output.
 void write_mesh_file(const std::string& path, const MeshData& data, int version = 0, const PartRunner& run = {},
