@@ -155,7 +155,8 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
     if (used[i]) continue;
     const auto& tri = d.triangles[i];
     FaceRef face;
-    for (TetId u : incidence.of(tri[0])) {
+    const bool distinct = tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2];
+    for (TetId u : distinct ? incidence.of(tri[0]) : std::span<const TetId>{}) {
       const int ib = local_index(tets[u], tri[1]), ic = local_index(tets[u], tri[2]);
       if (ib >= 0 && ic >= 0) face = FaceRef(u, 6 - local_index(tets[u], tri[0]) - ib - ic);
     }
@@ -165,6 +166,7 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
     const int ref = i < d.triangle_refs.size() ? d.triangle_refs[i] : 0;
     const SurfaceId id = ref > 0 ? ref : default_id;
     const FaceRef other = mesh.neighbour(face);
+    if (!other.valid()) continue;  // a boundary face given twice
     const SurfaceId before = mesh.internal_surface_id(face.tet(), face.face());
     if (before != 0 && before != id)
       throw InputError(fmt::format("{}: triangle {} (vertices {} {} {}) is given twice, with surface ids {} and {}",

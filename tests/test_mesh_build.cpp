@@ -117,6 +117,12 @@ TEST_SUITE("unit") {
     d.triangles = {{0, 4, 1}};
     d.triangle_refs = {1};
     CHECK_THROWS_WITH_AS(build_mesh(d), doctest::Contains("is not a face of any tetrahedron"), InputError);
+    // A triangle with a repeated vertex (found by the readers' fuzzer).
+    for (const TriangleVertices& bad :
+         {TriangleVertices{0, 0, 1}, TriangleVertices{1, 2, 1}, TriangleVertices{3, 3, 3}}) {
+      d.triangles = {bad};
+      CHECK_THROWS_WITH_AS(build_mesh(d), doctest::Contains("is not a face of any tetrahedron"), InputError);
+    }
   }
 
   TEST_CASE("a face shared by three tets is an error") {
