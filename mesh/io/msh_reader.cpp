@@ -1,4 +1,5 @@
 #include <metrica/error.hpp>
+#include <metrica/io/byte_reader.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/io/msh.hpp>
 #include <metrica/log.hpp>
@@ -132,20 +133,7 @@ class Cursor {
     T value;
     std::memcpy(&value, s_.data() + pos_, sizeof(T));
     pos_ += sizeof(T);
-    if (swap_) {
-      if constexpr (sizeof(T) == 4) {
-        std::uint32_t u;
-        std::memcpy(&u, &value, 4);
-        u = __builtin_bswap32(u);
-        std::memcpy(&value, &u, 4);
-      } else {
-        std::uint64_t u;
-        std::memcpy(&u, &value, 8);
-        u = __builtin_bswap64(u);
-        std::memcpy(&value, &u, 8);
-      }
-    }
-    return value;
+    return swap_ ? byteswap(value) : value;
   }
 
   // Values of the data, ASCII or binary.
@@ -400,8 +388,7 @@ MeshData parse_msh(std::string_view bytes, const std::string& name) {
       in.line();
       if (file_type == 1) {
         const auto one = in.raw<std::int32_t>();
-        if (one != 1 && __builtin_bswap32(static_cast<std::uint32_t>(one)) != 1)
-          in.fail("the binary file's byte-order mark is not 1");
+        if (one != 1 && byteswap(one) != 1) in.fail("the binary file's byte-order mark is not 1");
         in.set_binary(true, one != 1, data_size);
       }
       in.end_section(section);

@@ -15,6 +15,25 @@
 
 namespace metrica::io {
 
+// A 4- or 8-byte value with its bytes reversed (a file of the other byte
+// order).
+template <class T>
+T byteswap(T value) {
+  static_assert(sizeof(T) == 4 || sizeof(T) == 8);
+  if constexpr (sizeof(T) == 4) {
+    std::uint32_t u;
+    std::memcpy(&u, &value, 4);
+    u = __builtin_bswap32(u);
+    std::memcpy(&value, &u, 4);
+  } else {
+    std::uint64_t u;
+    std::memcpy(&u, &value, 8);
+    u = __builtin_bswap64(u);
+    std::memcpy(&value, &u, 8);
+  }
+  return value;
+}
+
 class ByteReader {
  public:
   ByteReader(std::string_view bytes, const std::string& file) : bytes_(bytes), file_(file) {}
@@ -51,23 +70,6 @@ class ByteReader {
   double real(int width) { return width == 4 ? static_cast<double>(raw<float>()) : raw<double>(); }
 
  private:
-  template <class T>
-  static T byteswap(T value) {
-    static_assert(sizeof(T) == 4 || sizeof(T) == 8);
-    if constexpr (sizeof(T) == 4) {
-      std::uint32_t u;
-      std::memcpy(&u, &value, 4);
-      u = __builtin_bswap32(u);
-      std::memcpy(&value, &u, 4);
-    } else {
-      std::uint64_t u;
-      std::memcpy(&u, &value, 8);
-      u = __builtin_bswap64(u);
-      std::memcpy(&value, &u, 8);
-    }
-    return value;
-  }
-
   std::string_view bytes_;
   const std::string& file_;
   std::size_t pos_ = 0;
