@@ -19,7 +19,6 @@ struct Table {
   decltype(&gmshOpen) open = nullptr;
   decltype(&gmshOptionSetNumber) set_number = nullptr;
   decltype(&gmshModelGetEntities) get_entities = nullptr;
-  decltype(&gmshModelGetPhysicalGroups) get_physical_groups = nullptr;
   decltype(&gmshModelGetBoundary) get_boundary = nullptr;
   decltype(&gmshModelGetBoundingBox) get_bounding_box = nullptr;
   decltype(&gmshModelGetParametrizationBounds) get_parametrization_bounds = nullptr;
@@ -76,7 +75,6 @@ void load_once() {
   resolve(handle, t.open, "gmshOpen");
   resolve(handle, t.set_number, "gmshOptionSetNumber");
   resolve(handle, t.get_entities, "gmshModelGetEntities");
-  resolve(handle, t.get_physical_groups, "gmshModelGetPhysicalGroups");
   resolve(handle, t.get_boundary, "gmshModelGetBoundary");
   resolve(handle, t.get_bounding_box, "gmshModelGetBoundingBox");
   resolve(handle, t.get_parametrization_bounds, "gmshModelGetParametrizationBounds");
@@ -198,15 +196,6 @@ void model::getEntities(vectorpair& dim_tags, int dim) {
   api().get_entities(&p, &n, dim, &ierr);
   dim_tags = pairs(p, n);
   check(ierr, "getEntities");
-}
-
-void model::getPhysicalGroups(vectorpair& dim_tags, int dim) {
-  int ierr = 0;
-  int* p = nullptr;
-  std::size_t n = 0;
-  api().get_physical_groups(&p, &n, dim, &ierr);
-  dim_tags = pairs(p, n);
-  check(ierr, "getPhysicalGroups");
 }
 
 void model::getBoundary(const vectorpair& dim_tags, vectorpair& out, bool combined, bool oriented, bool recursive) {

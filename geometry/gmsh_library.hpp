@@ -37,7 +37,6 @@ void setNumber(const std::string& name, double value);
 
 namespace model {
 void getEntities(vectorpair& dim_tags, int dim);
-void getPhysicalGroups(vectorpair& dim_tags, int dim);
 void getBoundary(const vectorpair& dim_tags, vectorpair& out, bool combined, bool oriented, bool recursive);
 void getBoundingBox(int dim, int tag, double& x0, double& y0, double& z0, double& x1, double& y1, double& z1);
 void getParametrizationBounds(int dim, int tag, std::vector<double>& lo, std::vector<double>& hi);
