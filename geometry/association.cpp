@@ -33,11 +33,12 @@ Candidate project(const CadModel& model, int dim, int tag, const Point& p) {
 
 AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshData* input, double tolerance) {
   if (tolerance <= 0.0) tolerance = 1e-3 * model.size();
-  // The surface ids around each boundary vertex; each id must be a model surface.
+  // The surface ids around each surface vertex (boundary and internal
+  // surfaces); each id must be a model surface.
   std::vector<std::vector<int>> surfaces(mesh.vertex_capacity());
   std::set<int> missing;
-  for_each_boundary_face(mesh, [&](TetId t, int f) {
-    const SurfaceId s = mesh.surface_id(t, f);
+  for_each_surface_face(mesh, [&](TetId t, int f) {
+    const SurfaceId s = mesh.face_surface_id(t, f);
     if (!model.has(2, s)) missing.insert(s);
     for (VertexId v : face_vertices(mesh.tet(t), f)) {
       auto& list = surfaces[v];
@@ -140,7 +141,7 @@ AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshDat
 ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance) {
   ModelDistance d;
   std::vector<std::uint8_t> boundary(mesh.vertex_capacity(), 0);
-  for_each_boundary_face(mesh, [&](TetId t, int f) {
+  for_each_surface_face(mesh, [&](TetId t, int f) {
     for (VertexId v : face_vertices(mesh.tet(t), f)) boundary[v] = 1;
   });
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {

@@ -15,10 +15,10 @@ std::vector<Sym6> curvature_metric(const Mesh& mesh, const CadModel& model, doub
     throw InputError(fmt::format("curvature metric: the angle must be in (0, 90] degrees (got {} radians)", angle));
   const double floor = 1.0 / (model.size() * model.size());
   std::vector<Eigen::Matrix3d> sum(mesh.vertex_capacity(), floor * Eigen::Matrix3d::Identity());
-  // The surfaces around each boundary vertex (once each).
+  // The surfaces around each surface vertex, boundary or internal (once each).
   std::vector<std::vector<int>> surfaces(mesh.vertex_capacity());
-  for_each_boundary_face(mesh, [&](TetId t, int f) {
-    const SurfaceId s = mesh.surface_id(t, f);
+  for_each_surface_face(mesh, [&](TetId t, int f) {
+    const SurfaceId s = mesh.face_surface_id(t, f);
     for (VertexId v : face_vertices(mesh.tet(t), f)) {
       auto& list = surfaces[v];
       if (std::find(list.begin(), list.end(), s) == list.end()) list.push_back(s);

@@ -11,6 +11,7 @@
 #include <metrica/geometry/curvature_metric.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/mesh_build.hpp>
+#include <metrica/mesh_summary.hpp>
 #include <metrica/operators/boundary_swap.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/project.hpp>
@@ -304,6 +305,50 @@ TEST_SUITE("invariant") {
     // Without a model the volume stays the faceted one; on it, the chords of
     // h = 0.08 on the wall leave about 70% of the first faceting's error.
     CHECK(std::abs(c.mesh.volume() - exact) < 0.8 * std::abs(faceted - exact));
+  }
+
+  TEST_CASE_TEMPLATE("an internal surface on a CAD model: its new vertices go on the model, the regions stay apart", T,
+                     METRICA_POLICY_COMBINATIONS) {
+    // A unit cube with a sphere of radius 0.3 inside (BooleanFragments):
+    // two regions, the sphere an internal surface of the model.
+    const ExecutorOf<T> executor;
+    using S = typename T::Space;
+    CadModel model(std::string(METRICA_TEST_DATA_DIR) + "/msh/box_sphere.geo");
+    const io::MeshData data = bootstrap_mesh(model, {.size = 0.15});
+    Mesh mesh = build_mesh(data);
+    REQUIRE(mesh.has_internal_surfaces());
+    associate(mesh, model, &data);
+    auto inner_volume = [](const Mesh& m) {
+      const MeshSummary sum = summarize(m);
+      REQUIRE(sum.regions.size() == 2);
+      return std::min(sum.regions.begin()->second.volume, sum.regions.rbegin()->second.volume);
+    };
+    const double faceted = inner_volume(mesh);
+    const MetricFunction metric = [](const Point&) { return isotropic_metric(0.08); };
+    test::set_metric_function(mesh, metric);
+    AdaptOptions o;
+    o.max_cycles = 4;
+    adapt<S, typename T::Precision, typename T::Concurrency, CadGeometry>(mesh, o,
+                                                                          {.metric = &metric, .model = &model});
+    const auto report = mesh.validate();
+    INFO(report.to_string());
+    REQUIRE(report.ok());
+    const ModelDistance d = model_distance(mesh, model);
+    CHECK(d.unassociated == 0);
+    CHECK(d.max < 1e-8);
+    std::size_t on_sphere = 0;
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+      if (!mesh.vertex_alive(v) || !mesh.on_internal_surface(v)) continue;
+      ++on_sphere;
+      CHECK(std::abs((mesh.point(v) - Point(0.5, 0.5, 0.5)).norm() - 0.3) < 1e-8);
+    }
+    CHECK(on_sphere > 250);  // refined on the interface (82 in the input)
+    // Inscribed facets: short of the sphere's volume, by less than half the
+    // first faceting's error (edges of 0.15 to about 0.08).
+    const double sphere = 4.0 / 3.0 * kPi * 0.027;
+    const double inner = inner_volume(mesh);
+    CHECK(inner < sphere);
+    CHECK(sphere - inner < 0.5 * (sphere - faceted));
   }
 
   TEST_CASE_TEMPLATE("centroid insertion on boundary faces and ridges of a CAD model stays on it", T,

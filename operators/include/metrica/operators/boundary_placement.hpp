@@ -45,10 +45,20 @@ BoundaryPoint place_boundary_vertex(const G& geometry, const GeoParam& param, co
   return {straight, param};
 }
 
-// The surface of boundary edge ab (an open shell): the surface id of the
-// first shell tet's boundary face through ab; 0 for an inner edge.
+// The surface of edge ab: for a boundary edge (an open shell) the surface
+// id of the first shell tet's boundary face through ab; for an edge of an
+// internal surface (a closed shell) that surface's id; 0 for an inner edge.
 inline SurfaceId edge_surface(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b) {
-  if (shell.closed || shell.tets.empty()) return 0;
+  if (shell.tets.empty()) return 0;
+  if (shell.closed) {
+    if (!mesh.has_internal_surfaces()) return 0;
+    for (TetId t : shell.tets) {
+      const auto& v = mesh.tet(t);
+      for (int f = 0; f < 4; ++f)
+        if (v[f] != a && v[f] != b && mesh.internal_surface_id(t, f) != 0) return mesh.internal_surface_id(t, f);
+    }
+    return 0;
+  }
   for (TetId t : {shell.tets.front(), shell.tets.back()}) {
     const auto& v = mesh.tet(t);
     for (int f = 0; f < 4; ++f)
@@ -57,15 +67,17 @@ inline SurfaceId edge_surface(const Mesh& mesh, const Shell& shell, VertexId a, 
   return 0;
 }
 
-// Parameters of a new vertex on boundary edge ab at a + t (b - a): on the
-// curve of a ridge edge, else on the edge's surface; none for an inner
-// edge or without a model.
+// Parameters of a new vertex on surface edge ab (boundary or internal) at
+// a + t (b - a): on the curve of a ridge edge, else on the edge's surface;
+// none for an inner edge or without a model.
 template <Geometry G>
 GeoParam edge_vertex_param(const G& geometry, const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, double t) {
-  if (shell.closed) return {};
+  const bool ridge = mesh.is_ridge(a, b);
+  const SurfaceId surface = ridge ? 0 : edge_surface(mesh, shell, a, b);
+  if (shell.closed && !ridge && surface == 0) return {};
   const std::array<VertexId, 2> ends{a, b};
   const std::array<double, 2> w{1.0 - t, t};
-  return geometry.boundary_vertex(mesh, ends, w, mesh.is_ridge(a, b) ? 0 : edge_surface(mesh, shell, a, b));
+  return geometry.boundary_vertex(mesh, ends, w, surface);
 }
 
 }  // namespace metrica

@@ -62,6 +62,10 @@ Decision<EdgeSplitPlan> decide_edge_point(const Mesh& mesh, const Shell& shell, 
       place_boundary_vertex(geometry, edge_vertex_param(geometry, mesh, shell, a, b, t), straight,
                             [&](const Point& q) { return split_is_valid<P>(mesh, shell, a, b, q); });
   if (too_close(at.p)) return Refusal::rejected;
+  // On an internal surface (a closed shell) the vertex goes on the model or
+  // the split waits: no later pass may move it there (both sides hold it),
+  // nor collapse it away as the last resort does on the outer boundary.
+  if (shell.closed && at.geo.valid() && at.p != geometry.point(at.geo)) return Refusal::rejected;
   if (!split_is_valid<P>(mesh, shell, a, b, at.p)) return Refusal::rejected;
   if (!split_accepted(mesh, shell, a, b, at.p, accept)) return Refusal::rejected;
   const std::array<VertexId, 2> ends{a, b};

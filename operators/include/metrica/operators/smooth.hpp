@@ -13,6 +13,9 @@
 //             projected into the plane;
 //   ridge     (only on a straight ridge) towards its two ridge neighbours;
 //   corner / required: fixed.
+// A vertex of an internal surface is a surface or ridge vertex like those
+// of the outer boundary: its surface faces are those of the internal
+// surface (seen from both sides), and it moves within it.
 // Under a Geometry on a model (CadGeometry) a boundary vertex moves on it,
 // in its parameters: a surface vertex towards the midpoints of the outer
 // edges of its boundary faces and towards the mean of its neighbours on
@@ -219,7 +222,7 @@ inline bool flat_surface_trials(const Mesh& mesh, VertexId v, const Point& optim
   for (TetId t : s.ball) {
     const auto& tv = mesh.tet(t);
     for (int f = 0; f < 4; ++f) {
-      if (tv[f] == v || mesh.neighbour(t, f).valid()) continue;
+      if (tv[f] == v || !mesh.is_surface_face(t, f)) continue;
       const auto fv = face_vertices(tv, f);
       const Eigen::Vector3d n = face_normal(mesh, fv[0], fv[1], fv[2]);
       if (normal.squaredNorm() == 0.0)
@@ -368,7 +371,9 @@ template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G =
 Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o,
                                       const G& geometry = {}) {
   const VertexClass cls = mesh.vertex_class(v);
-  if (cls == VertexClass::corner || mesh.stays_in_place(v)) return Refusal::not_applicable;
+  // A vertex of an internal surface moves within it as a boundary vertex
+  // does within its surface (its faces on both sides stay on the surface).
+  if (cls == VertexClass::corner || mesh.is_required(v)) return Refusal::not_applicable;
   if (s.ball.empty()) return Refusal::not_applicable;
   const Point x = mesh.point(v);
   s.trials.clear();
@@ -433,7 +438,7 @@ bool boundary_trials_on_model(const Mesh& mesh, VertexId v, SmoothScratch& s, co
   for (TetId t : s.ball) {
     const auto& tv = mesh.tet(t);
     for (int f = 0; f < 4; ++f) {
-      if (tv[f] == v || mesh.neighbour(t, f).valid()) continue;
+      if (tv[f] == v || !mesh.is_surface_face(t, f)) continue;
       const auto fv = face_vertices(tv, f);
       const int k = fv[0] == v ? 0 : fv[1] == v ? 1 : 2;
       const std::array<VertexId, 3> parents{v, fv[(k + 1) % 3], fv[(k + 2) % 3]};
