@@ -110,7 +110,10 @@ void declare_options(Options& o) {
       "hmin", po::value<double>()->value_name("H"), "clamp the metric's sizes to at least H")(
       "hmax", po::value<double>()->value_name("H"), "clamp the metric's sizes to at most H")(
       "geometry", po::value<std::string>()->value_name("MODEL"),
-      "CAD model the boundary lies on (.step .stp .iges .igs .brep .geo): new boundary vertices go on it");
+      "CAD model the boundary lies on (.step .stp .iges .igs .brep .geo): new boundary vertices go on it")(
+      "keep-surface",
+      "keep the boundary and the internal surfaces exactly as they are (no vertex moved, added or removed on "
+      "them, no face flipped) and adapt the volume only");
   o.output_option("metric-out", "also write the metric at the output's vertices (.sol, .solb)",
                   {io::FileFormat::sol, io::FileFormat::solb});
   o.output_option("vtu", "also write the adapted mesh for ParaView (.vtu)", {io::FileFormat::vtu});
@@ -222,7 +225,10 @@ int run_adapt(const std::vector<std::string>& args) {
             "are placed on the CAD model, not on the input's facets: the mesh's surface ids must be the\n"
             "model's surface tags, and each boundary vertex is associated with its model vertex, curve\n"
             "or surface (from the input's VerticesOnGeometric* records when present, else by\n"
-            "projection); the output .meshb carries the association for the next run.\n\n"
+            "projection); the output .meshb carries the association for the next run.\n"
+            "Regions (tet references), internal surfaces (triangles between two tets) and the input's\n"
+            "RequiredVertices, RequiredEdges and RequiredTriangles are kept; --keep-surface keeps the\n"
+            "whole surface and adapts the volume only.\n\n"
             "Examples:\n"
             "  metrica adapt cube-linear-00.meshb -m cube-linear-00.solb -o adapted.meshb\n"
             "  metrica adapt cube.meshb --analytic polar-1 --iterations 5 -o polar1.meshb --vtu polar1.vtu\n"
@@ -256,6 +262,7 @@ int run_adapt(const std::vector<std::string>& args) {
     model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data);
     inputs.model = model.get();
   }
+  if (o.has("keep-surface")) mesh.keep_surface();
   // The input's arrays are in the mesh now: only its vertex count and
   // version are read again.
   const std::size_t input_vertices = loaded.data.vertices.size();

@@ -208,6 +208,12 @@ void Mesh::compact(const PartRunner& given) {
   });
 
   edge_tags_.renumber(new_vertex);
+  // Required vertices are never removed: each triangle keeps its three.
+  for (auto& tri : required_triangles_) {
+    for (auto& v : tri) v = new_vertex[v];
+    std::sort(tri.begin(), tri.end());
+  }
+  std::sort(required_triangles_.begin(), required_triangles_.end());
   free_vertices_.clear();
   free_tets_.clear();
   live_vertices_ = nv;

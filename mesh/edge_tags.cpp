@@ -9,6 +9,11 @@ bool EdgeTags::is_ridge(VertexId a, VertexId b) const {
   return ridges_.count(edge_key(a, b)) != 0;
 }
 
+bool EdgeTags::is_required(VertexId a, VertexId b) const {
+  std::lock_guard guard(lock_);
+  return required_.count(edge_key(a, b)) != 0;
+}
+
 void EdgeTags::split(VertexId a, VertexId b, VertexId m) {
   std::lock_guard guard(lock_);
   for (Set* tags : {&ridges_, &features_}) {
@@ -28,7 +33,7 @@ void EdgeTags::merge(VertexId from, VertexId to, std::span<const VertexId> neigh
 }
 
 void EdgeTags::renumber(std::span<const VertexId> new_id) {
-  for (Set* tags : {&ridges_, &features_}) {
+  for (Set* tags : {&ridges_, &features_, &required_}) {
     Set out;
     out.reserve(tags->size());
     for (auto key : *tags) {

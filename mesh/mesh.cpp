@@ -110,6 +110,27 @@ void Mesh::set_required(VertexId v, bool required) {
     vertex_flags_[v] &= static_cast<std::uint8_t>(~kRequired);
 }
 
+void Mesh::add_required_edge(VertexId a, VertexId b) {
+  set_required(a, true);
+  set_required(b, true);
+  edge_tags_.add_required(a, b);
+}
+
+void Mesh::add_required_triangle(const TriangleVertices& tri) {
+  TriangleVertices key = tri;
+  std::sort(key.begin(), key.end());
+  for (int i = 0; i < 3; ++i) add_required_edge(key[i], key[(i + 1) % 3]);
+  const auto at = std::lower_bound(required_triangles_.begin(), required_triangles_.end(), key);
+  if (at == required_triangles_.end() || *at != key) required_triangles_.insert(at, key);
+}
+
+void Mesh::keep_surface() {
+  keep_surface_ = true;
+  for_each_surface_face(*this, [&](TetId t, int f) {
+    for (VertexId v : face_vertices(tets_[t], f)) vertex_flags_[v] |= kKeptSurface;
+  });
+}
+
 void Mesh::set_on_internal_surface(VertexId v, bool on) {
   if (on)
     vertex_flags_[v] |= kInternalSurface;

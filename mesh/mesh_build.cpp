@@ -190,6 +190,18 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
   for (const auto& e : d.edges) mesh.add_feature_edge(e[0], e[1]);
   for (VertexId v : d.corners) mesh.set_required(v, true);
   for (VertexId v : d.required_vertices) mesh.set_required(v, true);
+  // Required edges must be edges of the mesh; required triangles are among
+  // the triangles, each matched to a face above.
+  for (std::size_t i = 0; i < d.required_edges.size(); ++i) {
+    const auto& e = d.edges[d.required_edges[i]];
+    bool found = false;
+    for (TetId u : incidence.of(e[0])) found = found || (e[0] != e[1] && local_index(tets[u], e[1]) >= 0);
+    if (!found)
+      throw InputError(fmt::format("{}: required edge {} (edge {}, vertices {} {}) is not an edge of any tetrahedron",
+                                   src, i + 1, d.required_edges[i] + 1, e[0] + 1, e[1] + 1));
+    mesh.add_required_edge(e[0], e[1]);
+  }
+  for (std::uint32_t i : d.required_triangles) mesh.add_required_triangle(d.triangles[i]);
   mesh.classify();
   return mesh;
 }
@@ -237,6 +249,34 @@ io::MeshData extract_mesh_data(const Mesh& mesh) {
     d.ridges.push_back(static_cast<std::uint32_t>(d.edges.size()));
     d.edges.push_back({new_id[e[0]], new_id[e[1]]});
     d.edge_refs.push_back(0);
+  }
+  // Required edges: a ridge's index, or an edge of their own after them.
+  std::vector<std::uint64_t> required(mesh.required_edges().begin(), mesh.required_edges().end());
+  std::sort(required.begin(), required.end());
+  for (auto key : required) {
+    const auto at = std::lower_bound(ridges.begin(), ridges.end(), key);
+    if (at != ridges.end() && *at == key) {
+      d.required_edges.push_back(static_cast<std::uint32_t>(at - ridges.begin()));
+      continue;
+    }
+    const auto e = edge_from_key(key);
+    d.required_edges.push_back(static_cast<std::uint32_t>(d.edges.size()));
+    d.edges.push_back({new_id[e[0]], new_id[e[1]]});
+    d.edge_refs.push_back(0);
+  }
+  // Required triangles: found among the surface triangles by their sorted
+  // vertex ids (the mesh's ids, before renumbering).
+  const auto req = mesh.required_triangles();
+  if (!req.empty()) {
+    std::vector<VertexId> old_id(d.vertices.size());
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+      if (new_id[v] != kNoId) old_id[new_id[v]] = v;
+    for (std::size_t i = 0; i < d.triangles.size(); ++i) {
+      TriangleVertices key{old_id[d.triangles[i][0]], old_id[d.triangles[i][1]], old_id[d.triangles[i][2]]};
+      std::sort(key.begin(), key.end());
+      if (std::binary_search(req.begin(), req.end(), key))
+        d.required_triangles.push_back(static_cast<std::uint32_t>(i));
+    }
   }
   return d;
 }

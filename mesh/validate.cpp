@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
 
 namespace metrica {
 
@@ -55,6 +56,7 @@ class Checker {
     check_adjacency();
     check_manifold();
     check_classification();
+    check_required();
     check_vert2tet();
     check_volume();
     return std::move(report_);
@@ -221,6 +223,39 @@ class Checker {
         const auto e = edge_from_key(key);
         fail("classification", "edge ({} {}) is marked as a ridge but is not one", e[0], e[1]);
       }
+  }
+
+  // Required triangles are surface faces and required edges edges of the
+  // mesh, all of their vertices required.
+  void check_required() {
+    const auto triangles = m_.required_triangles();
+    const auto& edges = m_.required_edges();
+    if (triangles.empty() && edges.empty()) return;
+    std::vector<TriangleVertices> faces;
+    std::unordered_set<std::uint64_t> tet_edges;
+    for (TetId t = 0; t < m_.tet_capacity(); ++t) {
+      if (!m_.tet_alive(t)) continue;
+      const auto& v = m_.tet(t);
+      for (int f = 0; f < 4; ++f)
+        if (m_.is_surface_face(t, f)) {
+          TriangleVertices key = face_vertices(v, f);
+          std::sort(key.begin(), key.end());
+          faces.push_back(key);
+        }
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j)
+          if (m_.is_required(v[i]) && m_.is_required(v[j])) tet_edges.insert(edge_key(v[i], v[j]));
+    }
+    std::sort(faces.begin(), faces.end());
+    for (const auto& tri : triangles) {
+      if (!std::binary_search(faces.begin(), faces.end(), tri))
+        fail("required", "required triangle ({} {} {}) is not a surface face", tri[0], tri[1], tri[2]);
+    }
+    for (auto key : edges) {
+      const auto e = edge_from_key(key);
+      if (!tet_edges.count(key))
+        fail("required", "required edge ({} {}) is not an edge of the mesh, or an end is not required", e[0], e[1]);
+    }
   }
 
   void check_vert2tet() {

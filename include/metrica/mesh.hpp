@@ -82,9 +82,36 @@ class Mesh {
   // refine them.
   bool on_internal_surface(VertexId v) const { return (vertex_flags_[v] & kInternalSurface) != 0; }
   void set_on_internal_surface(VertexId v, bool on);
-  // Never moved or removed by an operator: required, or on an internal
-  // surface.
-  bool stays_in_place(VertexId v) const { return (vertex_flags_[v] & (kRequired | kInternalSurface)) != 0; }
+  // Never moved by an operator: required, or on the surface while the
+  // surface is kept (keep_surface).
+  bool is_fixed(VertexId v) const { return (vertex_flags_[v] & (kRequired | kKeptSurface)) != 0; }
+  // Never moved off its place nor removed by a collapse: fixed, or on an
+  // internal surface.
+  bool stays_in_place(VertexId v) const {
+    return (vertex_flags_[v] & (kRequired | kInternalSurface | kKeptSurface)) != 0;
+  }
+
+  // --- required entities and the kept surface -----------------------------
+  // Required edges (RequiredEdges, and the edges of RequiredTriangles) are
+  // never split, flipped or removed; their ends are required vertices.
+  // Safe in a parallel pass for a caller holding a and b (most calls stop
+  // at the vertex flags).
+  bool is_required_edge(VertexId a, VertexId b) const {
+    if (!is_required(a) || !is_required(b)) return false;
+    return edge_tags_.is_required(a, b);
+  }
+  void add_required_edge(VertexId a, VertexId b);
+  // Required triangles (RequiredTriangles): their vertices and edges are
+  // required, so every operation keeps them; listed (sorted vertex ids)
+  // for output and validation.
+  void add_required_triangle(const TriangleVertices& tri);
+  std::span<const TriangleVertices> required_triangles() const { return required_triangles_; }
+  const std::unordered_set<std::uint64_t>& required_edges() const { return edge_tags_.required(); }
+  // Keeps the whole surface (boundary and internal surfaces) as it is while
+  // the volume is adapted: its vertices are fixed, and no operation splits,
+  // flips or inserts on it (Mmg's -nosurf).
+  void keep_surface();
+  bool keeps_surface() const { return keep_surface_; }
 
   // Metric field: empty until set (metrics/ fills it).
   bool has_metric() const { return !metric_.empty(); }
@@ -277,6 +304,7 @@ class Mesh {
   static constexpr std::uint8_t kAlive = 1;
   static constexpr std::uint8_t kRequired = 2;
   static constexpr std::uint8_t kInternalSurface = 4;
+  static constexpr std::uint8_t kKeptSurface = 8;
 
   void store_tet(TetId t, const TetVertices& v) {
     for (int i = 0; i < 4; ++i) std::atomic_ref<VertexId>(tets_[t][i]).store(v[i], std::memory_order_relaxed);
@@ -313,6 +341,8 @@ class Mesh {
   std::size_t live_tets_ = 0;
 
   EdgeTags edge_tags_;
+  std::vector<TriangleVertices> required_triangles_;  // sorted vertex ids, sorted
+  bool keep_surface_ = false;
 
   IdSource* id_source_ = nullptr;
 

@@ -142,8 +142,14 @@ bool read_mesh_keyword(Source& src, int code, MeshData& m, Locations& where) {
     case kTetrahedra: read_elements(src, m.tets, m.tet_refs); break;
     case kCorners:
     case kRequiredVertices:
-    case kRidges: {
-      auto& list = code == kCorners ? m.corners : code == kRidges ? m.ridges : m.required_vertices;
+    case kRidges:
+    case kRequiredEdges:
+    case kRequiredTriangles: {
+      auto& list = code == kCorners             ? m.corners
+                   : code == kRidges            ? m.ridges
+                   : code == kRequiredEdges     ? m.required_edges
+                   : code == kRequiredTriangles ? m.required_triangles
+                                                : m.required_vertices;
       const auto n = src.count(1, 0);
       list.resize(n);
       for (auto& v : list) v = read_index(src);
@@ -220,6 +226,12 @@ void check_indices(const MeshData& m, const std::string& file, const Locations& 
   }
   for (std::size_t i = 0; i < m.ridges.size(); ++i)
     if (m.ridges[i] >= m.edges.size()) fail_index(file, kRidges, where, i, m.ridges[i], m.edges.size(), "edge");
+  for (std::size_t i = 0; i < m.required_edges.size(); ++i)
+    if (m.required_edges[i] >= m.edges.size())
+      fail_index(file, kRequiredEdges, where, i, m.required_edges[i], m.edges.size(), "edge");
+  for (std::size_t i = 0; i < m.required_triangles.size(); ++i)
+    if (m.required_triangles[i] >= m.triangles.size())
+      fail_index(file, kRequiredTriangles, where, i, m.required_triangles[i], m.triangles.size(), "triangle");
 }
 
 void check_dimension(std::int64_t dim, const std::string& file) {

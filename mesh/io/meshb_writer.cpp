@@ -265,6 +265,8 @@ std::string write_mesh_to(Writer w, const MeshData& m) {
   write_list(w, kCorners, m.corners);
   write_list(w, kRidges, m.ridges);
   write_list(w, kRequiredVertices, m.required_vertices);
+  write_list(w, kRequiredEdges, m.required_edges);
+  write_list(w, kRequiredTriangles, m.required_triangles);
   return w.finish();
 }
 
@@ -294,7 +296,9 @@ std::uint64_t binary_size_estimate(const MeshData& m, int version) {
   const Widths w(version);
   return 64 + m.vertices.size() * (3ull * w.real + w.integer) + m.edges.size() * 3ull * w.integer +
          m.triangles.size() * 4ull * w.integer + m.tets.size() * 5ull * w.integer +
-         (m.corners.size() + m.ridges.size() + m.required_vertices.size()) * std::uint64_t(w.integer);
+         (m.corners.size() + m.ridges.size() + m.required_vertices.size() + m.required_edges.size() +
+          m.required_triangles.size()) *
+             std::uint64_t(w.integer);
 }
 
 // `v2_size`: the binary size with version-2 widths (at least version 1's).

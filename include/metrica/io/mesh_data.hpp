@@ -39,6 +39,10 @@ struct MeshData {
   std::vector<VertexId> corners;            // vertex indices
   std::vector<VertexId> required_vertices;  // vertex indices
   std::vector<std::uint32_t> ridges;        // indices into edges
+  // Kept as they are by every operation: not moved, split, flipped or
+  // removed (their vertices are required too).
+  std::vector<std::uint32_t> required_edges;      // indices into edges
+  std::vector<std::uint32_t> required_triangles;  // indices into triangles
   // By entity dimension: on model vertices, curves, surfaces. A vertex may
   // have several records (a curve's vertex on each of its surfaces).
   std::array<std::vector<GeoRecord>, 3> on_geometry;

@@ -16,6 +16,8 @@ enum Keyword : int {
   kCorners = 13,
   kRidges = 14,
   kRequiredVertices = 15,
+  kRequiredEdges = 16,
+  kRequiredTriangles = 17,
   kVerticesOnGeometricVertices = 40,
   kVerticesOnGeometricEdges = 41,
   kVerticesOnGeometricTriangles = 42,
@@ -37,6 +39,8 @@ constexpr std::string_view keyword_name(int code) {
     case kCorners: return "Corners";
     case kRidges: return "Ridges";
     case kRequiredVertices: return "RequiredVertices";
+    case kRequiredEdges: return "RequiredEdges";
+    case kRequiredTriangles: return "RequiredTriangles";
     case kVerticesOnGeometricVertices: return "VerticesOnGeometricVertices";
     case kVerticesOnGeometricEdges: return "VerticesOnGeometricEdges";
     case kVerticesOnGeometricTriangles: return "VerticesOnGeometricTriangles";
@@ -47,9 +51,9 @@ constexpr std::string_view keyword_name(int code) {
 }
 
 inline int keyword_code(std::string_view name) {
-  for (int code :
-       {kVersion, kDimension, kVertices, kEdges, kTriangles, kTetrahedra, kCorners, kRidges, kRequiredVertices,
-        kVerticesOnGeometricVertices, kVerticesOnGeometricEdges, kVerticesOnGeometricTriangles, kEnd, kSolAtVertices})
+  for (int code : {kVersion, kDimension, kVertices, kEdges, kTriangles, kTetrahedra, kCorners, kRidges,
+                   kRequiredVertices, kRequiredEdges, kRequiredTriangles, kVerticesOnGeometricVertices,
+                   kVerticesOnGeometricEdges, kVerticesOnGeometricTriangles, kEnd, kSolAtVertices})
     if (keyword_name(code) == name) return code;
   return 0;
 }

@@ -49,7 +49,9 @@ struct BoundarySwap {
   Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {
     const auto [a, b] = edge_from_key(e.key);
     const Shell& shell = s.shell;
-    if (shell.closed || shell.tets.size() != 2 || mesh.is_ridge(a, b)) return Refusal::not_applicable;
+    if (shell.closed || shell.tets.size() != 2 || mesh.is_ridge(a, b) || mesh.keeps_surface() ||
+        mesh.is_required_edge(a, b))
+      return Refusal::not_applicable;
     const int ref = mesh.tet_ref(shell.tets[0]);
     if (mesh.tet_ref(shell.tets[1]) != ref) return Refusal::not_applicable;
     SurfaceId surface = 0;

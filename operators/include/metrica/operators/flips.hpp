@@ -151,6 +151,7 @@ bool edge_removal_applies(const Mesh& mesh, VertexId a, VertexId b, const Shell&
   const int ref = mesh.tet_ref(shell.tets[0]);
   for (TetId t : shell.tets)
     if (mesh.tet_ref(t) != ref) return false;
+  if (mesh.is_required_edge(a, b)) return false;
   surface = 0;
   const std::size_t ring_size = shell.closed ? n : n + 1;
   if (ring_size >= 4) {
@@ -159,7 +160,7 @@ bool edge_removal_applies(const Mesh& mesh, VertexId a, VertexId b, const Shell&
       return false;
   }
   if (shell.closed) return n >= 3 && static_cast<int>(n) <= o.max_shell;
-  if (n < 2 || static_cast<int>(n) + 1 > o.max_shell || mesh.is_ridge(a, b)) return false;
+  if (n < 2 || static_cast<int>(n) + 1 > o.max_shell || mesh.is_ridge(a, b) || mesh.keeps_surface()) return false;
   // The two boundary faces through ab, on one surface.
   SurfaceId ids[2] = {0, 0};
   int k = 0;

@@ -34,7 +34,7 @@ struct Projection : VertexMoveSteps {
   G geometry{};
 
   Decision<Plan> decide(const Mesh& mesh, VertexId v, Scratch& s) const {
-    if (!mesh.has_geo_params() || !mesh.geo_param(v).valid()) return Refusal::not_applicable;
+    if (!mesh.has_geo_params() || !mesh.geo_param(v).valid() || mesh.is_fixed(v)) return Refusal::not_applicable;
     const Point x = mesh.point(v);
     const Point target = geometry.point(mesh.geo_param(v));
     if ((target - x).norm() <= options.tolerance) return Refusal::not_applicable;

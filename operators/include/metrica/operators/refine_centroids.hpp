@@ -195,6 +195,14 @@ struct CentroidInsertion {
     }
     if (c.face >= 0 && (mesh.neighbour(c.tet, c.face).valid() || mesh.surface_id(c.tet, c.face) <= 0))
       return Refusal::not_applicable;
+    // Nothing goes inside a required triangle (its edges are all required)
+    // or on a kept surface.
+    if (c.face >= 0) {
+      if (mesh.keeps_surface()) return Refusal::not_applicable;
+      const auto f = face_vertices(v, c.face);
+      if (mesh.is_required_edge(f[0], f[1]) && mesh.is_required_edge(f[1], f[2]) && mesh.is_required_edge(f[2], f[0]))
+        return Refusal::not_applicable;
+    }
     std::array<VertexId, 4> ids{};
     std::array<double, 4> w{};
     std::size_t k = 0;

@@ -58,6 +58,9 @@ Decision<EdgeSplitPlan> decide_edge_point(const Mesh& mesh, const Shell& shell, 
                                           const Point& straight, const RefineOptions& options,
                                           const Acceptance<S, Criterion>& accept, const G& geometry,
                                           TooClose&& too_close) {
+  // Required edges and, while the surface is kept, surface edges stay whole.
+  if (mesh.is_required_edge(a, b)) return Refusal::not_applicable;
+  if (mesh.keeps_surface() && (!shell.closed || edge_surface(mesh, shell, a, b) != 0)) return Refusal::not_applicable;
   const BoundaryPoint at =
       place_boundary_vertex(geometry, edge_vertex_param(geometry, mesh, shell, a, b, t), straight,
                             [&](const Point& q) { return split_is_valid<P>(mesh, shell, a, b, q); });

@@ -373,7 +373,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   const VertexClass cls = mesh.vertex_class(v);
   // A vertex of an internal surface moves within it as a boundary vertex
   // does within its surface (its faces on both sides stay on the surface).
-  if (cls == VertexClass::corner || mesh.is_required(v)) return Refusal::not_applicable;
+  if (cls == VertexClass::corner || mesh.is_fixed(v)) return Refusal::not_applicable;
   if (s.ball.empty()) return Refusal::not_applicable;
   const Point x = mesh.point(v);
   s.trials.clear();
