@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <array>
+#include <fstream>
 #include <set>
 
 using namespace metrica;
@@ -112,6 +113,27 @@ TEST_SUITE("io") {
     } catch (const IoError& e) {
       CHECK(std::string(e.what()).find("RequiredTriangles") != std::string::npos);
     }
+  }
+
+  TEST_CASE("the keywords Mmg writes beside the mesh are read without harm: corners and ridges kept, normals skipped") {
+    const TempDir dir;
+    const std::string path = dir / "mmg.mesh";
+    std::ofstream(path) << "MeshVersionFormatted 2\nDimension 3\n"
+                           "Vertices 4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n"
+                           "Edges 1\n1 2 3\n"
+                           "Triangles 4\n2 3 4 1\n1 4 3 2\n1 2 4 3\n1 3 2 4\n"
+                           "Tetrahedra 1\n1 2 3 4 1\n"
+                           "Corners 1\n1\nRidges 1\n1\nRequiredVertices 1\n4\n"
+                           "Normals 1\n0 0 1\nNormalAtVertices 1\n2 1\n"
+                           "Tangents 1\n1 0 0\nTangentAtVertices 1\n2 1\nEnd\n";
+    const io::MeshData d = io::read_meshb(path);
+    CHECK(d.corners == std::vector<VertexId>{0});
+    CHECK(d.ridges == std::vector<std::uint32_t>{0});
+    const Mesh mesh = build_mesh(d);
+    CHECK(mesh.validate().ok());
+    CHECK(mesh.is_required(0));
+    CHECK(mesh.is_required(3));
+    CHECK(mesh.is_ridge(0, 1));
   }
 
   TEST_CASE("a required edge that is not an edge of the mesh is an input error") {
