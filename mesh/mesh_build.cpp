@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <set>
 
 namespace metrica {
 namespace {
@@ -117,6 +118,7 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
   const SurfaceId default_id = opt.default_surface_id > 0 ? opt.default_surface_id : max_id + 1;
   std::vector<char> used(d.triangles.size(), 0);
   std::size_t untagged = 0, nonpositive = 0;
+  std::set<int> outer_ids;  // the ids the input gave to outer boundary faces
   for (TetId t = 0; t < tets.size(); ++t) {
     for (int f = 0; f < 4; ++f) {
       if (mesh.neighbour(t, f).valid()) continue;
@@ -126,9 +128,10 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
       SurfaceId id = default_id;
       if (it != triangles.end() && it->key == key) {
         const int ref = it->index < d.triangle_refs.size() ? d.triangle_refs[it->index] : 0;
-        if (ref > 0)
+        if (ref > 0) {
           id = ref;
-        else
+          outer_ids.insert(ref);
+        } else
           ++nonpositive;
         for (auto jt = it; jt != triangles.end() && jt->key == key; ++jt) used[jt->index] = 1;
       } else {
@@ -171,6 +174,12 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
     if (before != 0 && before != id)
       throw InputError(fmt::format("{}: triangle {} (vertices {} {} {}) is given twice, with surface ids {} and {}",
                                    src, i + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1, before, id));
+    if (ref > 0 && outer_ids.count(ref))
+      throw InputError(
+          fmt::format("{}: triangle {} (vertices {} {} {}) lies inside the volume with surface id {}, "
+                      "which triangles on the outer boundary have too: an internal surface needs ids "
+                      "of its own",
+                      src, i + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1, id));
     mesh.set_internal_surface_id(face.tet(), face.face(), id);
     mesh.set_internal_surface_id(other.tet(), other.face(), id);
   }

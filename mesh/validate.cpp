@@ -55,6 +55,7 @@ class Checker {
     check_orientation();
     check_adjacency();
     check_manifold();
+    check_internal_manifold();
     check_classification();
     check_required();
     check_vert2tet();
@@ -198,6 +199,29 @@ class Checker {
       if (!ok)
         fail("manifold", "boundary vertex {}: its {} boundary faces do not form a single umbrella", links[i].center,
              j - i);
+      i = j;
+    }
+  }
+
+  // Each edge of an internal surface lies on at most two of its faces (one
+  // at its border, where it meets another surface or ends inside a region).
+  void check_internal_manifold() {
+    if (!m_.has_internal_surfaces()) return;
+    std::vector<std::pair<SurfaceId, std::uint64_t>> edges;
+    for_each_surface_face(m_, [&](TetId t, int f) {
+      if (!m_.neighbour(t, f).valid()) return;
+      const auto tri = face_vertices(m_.tet(t), f);
+      for (int i = 0; i < 3; ++i) edges.emplace_back(m_.internal_surface_id(t, f), edge_key(tri[i], tri[(i + 1) % 3]));
+    });
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t i = 0; i < edges.size();) {
+      std::size_t j = i;
+      while (j < edges.size() && edges[j] == edges[i]) ++j;
+      if (j - i > 2) {
+        const auto e = edge_from_key(edges[i].second);
+        fail("manifold", "edge ({} {}) lies on {} faces of internal surface {} (non-manifold)", e[0], e[1], j - i,
+             edges[i].first);
+      }
       i = j;
     }
   }

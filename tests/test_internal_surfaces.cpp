@@ -10,12 +10,14 @@
 //     triangles of id 10.
 #include "operator_test_support.hpp"
 
+#include <metrica/error.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_summary.hpp>
 #include <metrica/pipeline/adapt.hpp>
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace metrica;
@@ -90,6 +92,34 @@ TEST_SUITE("invariant") {
           CHECK(report.to_string().find("internal surface") != std::string::npos);
           return;
         }
+  }
+
+  TEST_CASE("internal surfaces: contradictions are errors - an outer surface's id inside, a non-manifold surface") {
+    // An interface triangle with the id of an outer boundary triangle.
+    io::MeshData d = two_region_box(4, true);
+    const auto inside = std::find(d.triangle_refs.begin(), d.triangle_refs.end(), kInterface);
+    REQUIRE(inside != d.triangle_refs.end());
+    *inside = d.triangle_refs.front();
+    CHECK_THROWS_WITH_AS(build_mesh(d), doctest::Contains("an internal surface needs ids of its own"), InputError);
+    // The planes x = 0.5 and y = 0.5 as one surface: the edges on their
+    // common line lie on four of its faces.
+    io::MeshData cross = two_region_box(4, true);
+    for (std::size_t t = 0; t < cross.tets.size(); ++t) {
+      double y = 0.0;
+      for (VertexId v : cross.tets[t]) y += cross.vertices[v].y() / 4.0;
+      if (y > 0.5) continue;
+      for (int f = 0; f < 4; ++f) {
+        const auto tri = face_vertices(cross.tets[t], f);
+        if (std::all_of(tri.begin(), tri.end(), [&](VertexId v) { return cross.vertices[v].y() == 0.5; })) {
+          cross.triangles.push_back(tri);
+          cross.triangle_refs.push_back(kInterface);
+        }
+      }
+    }
+    const Mesh mesh = build_mesh(cross);
+    const auto report = mesh.validate();
+    CHECK_FALSE(report.ok());
+    CHECK(report.to_string().find("faces of internal surface 10 (non-manifold)") != std::string::npos);
   }
 
   TEST_CASE("internal surfaces: faces between two regions with no triangle get the default surface id") {

@@ -136,5 +136,10 @@ TEST_SUITE("unit") {
     const std::string binary = read_file_bytes(msh_file("box_sphere_41_binary.msh"));
     check_throws_with(binary.substr(0, binary.size() / 3), "cannot fit in the rest of the file");
     check_throws_with(binary.substr(0, 1000), "truncated");
+    // Two tets, one in physical volume 3, the other in none.
+    check_throws_with(head +
+                          "$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 1 1 1\n$EndNodes\n$Elements\n2\n"
+                          "1 4 2 3 1 1 2 3 4\n2 4 2 0 2 2 3 4 5\n$EndElements\n",
+                      "a tet without a region beside regions");
   }
 }

@@ -204,13 +204,17 @@ struct Reading {
   // Version 4.1: the physical tags of each (dim, entity tag).
   std::map<std::pair<int, int>, std::vector<int>> physical;
   std::map<int, std::size_t> dropped;  // by element type
-  // One element: `nodes` tags, in the file's order.
-  void add_element(int type, int ref, const std::vector<std::uint64_t>& tags, Cursor& in) {
+  // Tets in a physical volume and not: a region each, or none at all.
+  std::size_t tets_in_physical = 0, tets_outside_physical = 0;
+  // One element: `nodes` tags, in the file's order; `in_group`: its ref is
+  // a physical group's (else its entity's).
+  void add_element(int type, int ref, bool in_group, const std::vector<std::uint64_t>& tags, Cursor& in) {
     const Kind kind = kind_of(type);
     switch (kind) {
       case Kind::tet:
         m.tets.push_back({nodes.at(tags[0], in), nodes.at(tags[1], in), nodes.at(tags[2], in), nodes.at(tags[3], in)});
         m.tet_refs.push_back(ref);
+        ++(in_group ? tets_in_physical : tets_outside_physical);
         break;
       case Kind::triangle:
         m.triangles.push_back({nodes.at(tags[0], in), nodes.at(tags[1], in), nodes.at(tags[2], in)});
@@ -227,6 +231,10 @@ struct Reading {
   int entity_ref(int dim, int tag) const {
     const auto it = physical.find({dim, tag});
     return it == physical.end() || it->second.empty() ? tag : it->second.front();
+  }
+  bool has_physical(int dim, int tag) const {
+    const auto it = physical.find({dim, tag});
+    return it != physical.end() && !it->second.empty();
   }
 };
 
@@ -292,11 +300,12 @@ void read_elements_41(Cursor& in, Reading& r) {
     if (per == 0) in.fail(fmt::format("element type {} is not a type of gmsh's this reader knows", type));
     in.check_count(n, in.binary() ? 8 * (1 + static_cast<std::size_t>(per)) : 2, "elements");
     const int ref = r.entity_ref(dim, entity);
+    const bool in_group = r.has_physical(dim, entity);
     tags.resize(static_cast<std::size_t>(per));
     for (std::uint64_t k = 0; k < n; ++k) {
       in.size("an element tag");
       for (auto& t : tags) t = in.size("a node tag");
-      r.add_element(type, ref, tags, in);
+      r.add_element(type, ref, in_group, tags, in);
     }
   }
 }
@@ -333,7 +342,7 @@ void read_elements_22(Cursor& in, Reading& r) {
     nodes.resize(static_cast<std::size_t>(per));
     for (auto& n : nodes) n = static_cast<std::uint64_t>(in.integer("a node tag"));
     const int ref = tags.empty() ? 0 : tags[0] != 0 ? tags[0] : tags.size() > 1 ? tags[1] : 0;
-    r.add_element(type, ref, nodes, in);
+    r.add_element(type, ref, !tags.empty() && tags[0] != 0, nodes, in);
   };
   if (!in.binary()) {
     for (std::uint64_t k = 0; k < count; ++k) {
@@ -421,6 +430,11 @@ MeshData parse_msh(std::string_view bytes, const std::string& name) {
     for (const auto& [what, n] : by_name) list += fmt::format("{}{} {}", list.empty() ? "" : ", ", n, what);
     log::warn("{}: dropped {} (Metrica keeps tetrahedra, triangles, lines and points)", name, list);
   }
+  if (r.tets_in_physical > 0 && r.tets_outside_physical > 0)
+    throw IoError(
+        fmt::format("{}: {} tetrahedra belong to no physical volume while {} do: a tet without a region "
+                    "beside regions (give every volume a physical group, or none)",
+                    name, r.tets_outside_physical, r.tets_in_physical));
   r.m.vertex_refs.assign(r.m.vertices.size(), 0);
   return std::move(r.m);
 }
