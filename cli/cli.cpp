@@ -140,6 +140,10 @@ void Options::output_option(const char* name, const char* what, std::initializer
   outputs_.push_back({name, formats});
 }
 
+void Options::msh_binary() {
+  own_.add_options()("binary", "write .msh outputs in gmsh's binary encoding (ASCII by default)");
+}
+
 void Options::format_version(const char* what) {
   own_.add_options()("format-version", po::value<int>()->value_name("V"), what);
 }

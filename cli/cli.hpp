@@ -69,6 +69,10 @@ class Options {
   // --format-version V (libMeshb version to write); 0 when not given.
   void format_version(const char* what);
   int format_version() const { return has("format-version") ? in_range("format-version", 1, 4) : 0; }
+  // --binary: .msh outputs in gmsh's binary encoding (ASCII by default;
+  // libMeshb files choose by extension).
+  void msh_binary();
+  io::Encoding msh_encoding() const { return has("binary") ? io::Encoding::binary : io::Encoding::ascii; }
   bool parse(const std::vector<std::string>& args);
   // --dry-run: the options and inputs are checked, nothing is computed or
   // written (the command says what it would do).

@@ -118,6 +118,7 @@ void declare_options(Options& o) {
                   {io::FileFormat::sol, io::FileFormat::solb});
   o.output_option("vtu", "also write the adapted mesh for ParaView (.vtu)", {io::FileFormat::vtu});
   o.format_version("libMeshb version to write (default: the input's)");
+  o.msh_binary();
   max_tets_option(o);
 }
 
@@ -197,7 +198,7 @@ void write_outputs(const Options& o, const Mesh& mesh, const CadModel* model, co
     auto data = extract_mesh_data(mesh);
     data.version = input_version;
     if (model) complete_geometry_records(data, *model);
-    io::write_mesh_file(output, data, o.format_version(), sweeps);
+    io::write_mesh_file(output, data, o.format_version(), sweeps, io::FileFormat::mesh, o.msh_encoding());
     if (o.has("vtu")) io::write_mesh_file(o.get<std::string>("vtu"), data, 0, {}, io::FileFormat::vtu);
   }
   if (o.has("metric-out")) {

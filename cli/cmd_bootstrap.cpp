@@ -32,6 +32,7 @@ int run_bootstrap(const std::vector<std::string>& args) {
   o.add()("size", po::value<double>()->value_name("H"),
           "target edge length (default: a tenth of the model's diagonal)");
   o.format_version("libMeshb version to write, 1-4 (default 2)");
+  o.msh_binary();
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the CAD model (-i)");
   const auto output = o.required("output", "the output mesh (-o)");
@@ -54,7 +55,7 @@ int run_bootstrap(const std::vector<std::string>& args) {
   auto out = extract_mesh_data(mesh);
   out.version = version != 0 ? version : 2;
   complete_geometry_records(out, model);
-  io::write_mesh_file(output, out);
+  io::write_mesh_file(output, out, 0, {}, io::FileFormat::mesh, o.msh_encoding());
   if (log::level() >= log::Level::normal) {
     fmt::print("wrote {}: {} vertices, {} tets, {} boundary triangles ({:.2f} s)\n", output,
                count_text(out.vertices.size()), count_text(out.tets.size()), count_text(out.triangles.size()),

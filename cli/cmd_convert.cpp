@@ -26,6 +26,7 @@ int run_convert(const std::vector<std::string>& args) {
            {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::msh, io::FileFormat::vtu, io::FileFormat::su2,
             io::FileFormat::sol, io::FileFormat::solb});
   o.format_version("libMeshb version to write (default: the input's)");
+  o.msh_binary();
   o.add()("no-check", "write even if the mesh fails its checks");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input file (-i)");
@@ -66,7 +67,7 @@ int run_convert(const std::vector<std::string>& args) {
       throw InputError(fmt::format("{}: invalid mesh, not converted (use --no-check to convert anyway)", input));
     }
   }
-  io::write_mesh_file(output, data, version, sweep_runner(data.tets.size()));
+  io::write_mesh_file(output, data, version, sweep_runner(data.tets.size()), io::FileFormat::mesh, o.msh_encoding());
   if (log::level() >= log::Level::normal)
     fmt::print("wrote {}: {} vertices, {} tets, {} triangles ({:.2f} s)\n", output, count_text(data.vertices.size()),
                count_text(data.tets.size()), count_text(data.triangles.size()), clock.seconds());

@@ -82,7 +82,7 @@ TEST_SUITE("unit") {
     CHECK(s.regions.at(2).volume + s.regions.at(3).volume == doctest::Approx(1.0));
   }
 
-  TEST_CASE("msh: written in 4.1 and 2.2 and read back to the bit") {
+  TEST_CASE("msh: written in 4.1 and 2.2, ASCII and binary, and read back to the bit") {
     const MeshData d = read_msh(msh_file(kFiles[0]));
     // Elements with their refs, as sets: a 4.1 file groups them by entity.
     auto tets = [](const MeshData& m) {
@@ -97,12 +97,14 @@ TEST_SUITE("unit") {
       std::sort(out.begin(), out.end());
       return out;
     };
-    for (const MshVersion v : {MshVersion::v41, MshVersion::v22}) {
-      const MeshData back = parse_msh(format_msh(d, v), "back.msh");
-      CHECK(back.vertices == d.vertices);
-      CHECK(tets(back) == tets(d));
-      CHECK(triangles(back) == triangles(d));
-    }
+    for (const MshVersion v : {MshVersion::v41, MshVersion::v22})
+      for (const Encoding e : {Encoding::ascii, Encoding::binary}) {
+        CAPTURE(e == Encoding::binary);
+        const MeshData back = parse_msh(format_msh(d, v, e), "back.msh");
+        CHECK(back.vertices == d.vertices);
+        CHECK(tets(back) == tets(d));
+        CHECK(triangles(back) == triangles(d));
+      }
     CHECK(format_of("a.msh") == FileFormat::msh);
   }
 

@@ -49,11 +49,11 @@ MeshData read_mesh_file(const std::string& path) {
 }
 
 void write_mesh_file(const std::string& path, const MeshData& data, int version, const PartRunner& run,
-                     FileFormat standard_output_format) {
+                     FileFormat standard_output_format, Encoding msh_encoding) {
   switch (is_standard_output(path) ? standard_output_format : format_of(path)) {
     case FileFormat::mesh:
     case FileFormat::meshb: write_meshb(path, data, version, run); return;
-    case FileFormat::msh: write_msh(path, data, version == 2 ? MshVersion::v22 : MshVersion::v41); return;
+    case FileFormat::msh: write_msh(path, data, version == 2 ? MshVersion::v22 : MshVersion::v41, msh_encoding); return;
     case FileFormat::vtu: write_vtu(path, data); return;
     case FileFormat::su2: write_su2(path, data); return;
     default: throw IoError(fmt::format("{}: unknown mesh output format (use .mesh, .meshb, .msh, .vtu or .su2)", path));

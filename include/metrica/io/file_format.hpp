@@ -3,6 +3,7 @@
 #pragma once
 
 #include <metrica/io/mesh_data.hpp>
+#include <metrica/io/meshb.hpp>
 #include <metrica/part_runner.hpp>
 
 #include <string>
@@ -18,10 +19,10 @@ const char* to_string(FileFormat f);
 MeshData read_mesh_file(const std::string& path);
 
 // .mesh, .meshb (libMeshb `version`, 0 = keep data.version), .msh (4.1;
-// `version` 2: 2.2), .vtu, .su2;
+// `version` 2: 2.2; ASCII or `msh_encoding`), .vtu, .su2;
 // a .mesh's rows formatted on run's parts.
 // "-" writes standard_output_format (ASCII .mesh unless said) to standard output.
 void write_mesh_file(const std::string& path, const MeshData& data, int version = 0, const PartRunner& run = {},
-                     FileFormat standard_output_format = FileFormat::mesh);
+                     FileFormat standard_output_format = FileFormat::mesh, Encoding msh_encoding = Encoding::ascii);
 
 }  // namespace metrica::io

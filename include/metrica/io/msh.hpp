@@ -12,12 +12,13 @@
 // and a warning says how many of each. Every error is an IoError naming
 // the file and the section.
 //
-// Written: version 4.1 (or 2.2), ASCII: the nodes, one surface entity per
+// Written: version 4.1 (or 2.2), ASCII or binary: the nodes, one surface entity per
 // surface id and one volume entity per tet ref, each with a physical group
 // of that number (gmsh reads them back as physical groups).
 #pragma once
 
 #include <metrica/io/mesh_data.hpp>
+#include <metrica/io/meshb.hpp>
 
 #include <string>
 #include <string_view>
@@ -29,8 +30,9 @@ enum class MshVersion { v22, v41 };
 MeshData read_msh(const std::string& path);
 MeshData parse_msh(std::string_view bytes, const std::string& name);
 
-std::string format_msh(const MeshData& mesh, MshVersion version = MshVersion::v41);
+std::string format_msh(const MeshData& mesh, MshVersion version = MshVersion::v41, Encoding encoding = Encoding::ascii);
 // Through a temporary renamed on success.
-void write_msh(const std::string& path, const MeshData& mesh, MshVersion version = MshVersion::v41);
+void write_msh(const std::string& path, const MeshData& mesh, MshVersion version = MshVersion::v41,
+               Encoding encoding = Encoding::ascii);
 
 }  // namespace metrica::io
