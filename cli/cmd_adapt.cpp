@@ -163,18 +163,21 @@ std::vector<Sym6> metric_at_vertices(const Options& o, const Mesh& mesh, const s
 }
 
 // The adapted mesh is valid (and, without a model, of the input's volume
-// within 1e-4) and, on a model, on it; else InputError and nothing is
-// written.
-void check_adapted(const Mesh& mesh, const CadModel* model, double volume, const PartRunner& sweeps, bool talk) {
+// within the bound its collapses kept) and, on a model, on it; else
+// InputError and nothing is written.
+void check_adapted(const Mesh& mesh, const CadModel* model, double volume, double volume_tolerance,
+                   const PartRunner& sweeps, bool talk) {
   // Flat boundaries keep the volume to round-off; on a curved discrete
   // boundary, collapses may flatten it within their normal-deviation bound
-  // (2 degrees), which changes the volume by a few 1e-6 (cube-cylinder).
-  // On a model the volume moves from the input's facets to the model's.
+  // (2 degrees), each taking its change of volume from the adaptation's
+  // budget (AdaptOptions::volume_budget), so the volume stays within the
+  // budgets of the adaptations run (and round-off). On a model the volume
+  // moves from the input's facets to the model's.
   ValidateOptions vo;
   vo.run = sweeps;
   if (!model) {
     vo.expected_volume = volume;
-    vo.volume_tolerance = 1e-4;
+    vo.volume_tolerance = volume_tolerance;
   }
   const auto check = mesh.validate(vo);
   if (!check.ok())
@@ -312,7 +315,9 @@ int run_adapt(const std::vector<std::string>& args) {
     if (talk && (!serial || log::level() >= log::Level::verbose)) print_operator_stats(report, serial, thread_count());
   }
   const PartRunner sweeps = sweep_runner(mesh.tet_capacity(), serial);
-  check_adapted(mesh, model.get(), volume, sweeps, talk);
+  // Each adaptation's budget is relative to the volume it starts from.
+  const double budget = iterations * ao.volume_budget;
+  check_adapted(mesh, model.get(), volume, budget * (1.0 + budget) + 1e-9, sweeps, talk);
   write_outputs(o, mesh, model.get(), output, input_version, sweeps);
   if (talk) {
     fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());

@@ -47,6 +47,8 @@ int run_info(const std::vector<std::string>& args) {
   if (!d.corners.empty()) row("corners", count_text(d.corners.size()));
   if (!d.ridges.empty()) row("ridges", count_text(d.ridges.size()));
   if (!d.required_vertices.empty()) row("required vertices", count_text(d.required_vertices.size()));
+  if (!d.required_edges.empty()) row("required edges", count_text(d.required_edges.size()));
+  if (!d.required_triangles.empty()) row("required triangles", count_text(d.required_triangles.size()));
   fmt::print("Mesh\n");
   row("vertices", fmt::format("{} (interior {}, surface {}, ridge {}, corner {})", count_text(s.vertices),
                               count_text(s.interior_vertices), count_text(s.surface_vertices),

@@ -116,12 +116,16 @@ void Mesh::add_required_edge(VertexId a, VertexId b) {
   edge_tags_.add_required(a, b);
 }
 
-void Mesh::add_required_triangle(const TriangleVertices& tri) {
-  TriangleVertices key = tri;
-  std::sort(key.begin(), key.end());
-  for (int i = 0; i < 3; ++i) add_required_edge(key[i], key[(i + 1) % 3]);
-  const auto at = std::lower_bound(required_triangles_.begin(), required_triangles_.end(), key);
-  if (at == required_triangles_.end() || *at != key) required_triangles_.insert(at, key);
+void Mesh::add_required_triangles(std::span<const TriangleVertices> triangles) {
+  for (const auto& tri : triangles) {
+    TriangleVertices key = tri;
+    std::sort(key.begin(), key.end());
+    for (int i = 0; i < 3; ++i) add_required_edge(key[i], key[(i + 1) % 3]);
+    required_triangles_.push_back(key);
+  }
+  std::sort(required_triangles_.begin(), required_triangles_.end());
+  required_triangles_.erase(std::unique(required_triangles_.begin(), required_triangles_.end()),
+                            required_triangles_.end());
 }
 
 void Mesh::keep_surface() {

@@ -210,7 +210,10 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
                                    src, i + 1, d.required_edges[i] + 1, e[0] + 1, e[1] + 1));
     mesh.add_required_edge(e[0], e[1]);
   }
-  for (std::uint32_t i : d.required_triangles) mesh.add_required_triangle(d.triangles[i]);
+  std::vector<TriangleVertices> required;
+  required.reserve(d.required_triangles.size());
+  for (std::uint32_t i : d.required_triangles) required.push_back(d.triangles[i]);
+  mesh.add_required_triangles(required);
   mesh.classify();
   return mesh;
 }

@@ -104,7 +104,7 @@ class Mesh {
   // Required triangles (RequiredTriangles): their vertices and edges are
   // required, so every operation keeps them; listed (sorted vertex ids)
   // for output and validation.
-  void add_required_triangle(const TriangleVertices& tri);
+  void add_required_triangles(std::span<const TriangleVertices> triangles);
   std::span<const TriangleVertices> required_triangles() const { return required_triangles_; }
   const std::unordered_set<std::uint64_t>& required_edges() const { return edge_tags_.required(); }
   // Keeps the whole surface (boundary and internal surfaces) as it is while

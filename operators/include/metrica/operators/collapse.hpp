@@ -25,6 +25,7 @@
 #include <metrica/operators/pass_scope.hpp>
 #include <metrica/operators/refine_edges.hpp>
 #include <metrica/operators/shell.hpp>
+#include <metrica/operators/volume_budget.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
@@ -45,6 +46,10 @@ struct CollapseOptions {
   double shape_floor = ShapeFloors::collapse;
   // Largest 1 - cos between a boundary face's normal before and after.
   double max_normal_deviation = 1.0 - std::cos(2.0 * std::numbers::pi / 180.0);
+  // When set, a collapse that moves the boundary takes its exact change of
+  // the domain's volume from this budget, and is refused when the budget
+  // cannot give it (volume_budget.hpp; the adapter sets it off a model).
+  const VolumeBudget* volume_budget = nullptr;
   // When set, a collapse must raise the worst tet of the ball (both balls
   // for a merge at the midpoint): the repair rounds collapse edges of any
   // length at a poor tet, and only to lift it.
@@ -175,6 +180,18 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
       if (o.require_gain && q <= r.worst_old()) return Refusal::rejected;
       if (!r.shape_admits(q) || !r.beats(t, x)) return Refusal::rejected;
     }
+  // Last, once nothing else refuses: the change of volume of a boundary
+  // collapse (the new tets against the old ball) from the budget.
+  if (o.volume_budget != nullptr && mesh.vertex_class(a) != VertexClass::interior) {
+    double delta = 0.0;
+    for (TetId t : s.ball) {
+      const auto& v = mesh.tet(t);
+      delta -= tet_volume(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3]));
+    }
+    for (const auto& v : s.new_tets)
+      delta += tet_volume(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3]));
+    if (!o.volume_budget->take(delta)) return Refusal::rejected;
+  }
   CollapsePlan plan{a, b, moved != nullptr, pb, {}};
   if (moved_metric != nullptr) plan.metric = *moved_metric;
   return plan;

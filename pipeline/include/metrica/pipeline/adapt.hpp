@@ -89,6 +89,9 @@ struct AdaptOptions : PipelineRules {
   // smoothing around the vertices still off the model); the last round
   // collapses those it leaves onto a boundary neighbour.
   int closing_rounds = 4;
+  // Off a model, the boundary collapses of one adaptation may change the
+  // domain's volume by at most this share of it (volume_budget.hpp).
+  double volume_budget = kDefaultVolumeBudget;
 };
 
 // What an adaptation works with besides its settings (AdaptOptions holds
@@ -340,6 +343,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
 template <MetricSpace S, Precision P, Concurrency C, Geometry G>
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& inputs, const G& geometry) {
   Adapter<S, P, C, G> a(mesh, inputs.metric, geometry);
+  a.set_volume_budget(options.volume_budget);
   a.on_cycle = inputs.on_cycle;
   return run_pipeline(a, standard_pipeline<Adapter<S, P, C, G>>(options));
 }

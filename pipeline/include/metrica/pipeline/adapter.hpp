@@ -143,7 +143,16 @@ class Adapter {
   explicit Adapter(Mesh& mesh, const MetricFunction* metric = nullptr, const G& geometry = {})
       : mesh_(mesh), metric_(metric), geometry_(geometry) {
     mesh_.clear_quality_cache(S::name);
+    set_volume_budget(kDefaultVolumeBudget);
   }
+
+  // Off a model, the boundary collapses of this adapter may change the
+  // domain's volume by at most `relative` of its volume now, in all
+  // (volume_budget.hpp). On a model the volume follows the model.
+  void set_volume_budget(double relative) {
+    if constexpr (!G::on_model) volume_budget_ = VolumeBudget(relative * std::abs(mesh_.volume()));
+  }
+  const VolumeBudget& volume_budget() const { return volume_budget_; }
 
   Mesh& mesh() { return mesh_; }
   const Mesh& mesh() const { return mesh_; }
@@ -228,6 +237,7 @@ class Adapter {
   template <class Criterion = ShapeOnly>
   OperatorStats collapse(CollapseOptions o, std::string_view key = {}) {
     o.scope.metric = metric_;
+    if constexpr (!G::on_model) o.volume_budget = &volume_budget_;
     o.scope.known = &out_of_band_;
     return incremental(key_or(key, "collapse"), o, [this](Mesh& m, const CollapseOptions& x) {
       return collapse_edges<S, P, C, Criterion>(m, x, geometry_);
@@ -294,6 +304,7 @@ class Adapter {
   Mesh& mesh_;
   const MetricFunction* metric_;
   G geometry_;
+  VolumeBudget volume_budget_;
   std::map<std::string, Mesh::Epoch, std::less<>> epochs_;
   std::string stage_;
   Mesh::Epoch restarted_ = 0;
