@@ -133,6 +133,9 @@ class Mesh {
   // --- tets --------------------------------------------------------------
   const TetVertices& tet(TetId t) const { return tets_[t]; }
   int tet_ref(TetId t) const { return tet_ref_[t]; }
+  // Moves t to another region (the caller holds its vertices and sets the
+  // ids of the faces between regions: interface_swap.hpp).
+  void set_tet_ref(TetId t, int ref) { tet_ref_[t] = ref; }
   // Neighbour across face `face` of t (with its local face), or none.
   FaceRef neighbour(TetId t, int face) const { return tet2tets_[t][face]; }
   // Asks the cache for t's vertices and neighbours (walks that will read

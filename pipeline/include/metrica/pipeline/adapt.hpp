@@ -301,6 +301,8 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
                         r.scope.changed_since = a.since("repair");
                         return a.split(r);
                       }});
+  // Splits on an internal surface can fold it over a sliver again.
+  p.repair.push_back({"swap", [](A& a) { return a.swap_interfaces(); }});
   p.repair.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips); }});
   p.repair.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   p.repair.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});

@@ -11,6 +11,7 @@
 
 #include <metrica/operators/boundary_swap.hpp>
 #include <metrica/operators/collapse.hpp>
+#include <metrica/operators/interface_swap.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/project.hpp>
 #include <metrica/operators/reconnect.hpp>
@@ -268,8 +269,17 @@ class Adapter {
     });
   }
   // Boundary 2-2 flips that bring facets closer to the model (none
-  // without a model).
-  OperatorStats swap(const BoundarySwapOptions& o = {}) { return swap_toward_model<S, P, C>(mesh_, o, geometry_); }
+  // without a model), and the 2-2 swaps of internal surfaces at their
+  // folds' slivers.
+  OperatorStats swap(const BoundarySwapOptions& o = {}, const InterfaceSwapOptions& i = {}) {
+    OperatorStats stats = swap_toward_model<S, P, C>(mesh_, o, geometry_);
+    stats += swap_interfaces(i);
+    return stats;
+  }
+  // The internal surfaces' 2-2 swaps only (interface_swap.hpp).
+  OperatorStats swap_interfaces(const InterfaceSwapOptions& i = {}) {
+    return metrica::swap_interfaces<S, C>(mesh_, i, geometry_);
+  }
   // Boundary vertices off the model move onto it (none without a model).
   OperatorStats project(ProjectionOptions o = {}) {
     o.scope.metric = metric_;
