@@ -25,7 +25,7 @@ TEST_SUITE("invariant") {
     using P = typename T::Precision;
     using C = typename T::Concurrency;
     const CadModel model(std::string(METRICA_TEST_DATA_DIR) + "/torus.geo");
-    Mesh mesh = build_mesh(bootstrap_mesh(model, {.size = 0.05}));
+    Mesh mesh = build_mesh(bootstrap_mesh(model, {.size = 0.09}));
     const double volume = mesh.volume();
     // The UGAWG linear metric, coarser: most of the surface coarsens.
     const MetricFunction metric = [](const Point& p) {
@@ -35,7 +35,8 @@ TEST_SUITE("invariant") {
     };
     set_metric_function(mesh, metric);
     AdaptOptions o;
-    o.max_cycles = 4;
+    o.max_cycles = 3;
+    o.repair_rounds = 2;
     Adapter<S, P, C, NoGeometry> a(mesh, &metric);
     a.set_volume_budget(o.volume_budget);
     run_pipeline(a, standard_pipeline<Adapter<S, P, C, NoGeometry>>(o));
