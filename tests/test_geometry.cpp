@@ -352,7 +352,10 @@ TEST_SUITE("invariant") {
       ++on_sphere;
       CHECK(std::abs((mesh.point(v) - Point(0.5, 0.5, 0.5)).norm() - 0.3) < 1e-8);
     }
-    CHECK(on_sphere > 250);  // refined on the interface (82 in the input)
+    // Refined on the interface to about the size asked (82 vertices in the
+    // input; a sphere of area 1.13 holds about 200 at h = 0.08).
+    CHECK(on_sphere > 150);
+    CHECK(on_sphere < 350);
     // Inscribed facets: short of the sphere's volume, by less than half the
     // first faceting's error (edges of 0.15 to about 0.08).
     const double sphere = 4.0 / 3.0 * kPi * 0.027;

@@ -77,19 +77,13 @@ class Mesh {
   bool is_required(VertexId v) const { return (vertex_flags_[v] & kRequired) != 0; }
   void set_required(VertexId v, bool required);
   // Vertices on an internal surface (classify() marks them, a split of an
-  // internal-surface edge marks its new vertex): internal surfaces are
-  // kept exactly, so the operators neither move nor remove them; splits
-  // refine them.
+  // internal-surface edge marks its new vertex): they move and go within
+  // their surface only.
   bool on_internal_surface(VertexId v) const { return (vertex_flags_[v] & kInternalSurface) != 0; }
   void set_on_internal_surface(VertexId v, bool on);
   // Never moved by an operator: required, or on the surface while the
   // surface is kept (keep_surface).
   bool is_fixed(VertexId v) const { return (vertex_flags_[v] & (kRequired | kKeptSurface)) != 0; }
-  // Never moved off its place nor removed by a collapse: fixed, or on an
-  // internal surface.
-  bool stays_in_place(VertexId v) const {
-    return (vertex_flags_[v] & (kRequired | kInternalSurface | kKeptSurface)) != 0;
-  }
 
   // --- required entities and the kept surface -----------------------------
   // Required edges (RequiredEdges, and the edges of RequiredTriangles) are

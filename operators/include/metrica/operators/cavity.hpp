@@ -52,10 +52,18 @@ struct CavityPlan {
   // (so a new face comes before an outer one).
   struct Match {
     int first, second;
+    SurfaceId surface = 0;  // two new faces glued on an internal surface
+  };
+  // A face of an internal surface between two old tets that a collapse
+  // carries to two new tets (its key after renaming).
+  struct InnerSurfaceFace {
+    TriangleVertices key;
+    SurfaceId surface;
   };
   boost::container::small_vector<OuterFace, 64> outer;
   boost::container::small_vector<Entry, 160> entries;
   boost::container::small_vector<Match, 96> matches;
+  boost::container::small_vector<InnerSurfaceFace, 16> inner_surface;
   SurfaceId new_boundary_surface = 0;
 };
 
@@ -95,33 +103,69 @@ inline bool match_faces(CavityPlan& plan) {
 }
 }  // namespace detail
 
+namespace detail {
+// A face glued between two new tets takes the internal surface carried on
+// its triple (a collapse); one between a new tet and the outside keeps the
+// outer face's id. With `new_refs` (a collapse across regions), where
+// neither carries an id the two sides must be one region: false when not.
+inline bool carry_surface(const CavityPlan& plan, CavityPlan::Match& m, std::span<const int> new_refs,
+                          const Mesh& mesh) {
+  const auto& x = plan.entries[static_cast<std::size_t>(m.first)];
+  const auto& y = plan.entries[static_cast<std::size_t>(m.second)];
+  if (x.index >= 0) return true;  // two outer faces (the pinched case, checked by the caller)
+  auto ref = [&](int index) { return new_refs[static_cast<std::size_t>((-index - 1) / 4)]; };
+  if (y.index < 0) {
+    for (const auto& carried : plan.inner_surface)
+      if (same_triangle(carried.key, x.key)) {
+        m.surface = carried.surface;
+        return true;
+      }
+    return new_refs.empty() || ref(x.index) == ref(y.index);
+  }
+  const auto& o = plan.outer[static_cast<std::size_t>(y.index)];
+  return new_refs.empty() || !o.outside.valid() || o.surface != 0 || ref(x.index) == mesh.tet_ref(o.outside.tet());
+}
+}  // namespace detail
+
 // Plans replacing `old_tets` by `new_tets`, reading the old faces with
 // vertex `from` renamed `to` (an edge collapse; kNoId for none). A new face
 // that matches no outer face becomes a boundary face of surface
 // `new_boundary_surface` when that is > 0 (the 2-2 flip), else the plan is
-// refused. False: the replacement is not a valid re-triangulation, or it
-// would erase a face of an internal surface (one between two old tets):
-// internal surfaces are kept, their faces carried to the new tets.
+// refused. Internal surfaces are kept: a face of one between two old tets
+// is refused, except in a collapse, which carries it to the two new tets
+// with the renamed triple (or drops it with the collapsed edge). A
+// collapse whose ball spans regions gives each new tet's region in
+// `new_refs` (empty: one region), and a new face between two regions must
+// then be an internal surface's. False: the replacement is not a valid
+// re-triangulation, or it would erase or mix those surfaces and regions.
 inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::span<const TetVertices> new_tets,
                         CavityPlan& plan, VertexId from = kNoId, VertexId to = kNoId,
-                        SurfaceId new_boundary_surface = 0) {
+                        SurfaceId new_boundary_surface = 0, std::span<const int> new_refs = {}) {
   plan.outer.clear();
   plan.entries.clear();
+  plan.inner_surface.clear();
   plan.new_boundary_surface = new_boundary_surface;
   auto in_cavity = [&](TetId t) { return std::find(old_tets.begin(), old_tets.end(), t) != old_tets.end(); };
+  auto renamed = [&](TriangleVertices key) {
+    for (auto& x : key)
+      if (x == from) x = to;
+    return sorted(key);
+  };
   const bool internal = mesh.has_internal_surfaces();
   for (TetId t : old_tets) {
     const auto& v = mesh.tet(t);
     for (int f = 0; f < 4; ++f) {
       const FaceRef n = mesh.neighbour(t, f);
       if (n.valid() && in_cavity(n.tet())) {
-        if (internal && mesh.internal_surface_id(t, f) != 0) return false;
+        if (internal && mesh.internal_surface_id(t, f) != 0) {
+          if (from == kNoId) return false;
+          const TriangleVertices key = renamed(face_vertices(v, f));
+          if (t < n.tet() && key[0] != key[1] && key[1] != key[2])
+            plan.inner_surface.emplace_back(CavityPlan::InnerSurfaceFace{key, mesh.internal_surface_id(t, f)});
+        }
         continue;
       }
-      TriangleVertices key = face_vertices(v, f);
-      for (auto& x : key)
-        if (x == from) x = to;
-      key = sorted(key);
+      const TriangleVertices key = renamed(face_vertices(v, f));
       if (key[0] == key[1] || key[1] == key[2]) {
         // The face shrinks to an edge: only a boundary face may vanish so
         // (the faces of a collapsed boundary edge).
@@ -139,7 +183,7 @@ inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::
   if (!detail::match_faces(plan)) return false;
   // Every triple must appear exactly twice, or once as a new face when the
   // replacement is allowed to make boundary faces.
-  for (const CavityPlan::Match& m : plan.matches) {
+  for (CavityPlan::Match& m : plan.matches) {
     const auto& x = plan.entries[static_cast<std::size_t>(m.first)];
     if (m.second < 0) {
       // Allowed only when the replacement remakes part of one surface
@@ -150,6 +194,8 @@ inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::
         return false;
     } else {
       const auto& y = plan.entries[static_cast<std::size_t>(m.second)];
+      if ((!plan.inner_surface.empty() || !new_refs.empty()) && !detail::carry_surface(plan, m, new_refs, mesh))
+        return false;
       if (x.index >= 0 && y.index >= 0) {
         // Two outer faces meet (the cavity of a collapse pinched to a
         // face): at most one of them may be a boundary face, and neither
@@ -161,19 +207,29 @@ inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::
       }
     }
   }
+  // Every carried internal face found its two new tets.
+  for (const auto& carried : plan.inner_surface) {
+    bool found = false;
+    for (const CavityPlan::Match& m : plan.matches)
+      found = found || (m.surface == carried.surface &&
+                        same_triangle(plan.entries[static_cast<std::size_t>(m.first)].key, carried.key));
+    if (!found) return false;
+  }
   return true;
 }
 
 // Applies a plan: removes the old tets, adds the new ones (their ids are
-// written to `created`), links every face and keeps the vertex hints. The
-// caller removes a vertex that no longer belongs to any tet.
+// written to `created`) in region `tet_ref` (or new_refs[k], as planned),
+// links every face and keeps the vertex hints. The caller removes a vertex
+// that no longer belongs to any tet.
 template <class CreatedList>
 void apply_cavity(Mesh& mesh, std::span<const TetId> old_tets, std::span<const TetVertices> new_tets,
-                  const CavityPlan& plan, int tet_ref, CreatedList& created) {
+                  const CavityPlan& plan, int tet_ref, CreatedList& created, std::span<const int> new_refs = {}) {
   for (TetId t : old_tets) mesh.remove_tet(t);
   created.clear();
-  for (const auto& v : new_tets) {
-    const TetId t = mesh.add_tet(v, tet_ref);
+  for (std::size_t k = 0; k < new_tets.size(); ++k) {
+    const auto& v = new_tets[k];
+    const TetId t = mesh.add_tet(v, new_refs.empty() ? tet_ref : new_refs[k]);
     created.emplace_back(t);
     for (VertexId x : v) mesh.set_vert2tet(x, t);
   }
@@ -198,6 +254,10 @@ void apply_cavity(Mesh& mesh, std::span<const TetId> old_tets, std::span<const T
     // The smaller index first: a new face (negative) comes first.
     if (x.index < 0 && y.index < 0) {
       mesh.link(new_face(x.index), new_face(y.index));
+      if (m.surface != 0) {
+        mesh.set_internal_surface_id(new_face(x.index).tet(), new_face(x.index).face(), m.surface);
+        mesh.set_internal_surface_id(new_face(y.index).tet(), new_face(y.index).face(), m.surface);
+      }
     } else if (x.index < 0) {
       const FaceRef f = new_face(x.index);
       const auto& o = plan.outer[y.index];

@@ -5,10 +5,14 @@
 // Rules that keep the boundary what it was (decide, before any write):
 //   - a corner or a required vertex never moves;
 //   - a ridge vertex moves only along a ridge edge (b on its ridge);
-//   - a surface vertex moves only along a boundary edge (b on its surface),
-//     and the boundary faces it drags fit the Geometry (NoGeometry: they
-//     keep their plane, normal deviation below a tolerance, so the volume
-//     is conserved; CadGeometry: they follow the model's normal);
+//   - a surface vertex moves only along an edge of its surface (b on it:
+//     an outer surface, or the internal surface it lies on), and the
+//     surface faces it drags fit the Geometry (NoGeometry: they keep their
+//     plane, normal deviation below a tolerance, so the volume is
+//     conserved; an internal surface's exactly, so that it stays on the
+//     input's triangles; CadGeometry: they follow the model's normal);
+//   - an internal surface stays manifold (no edge of it gets a third
+//     face) and the regions on its two sides stay apart;
 //   - every new tet is positively oriented (Precision), no new edge is
 //     longer than max_new_length, and the worst new tet is above the
 //     quality floor or no worse than the worst tet of the old ball;
@@ -18,6 +22,7 @@
 #pragma once
 
 #include <metrica/operators/acceptance.hpp>
+#include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/cavity.hpp>
 #include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/metric_source.hpp>
@@ -68,19 +73,65 @@ struct CollapseScratch : ScratchGeneration {
   boost::container::small_vector<double, 32> new_quality;  // of new_tets
   CavityPlan plan;
   TetList created;
+  boost::container::small_vector<int, 32> new_refs;  // of new_tets, when the ball spans regions
+  boost::container::small_vector<std::pair<TriangleVertices, SurfaceId>, 32> around;  // surface_link_kept
 };
 
-// May vertex a move onto b by the class rules? `boundary_edge`: ab has an
-// open shell.
-inline bool collapse_allowed(const Mesh& mesh, VertexId a, VertexId b, bool boundary_edge) {
-  if (mesh.stays_in_place(a)) return false;
+// Is p within round-off of the plane of triangle f (distance at most
+// 1e-13 of the triangle's size)?
+inline bool in_plane(const Mesh& mesh, const TriangleVertices& f, VertexId p) {
+  const Point &x = mesh.point(f[0]), &y = mesh.point(f[1]), &z = mesh.point(f[2]);
+  const Eigen::Vector3d n = (y - x).cross(z - x);
+  const double size = std::max({(y - x).norm(), (z - x).norm(), (mesh.point(p) - x).norm()});
+  return std::abs(n.dot(mesh.point(p) - x)) <= 1e-13 * n.norm() * size;
+}
+
+// May vertex a move onto b by the class rules? `shell` is ab's.
+inline bool collapse_allowed(const Mesh& mesh, VertexId a, VertexId b, const Shell& shell) {
+  if (mesh.is_fixed(a)) return false;
   switch (mesh.vertex_class(a)) {
     case VertexClass::corner: return false;
     case VertexClass::ridge: return mesh.is_ridge(a, b);
-    case VertexClass::surface: return boundary_edge;
+    case VertexClass::surface:
+      // On one surface: an outer one (ab on the boundary, an open shell)
+      // or an internal one (ab on it).
+      return mesh.on_internal_surface(a) ? shell.closed && edge_surface(mesh, shell, a, b) != 0 : !shell.closed;
     case VertexClass::interior: return true;
   }
   return false;
+}
+
+// Does an internal surface stay manifold when a merges into b? Its faces
+// through a, renamed, join those through b (the two on ab vanish): no
+// edge from b may then hold three faces of one surface (the surface's
+// link condition). s.ball and s.ball_b are the two balls.
+inline bool surface_link_kept(const Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s) {
+  auto holds = [](const TriangleVertices& f, VertexId v) { return std::find(f.begin(), f.end(), v) != f.end(); };
+  s.around.clear();
+  for (const auto* ball : {&s.ball, &s.ball_b}) {
+    const VertexId v = ball == &s.ball ? a : b;
+    for (TetId t : *ball) {
+      const auto& tv = mesh.tet(t);
+      for (int f = 0; f < 4; ++f) {
+        const FaceRef n = mesh.neighbour(t, f);
+        const SurfaceId id = mesh.internal_surface_id(t, f);
+        if (tv[f] == v || !n.valid() || id == 0 || n.tet() < t) continue;  // each face once
+        TriangleVertices key = face_vertices(tv, f);
+        if (holds(key, a) && holds(key, b)) continue;  // on ab: vanishes
+        for (auto& x : key)
+          if (x == a) x = b;
+        s.around.emplace_back(sorted(key), id);
+      }
+    }
+  }
+  for (const auto& [key, id] : s.around)
+    for (VertexId w : key) {
+      if (w == b) continue;
+      int faces = 0;
+      for (const auto& [other, other_id] : s.around) faces += other_id == id && holds(other, w);
+      if (faces > 2) return false;
+    }
+  return true;
 }
 
 struct CollapsePlan {
@@ -101,7 +152,7 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
                                        const CollapseOptions& o, const Point* moved = nullptr,
                                        const VertexMetric* moved_metric = nullptr, const G& geometry = {}) {
   if (!edge_shell(mesh, a, b, s.ball, s.shell)) return Refusal::not_applicable;
-  if (!collapse_allowed(mesh, a, b, !s.shell.closed)) return Refusal::not_applicable;
+  if (!collapse_allowed(mesh, a, b, s.shell)) return Refusal::not_applicable;
   // The link condition on edges: a vertex joined to both a and b must be
   // on a tet of ab, else edge bx would end up in two fans of tets (a
   // pinched edge; on the boundary, an edge of four boundary faces).
@@ -111,19 +162,26 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
     for (TetId t : s.shell.tets) on_shell = on_shell || local_index(mesh.tet(t), x) >= 0;
     if (!on_shell) return Refusal::not_applicable;
   }
-  if (moved != nullptr && (mesh.vertex_class(b) != VertexClass::interior || mesh.stays_in_place(b)))
+  if (moved != nullptr && (mesh.vertex_class(b) != VertexClass::interior || mesh.is_fixed(b)))
     return Refusal::not_applicable;
+  // A vertex between regions (on an internal surface) has a ball in
+  // several: each new tet keeps its old tet's.
   const int ref = mesh.tet_ref(s.ball[0]);
+  bool regions = false;
   s.old_tets.clear();
   s.new_tets.clear();
+  s.new_refs.clear();
   for (TetId t : s.ball) {
-    if (mesh.tet_ref(t) != ref) return Refusal::not_applicable;
+    regions = regions || mesh.tet_ref(t) != ref;
     TetVertices v = mesh.tet(t);
     s.old_tets.emplace_back(v);
     if (local_index(v, b) >= 0) continue;
     v[local_index(v, a)] = b;
     s.new_tets.emplace_back(v);
+    s.new_refs.emplace_back(mesh.tet_ref(t));
   }
+  if (!regions) s.new_refs.clear();
+  if (mesh.on_internal_surface(a) && !surface_link_kept(mesh, a, b, s)) return Refusal::rejected;
   // The tets of b's ball that b's move drags along (it keeps their topology).
   s.dragged.clear();
   if (moved != nullptr)
@@ -147,24 +205,28 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
         return Refusal::rejected;
   }
   if (mesh.vertex_class(a) != VertexClass::interior) {
-    // Boundary faces through a (and not b) keep their side and fit the
-    // Geometry.
+    // Surface faces through a (and not b) keep their side and fit the
+    // Geometry; off a model, an internal surface's keep their plane
+    // exactly (b in the plane of the face it replaces a in).
+    const bool placed = geometry.places(mesh, a);
     for (TetId t : s.ball) {
       const auto& v = mesh.tet(t);
       if (local_index(v, b) >= 0) continue;
       for (int f = 0; f < 4; ++f) {
-        if (v[f] == a || mesh.neighbour(t, f).valid()) continue;
+        if (v[f] == a || !mesh.is_surface_face(t, f)) continue;
         auto fv = face_vertices(v, f);
         const Eigen::Vector3d before = face_normal(mesh, fv[0], fv[1], fv[2]);
+        const bool internal = mesh.neighbour(t, f).valid();
+        if (internal && !placed && !in_plane(mesh, fv, b)) return Refusal::rejected;
         for (auto& x : fv)
           if (x == a) x = b;
         if (before.dot(face_normal(mesh, fv[0], fv[1], fv[2])) <= 0.0 ||
-            !geometry.facet_fits(mesh, fv[0], fv[1], fv[2], mesh.surface_id(t, f), before, o.max_normal_deviation))
+            !geometry.facet_fits(mesh, fv[0], fv[1], fv[2], mesh.face_surface_id(t, f), before, o.max_normal_deviation))
           return Refusal::rejected;
       }
     }
   }
-  if (!plan_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, a, b)) return Refusal::rejected;
+  if (!plan_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, a, b, 0, view(s.new_refs))) return Refusal::rejected;
   // Accepted when every new tet passes the shape floor and beats the old
   // ball (both balls when b moves) under the criterion; with
   // require_gain, refused unless every new tet beats the worst old in
@@ -199,7 +261,7 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
 
 // Apply a decided collapse (the scratch as decide_collapse left it).
 inline void apply_collapse(Mesh& mesh, const CollapsePlan& plan, CollapseScratch& s) {
-  apply_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, mesh.tet_ref(s.ball[0]), s.created);
+  apply_cavity(mesh, view(s.ball), view(s.new_tets), s.plan, mesh.tet_ref(s.ball[0]), s.created, view(s.new_refs));
   // The new tets' mean ratios, measured at their final points in their
   // final metric, go to the quality cache (not when b moves: its metric
   // changes below).
