@@ -8,12 +8,16 @@
 //     policy: the mesh stays valid, every vertex on the interface stays on
 //     x = 0.5, each region
 //     keeps its volume, the interface keeps its area and is written as
-//     triangles of id 10.
+//     triangles of id 10;
+//   - the interface's 2-2 flips, both sides together: on an interface whose
+//     inner vertices were moved within it, they lift the worst tet and keep
+//     the surface, its area and the regions exactly.
 #include "operator_test_support.hpp"
 
 #include <metrica/error.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_summary.hpp>
+#include <metrica/operators/interface_flip.hpp>
 #include <metrica/pipeline/adapt.hpp>
 
 #include <doctest/doctest.h>
@@ -172,5 +176,42 @@ TEST_SUITE("invariant") {
       CHECK(std::abs(written - 1.0) < 1e-12);
       static_cast<void>(S::name);
     }
+  }
+
+  TEST_CASE_TEMPLATE("internal surfaces: the 2-2 flips of the interface lift its tets and keep it", T,
+                     METRICA_POLICY_COMBINATIONS) {
+    const ExecutorOf<T> executor;
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    using C = typename T::Concurrency;
+    Mesh mesh = build_mesh(two_region_box(4, true));
+    set_uniform_metric(mesh, 0.25);
+    // The interface's inner vertices slide within x = 0.5: its triangles
+    // and the tets on them get skewed; the interface stays where it was.
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+      Point& p = mesh.point(v);
+      if (p.x() != 0.5 || std::min({p.y(), p.z(), 1.0 - p.y(), 1.0 - p.z()}) < 0.1) continue;
+      p.y() += 0.09 * (p.z() - 0.5) / 0.25;
+      p.z() += 0.07;
+    }
+    require_valid(mesh, 1.0);
+    auto worst = [&] {
+      double q = 1.0;
+      for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+        if (mesh.tet_alive(t)) q = std::min(q, S::mean_ratio(mesh, mesh.tet(t)));
+      return q;
+    };
+    const double before = worst();
+    const OperatorStats stats = flip_interfaces<S, P, C>(mesh, {}, NoGeometry{});
+    require_valid(mesh, 1.0);
+    CHECK(stats.applied > 0);
+    CHECK(worst() >= before);
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+      if (mesh.vertex_alive(v) && mesh.on_internal_surface(v)) CHECK(mesh.point(v).x() == 0.5);
+    const MeshSummary s = summarize(mesh);
+    CHECK(std::abs(s.regions.at(2).volume - 0.5) < 1e-12);
+    CHECK(std::abs(s.regions.at(3).volume - 0.5) < 1e-12);
+    CHECK(std::abs(interface_area(mesh) - 1.0) < 1e-12);
+    CHECK(s.internal_faces == 32);  // flips keep the count of faces
   }
 }

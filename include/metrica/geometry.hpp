@@ -9,6 +9,9 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <cmath>
+
 namespace metrica {
 
 // Six times the signed volume of (a, b, c, d): det[b-a, c-a, d-a].
@@ -27,6 +30,15 @@ inline double triangle_area(const Point& a, const Point& b, const Point& c) {
 
 // The (unnormalised) normal (b-a)x(c-a) of triangle abc.
 inline Eigen::Vector3d triangle_normal(const Point& a, const Point& b, const Point& c) { return (b - a).cross(c - a); }
+
+// Is p in the plane of triangle xyz to round-off (its distance from the
+// plane at most 1e-13 of the points' spread)? Surfaces kept without a
+// model are remade only within their planes.
+inline bool in_plane(const Point& x, const Point& y, const Point& z, const Point& p) {
+  const Eigen::Vector3d n = (y - x).cross(z - x);
+  const double size = std::max({(y - x).norm(), (z - x).norm(), (p - x).norm()});
+  return std::abs(n.dot(p - x)) <= 1e-13 * n.norm() * size;
+}
 
 // 1 - |cos| of the angle between the lines of two normals: 0 when the
 // faces are parallel, whichever way they are oriented; 1 for a flat face.

@@ -133,17 +133,20 @@ inline bool carry_surface(const CavityPlan& plan, CavityPlan::Match& m, std::spa
 // `new_boundary_surface` when that is > 0 (the 2-2 flip), else the plan is
 // refused. Internal surfaces are kept: a face of one between two old tets
 // is refused, except in a collapse, which carries it to the two new tets
-// with the renamed triple (or drops it with the collapsed edge). A
-// collapse whose ball spans regions gives each new tet's region in
-// `new_refs` (empty: one region), and a new face between two regions must
-// then be an internal surface's. False: the replacement is not a valid
+// with the renamed triple (or drops it with the collapsed edge), and in a
+// replacement that remakes the surface (the interface 2-2 flip), which
+// lists the surface's new faces between new tets in `surface_faces`. A
+// replacement across regions gives each new tet's region in `new_refs`
+// (empty: one region), and a new face between two regions must then be an
+// internal surface's. False: the replacement is not a valid
 // re-triangulation, or it would erase or mix those surfaces and regions.
 inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::span<const TetVertices> new_tets,
                         CavityPlan& plan, VertexId from = kNoId, VertexId to = kNoId,
-                        SurfaceId new_boundary_surface = 0, std::span<const int> new_refs = {}) {
+                        SurfaceId new_boundary_surface = 0, std::span<const int> new_refs = {},
+                        std::span<const CavityPlan::InnerSurfaceFace> surface_faces = {}) {
   plan.outer.clear();
   plan.entries.clear();
-  plan.inner_surface.clear();
+  plan.inner_surface.assign(surface_faces.begin(), surface_faces.end());
   plan.new_boundary_surface = new_boundary_surface;
   auto in_cavity = [&](TetId t) { return std::find(old_tets.begin(), old_tets.end(), t) != old_tets.end(); };
   auto renamed = [&](TriangleVertices key) {
@@ -158,7 +161,10 @@ inline bool plan_cavity(const Mesh& mesh, std::span<const TetId> old_tets, std::
       const FaceRef n = mesh.neighbour(t, f);
       if (n.valid() && in_cavity(n.tet())) {
         if (internal && mesh.internal_surface_id(t, f) != 0) {
-          if (from == kNoId) return false;
+          if (from == kNoId) {
+            if (surface_faces.empty()) return false;
+            continue;
+          }
           const TriangleVertices key = renamed(face_vertices(v, f));
           if (t < n.tet() && key[0] != key[1] && key[1] != key[2])
             plan.inner_surface.emplace_back(CavityPlan::InnerSurfaceFace{key, mesh.internal_surface_id(t, f)});

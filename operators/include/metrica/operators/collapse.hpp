@@ -77,15 +77,6 @@ struct CollapseScratch : ScratchGeneration {
   boost::container::small_vector<std::pair<TriangleVertices, SurfaceId>, 32> around;  // surface_link_kept
 };
 
-// Is p within round-off of the plane of triangle f (distance at most
-// 1e-13 of the triangle's size)?
-inline bool in_plane(const Mesh& mesh, const TriangleVertices& f, VertexId p) {
-  const Point &x = mesh.point(f[0]), &y = mesh.point(f[1]), &z = mesh.point(f[2]);
-  const Eigen::Vector3d n = (y - x).cross(z - x);
-  const double size = std::max({(y - x).norm(), (z - x).norm(), (mesh.point(p) - x).norm()});
-  return std::abs(n.dot(mesh.point(p) - x)) <= 1e-13 * n.norm() * size;
-}
-
 // May vertex a move onto b by the class rules? `shell` is ab's.
 inline bool collapse_allowed(const Mesh& mesh, VertexId a, VertexId b, const Shell& shell) {
   if (mesh.is_fixed(a)) return false;
@@ -217,7 +208,8 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
         auto fv = face_vertices(v, f);
         const Eigen::Vector3d before = face_normal(mesh, fv[0], fv[1], fv[2]);
         const bool internal = mesh.neighbour(t, f).valid();
-        if (internal && !placed && !in_plane(mesh, fv, b)) return Refusal::rejected;
+        if (internal && !placed && !in_plane(mesh.point(fv[0]), mesh.point(fv[1]), mesh.point(fv[2]), mesh.point(b)))
+          return Refusal::rejected;
         for (auto& x : fv)
           if (x == a) x = b;
         if (before.dot(face_normal(mesh, fv[0], fv[1], fv[2])) <= 0.0 ||

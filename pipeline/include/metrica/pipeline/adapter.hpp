@@ -11,6 +11,7 @@
 
 #include <metrica/operators/boundary_swap.hpp>
 #include <metrica/operators/collapse.hpp>
+#include <metrica/operators/interface_flip.hpp>
 #include <metrica/operators/interface_swap.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/project.hpp>
@@ -269,16 +270,19 @@ class Adapter {
     });
   }
   // Boundary 2-2 flips that bring facets closer to the model (none
-  // without a model), and the 2-2 swaps of internal surfaces at their
-  // folds' slivers.
-  OperatorStats swap(const BoundarySwapOptions& o = {}, const InterfaceSwapOptions& i = {}) {
+  // without a model), and the 2-2 swaps and flips of internal surfaces.
+  OperatorStats swap(const BoundarySwapOptions& o = {}, const InterfaceSwapOptions& i = {},
+                     const InterfaceFlipOptions& f = {}) {
     OperatorStats stats = swap_toward_model<S, P, C>(mesh_, o, geometry_);
-    stats += swap_interfaces(i);
+    stats += swap_interfaces(i, f);
     return stats;
   }
-  // The internal surfaces' 2-2 swaps only (interface_swap.hpp).
-  OperatorStats swap_interfaces(const InterfaceSwapOptions& i = {}) {
-    return metrica::swap_interfaces<S, C>(mesh_, i, geometry_);
+  // The internal surfaces' 2-2 swaps at their folds' slivers
+  // (interface_swap.hpp), then their 2-2 flips (interface_flip.hpp).
+  OperatorStats swap_interfaces(const InterfaceSwapOptions& i = {}, const InterfaceFlipOptions& f = {}) {
+    OperatorStats stats = metrica::swap_interfaces<S, C>(mesh_, i, geometry_);
+    stats += flip_interfaces<S, P, C>(mesh_, f, geometry_);
+    return stats;
   }
   // Boundary vertices off the model move onto it (none without a model).
   OperatorStats project(ProjectionOptions o = {}) {
