@@ -57,7 +57,10 @@ void print_operator_stats(const AdaptReport& r, bool serial, int threads) {
 
 void print_cycle(const CycleReport& c) {
   std::string ops;
-  for (const auto& [name, s] : c.ops) ops += " | " + stats_text(name.c_str(), s);
+  // A stage with nothing to try (a swap without internal surfaces or a
+  // model, a projection with every vertex on the model) is left out.
+  for (const auto& [name, s] : c.ops)
+    if (s.tried > 0 || s.candidates > 0) ops += " | " + stats_text(name.c_str(), s);
   fmt::print("  {} {:>2}: {:>9} vertices {:>10} tets{} | in range {:5.1f}% min Q {:.3f} | {:.2f} s\n",
              c.repair          ? "repair"
              : c.quality_phase ? "polish"

@@ -215,9 +215,10 @@ const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
 // The standard pipeline of AdaptOptions:
 //
 //   cycle     collapse, split (or centroids + metric Delaunay flips),
-//             quality flips, collapse, smoothing of the poor tets;
-//   polish    quality flips from the tets below polish_below, smoothing
-//             of every vertex;
+//             quality flips, the internal surfaces' swaps and 2-2 flips,
+//             collapse, smoothing of the poor tets;
+//   polish    quality flips from the tets below polish_below, the
+//             internal surfaces' swaps and flips, smoothing of every vertex;
 //   repair    collapses that lift the poor tets, then the cycle's
 //             operators on the balls of the poor tets' vertices, and one
 //             more flip and smoothing pass;
@@ -261,7 +262,14 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   // inverted) try again after the reconnection around them.
   constexpr bool on_model = A::Geometry::on_model;
   if constexpr (on_model) p.cycle.push_back({"project", [](A& a) { return a.project(); }});
-  if constexpr (on_model) p.cycle.push_back({"swap", [](A& a) { return a.swap(); }});
+  // The 2-2 flips toward the model (on one) and of internal surfaces.
+  const auto swap = [](A& a) {
+    if constexpr (on_model)
+      return a.swap();
+    else
+      return a.swap_interfaces();
+  };
+  p.cycle.push_back({"swap", swap});
   p.cycle.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   p.cycle.push_back({"smooth", [=](A& a) { return a.smooth(smooth); }});
 
@@ -274,7 +282,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   };
   p.polish.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips); }});
   if constexpr (on_model) p.polish.push_back({"project", [](A& a) { return a.project(); }});
-  if constexpr (on_model) p.polish.push_back({"swap", [](A& a) { return a.swap(); }});
+  p.polish.push_back({"swap", swap});
   p.polish.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
 
   // Repair: first the edges at the poor tets' vertices, of any length,
