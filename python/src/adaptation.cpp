@@ -1,0 +1,313 @@
+#include "adaptation.hpp"
+
+#include <metrica/error.hpp>
+#include <metrica/io/meshb.hpp>
+#include <metrica/metrics/analytic_metric.hpp>
+#include <metrica/metrics/metric_bounds.hpp>
+#include <metrica/metrics/metric_field.hpp>
+#include <metrica/metrics/quality_report.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
+#include <metrica/policies/threads.hpp>
+#include <metrica/validate.hpp>
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <cstring>
+#include <pybind11/stl.h>
+
+namespace metrica::python {
+
+namespace {
+
+// Thrown from the cycle callback when Python has an error to raise (a
+// signal's KeyboardInterrupt, or the callback's own exception): the error
+// stays set in the thread's state and is raised once the GIL is back.
+struct PythonError {};
+
+MetricBounds bounds_of(const py::object& hmin, const py::object& hmax) {
+  MetricBounds b;
+  if (!hmin.is_none()) b.hmin = hmin.cast<double>();
+  if (!hmax.is_none()) b.hmax = hmax.cast<double>();
+  if (!(b.hmin >= 0.0) || !(b.hmax > 0.0) || b.hmin > b.hmax)
+    throw InputError(fmt::format("need 0 <= hmin <= hmax, hmax > 0 (got {} and {})", b.hmin, b.hmax));
+  return b;
+}
+
+// The metric at every vertex id of the mesh (indexed by id) from an (n, 6)
+// array in the file order (live vertices, ids ascending).
+std::vector<Sym6> metric_by_id(const Mesh& mesh, const py::object& metric) {
+  const auto a = py::array::ensure(metric);
+  if (!a || a.dtype().kind() != 'f' || a.ndim() != 2 || a.shape(1) != 6)
+    throw InputError("metric: expected a float64 array of shape (n, 6) (xx, xy, yy, xz, yz, zz)");
+  const auto m = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (static_cast<std::size_t>(m.shape(0)) != mesh.num_vertices())
+    throw InputError(fmt::format("metric: {} tensors for {} vertices", m.shape(0), mesh.num_vertices()));
+  std::vector<Sym6> out(mesh.vertex_capacity(), Sym6{1, 0, 1, 0, 0, 1});
+  const double* x = m.data();
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v)) {
+      std::memcpy(out[v].data(), x, sizeof(Sym6));
+      x += 6;
+    }
+  return out;
+}
+
+// The live vertices' metrics as an (n, 6) array.
+py::array_t<double> metric_array(const Mesh& mesh, const std::vector<Sym6>& by_id) {
+  py::array_t<double> out({static_cast<py::ssize_t>(mesh.num_vertices()), py::ssize_t{6}});
+  double* x = out.mutable_data();
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v)) {
+      std::memcpy(x, by_id[v].data(), sizeof(Sym6));
+      x += 6;
+    }
+  return out;
+}
+
+std::vector<Point> vertex_points(const Mesh& mesh) {
+  std::vector<Point> points(mesh.vertex_capacity(), Point::Zero());
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v)) points[v] = mesh.point(v);
+  return points;
+}
+
+py::dict stats_dict(const OperatorStats& s) {
+  return py::dict(py::arg("tried") = s.tried, py::arg("applied") = s.applied, py::arg("rejected") = s.rejected,
+                  py::arg("deferred") = s.deferred, py::arg("candidates") = s.candidates,
+                  py::arg("conflicts") = s.conflicts, py::arg("seconds") = s.seconds);
+}
+
+py::dict ops_dict(const OperatorReport& r) {
+  py::dict out;
+  for (const auto& [name, s] : r) out[py::str(name)] = stats_dict(s);
+  return out;
+}
+
+py::dict cycle_dict(const CycleReport& c) {
+  return py::dict(py::arg("kind") = c.repair          ? "repair"
+                                    : c.quality_phase ? "polish"
+                                                      : "cycle",
+                  py::arg("cycle") = c.cycle, py::arg("vertices") = c.vertices, py::arg("tets") = c.tets,
+                  py::arg("in_range") = c.conformity, py::arg("min_quality") = c.min_quality,
+                  py::arg("seconds") = c.seconds, py::arg("ops") = ops_dict(c.ops));
+}
+
+py::dict sample_dict(const SampleStats& s) {
+  return py::dict(py::arg("min") = s.min, py::arg("mean") = s.mean, py::arg("max") = s.max, py::arg("count") = s.count);
+}
+
+py::dict histogram_dict(const Histogram& h) {
+  return py::dict(py::arg("edges") = h.edges, py::arg("counts") = h.counts, py::arg("below") = h.below,
+                  py::arg("above") = h.above);
+}
+
+py::dict quality_dict(const QualityReport& q) {
+  py::dict out;
+  out["space"] = q.space;
+  out["vertices"] = q.vertices;
+  out["edges"] = q.edges;
+  out["tets"] = q.tets;
+  out["length"] = sample_dict(q.length);
+  out["mean_ratio"] = sample_dict(q.quality);
+  out["unit_length_share"] = q.unit_length_share;
+  out["quality_below_0.1"] = q.quality_below_01;
+  out["quality_below_0.3"] = q.quality_below_03;
+  out["complexity"] = q.complexity;
+  out["vertices_per_complexity"] = q.vertices_per_complexity;
+  out["volume"] = q.volume;
+  out["length_histogram"] = histogram_dict(q.length_histogram);
+  out["mean_ratio_histogram"] = histogram_dict(q.quality_histogram);
+  return out;
+}
+
+// The options of `metrica adapt` by their Python names (the command's with
+// '_' for '-'), checked as the command checks them.
+AdaptOptions adapt_options(const py::dict& options, MetricBounds& bounds) {
+  AdaptOptions o;
+  auto number = [](const py::handle& v, const std::string& name, double lo, double hi) {
+    const double x = v.cast<double>();
+    if (!(x >= lo && x <= hi)) throw InputError(fmt::format("adapt: {} must be in [{}, {}] (got {})", name, lo, hi, x));
+    return x;
+  };
+  auto count = [&](const py::handle& v, const std::string& name) { return static_cast<int>(number(v, name, 0, 1000)); };
+  py::object hmin = py::none(), hmax = py::none();
+  for (const auto& [key, value] : options) {
+    const auto name = key.cast<std::string>();
+    if (name == "cycles")
+      o.max_cycles = count(value, name);
+    else if (name == "quality_passes")
+      o.quality_passes = count(value, name);
+    else if (name == "repair_rounds")
+      o.repair_rounds = count(value, name);
+    else if (name == "repair_below")
+      o.repair_below = number(value, name, 0, 1);
+    else if (name == "max_length")
+      o.refine.max_length = number(value, name, 1e-300, 1e6);
+    else if (name == "min_length")
+      o.collapse.min_length = number(value, name, 1e-300, 1e6);
+    else if (name == "collapse_max_length")
+      o.collapse.max_new_length = number(value, name, 1e-300, 1e6);
+    else if (name == "shape_floor")
+      o.collapse.shape_floor = number(value, name, 0, 1);
+    else if (name == "smooth_below")
+      o.smooth.below = number(value, name, 0, 1);
+    else if (name == "points")
+      o.points = point_rule_from_name(value.cast<std::string>());
+    else if (name == "hmin")
+      hmin = py::reinterpret_borrow<py::object>(value);
+    else if (name == "hmax")
+      hmax = py::reinterpret_borrow<py::object>(value);
+    else
+      throw InputError(fmt::format(
+          "adapt: unknown option '{}' (cycles, quality_passes, repair_rounds, repair_below, max_length, min_length, "
+          "collapse_max_length, shape_floor, smooth_below, points, hmin, hmax)",
+          name));
+  }
+  if (!(o.refine.max_length > o.collapse.min_length))
+    throw InputError(
+        fmt::format("adapt: need min_length < max_length (got {} and {})", o.collapse.min_length, o.refine.max_length));
+  bounds = bounds_of(hmin, hmax);
+  return o;
+}
+
+}  // namespace
+
+py::array_t<double> analytic_metric(const PyMesh& m, const std::string& name, const py::object& hmin,
+                                    const py::object& hmax) {
+  const AnalyticMetric kind = analytic_metric_from_name(name);
+  std::vector<Sym6> field = analytic_metric_field(kind, vertex_points(m.mesh()));
+  clamp_metrics(field, bounds_of(hmin, hmax));
+  check_metric_field(field, fmt::format("metric '{}'", name));
+  return metric_array(m.mesh(), field);
+}
+
+py::list read_field(const std::string& path) {
+  const io::SolData sol = io::read_sol(path);
+  py::list out;
+  const std::size_t stride = static_cast<std::size_t>(sol.stride());
+  std::size_t offset = 0;
+  for (const io::SolType t : sol.types) {
+    const auto width = static_cast<std::size_t>(io::sol_type_size(t));
+    py::array_t<double> a =
+        width == 1 ? py::array_t<double>({static_cast<py::ssize_t>(sol.count)})
+                   : py::array_t<double>({static_cast<py::ssize_t>(sol.count), static_cast<py::ssize_t>(width)});
+    double* x = a.mutable_data();
+    for (std::size_t v = 0; v < sol.count; ++v)
+      for (std::size_t k = 0; k < width; ++k) *x++ = sol.values[v * stride + offset + k];
+    offset += width;
+    out.append(a);
+  }
+  return out;
+}
+
+void write_field(const std::string& path, const py::array& values, int version) {
+  if (values.dtype().kind() != 'f') throw InputError("write_field: expected float64 values");
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
+  io::SolData sol;
+  const py::ssize_t width = a.ndim() == 1 ? 1 : a.ndim() == 2 ? a.shape(1) : 0;
+  if (width == 1)
+    sol.types = {io::SolType::scalar};
+  else if (width == 3)
+    sol.types = {io::SolType::vector};
+  else if (width == 6)
+    sol.types = {io::SolType::sym_matrix};
+  else
+    throw InputError("write_field: expected shape (n,), (n, 3) or (n, 6)");
+  sol.count = static_cast<std::size_t>(a.shape(0));
+  sol.values.assign(a.data(), a.data() + a.size());
+  for (double x : sol.values)
+    if (!std::isfinite(x)) throw InputError("write_field: the values are not all finite");
+  if (version > 0) sol.version = version;
+  io::write_sol(path, sol, version);
+}
+
+py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space) {
+  if (metric.is_none()) throw InputError("quality: give the metric, an (n, 6) array");
+  Mesh mesh = m.mesh();
+  std::vector<Sym6> field = metric_by_id(mesh, metric);
+  check_metric_field(field, "metric");
+  assign_metric(mesh, field);
+  return quality_dict(quality_report(mesh, space));
+}
+
+py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
+  MetricBounds bounds;
+  const AdaptOptions ao = adapt_options(call.options, bounds);
+  PolicyChoice policies;
+  if (!call.space.empty()) policies.space = call.space;
+  if (!call.precision.empty()) policies.precision = call.precision;
+  if (!call.concurrency.empty()) policies.concurrency = call.concurrency;
+  check_policy_choice(policies);
+  if (call.iterations < 1 || call.iterations > 1000)
+    throw InputError(fmt::format("adapt: iterations must be in [1, 1000] (got {})", call.iterations));
+  if (call.analytic.empty() == call.metric.is_none())
+    throw InputError("adapt: give one of metric (an (n, 6) array) or analytic (a name)");
+  if (call.iterations > 1 && call.analytic.empty())
+    throw InputError("adapt: iterations > 1 needs analytic (an array holds values at the input's vertices only)");
+  if (call.threads < 0 || call.threads > 4096)
+    throw InputError(fmt::format("adapt: threads must be in [1, 4096] (got {})", call.threads));
+  if (call.threads > 0) set_thread_count(call.threads);
+
+  Mesh mesh = m.mesh();  // the input stays as it was, whatever happens
+  const double volume = mesh.volume();
+  std::optional<AnalyticMetric> kind;
+  MetricFunction exact;
+  AdaptInputs inputs;
+  std::vector<Sym6> given;
+  if (!call.analytic.empty()) {
+    kind = analytic_metric_from_name(call.analytic);
+    if (bounds.active())
+      exact = [k = *kind, bounds](const Point& p) { return clamp_metric(evaluate(k, p), bounds); };
+    else
+      exact = [k = *kind](const Point& p) { return evaluate(k, p); };
+    inputs.metric = &exact;
+  } else {
+    given = metric_by_id(mesh, call.metric);
+  }
+  py::list cycles;
+  const py::object on_cycle = call.on_cycle;
+  inputs.on_cycle = [&](const CycleReport& c) {
+    py::gil_scoped_acquire gil;
+    cycles.append(cycle_dict(c));
+    try {
+      if (!on_cycle.is_none()) on_cycle(cycles[py::len(cycles) - 1]);
+    } catch (py::error_already_set& e) {
+      e.restore();
+      throw PythonError{};
+    }
+    if (PyErr_CheckSignals() != 0) throw PythonError{};
+  };
+  OperatorReport ops;
+  double seconds = 0.0;
+  QualityReport q;
+  try {
+    py::gil_scoped_release no_gil;
+    for (int it = 0; it < call.iterations; ++it) {
+      std::vector<Sym6> field = kind ? analytic_metric_field(*kind, vertex_points(mesh)) : given;
+      clamp_metrics(field, bounds);
+      check_metric_field(field, kind ? fmt::format("metric '{}'", call.analytic) : std::string("metric"));
+      assign_metric(mesh, field);
+      const AdaptReport report = adapt_by_name(mesh, ao, policies, inputs);
+      ops += report.ops;
+      seconds += report.seconds;
+    }
+    const double budget = call.iterations * ao.volume_budget;
+    ValidateOptions vo;
+    vo.expected_volume = volume;
+    vo.volume_tolerance = budget * (1.0 + budget) + 1e-9;
+    const auto check = mesh.validate(vo);
+    if (!check.ok()) throw InputError(fmt::format("adapt: the adapted mesh is invalid\n{}", check.to_string()));
+    q = quality_report(mesh, policies.space, {.cached_quality = true});
+  } catch (const PythonError&) {
+    throw py::error_already_set();
+  }
+  py::dict report;
+  report["cycles"] = cycles;
+  report["ops"] = ops_dict(ops);
+  report["seconds"] = seconds;
+  report["quality"] = quality_dict(q);
+  return py::make_tuple(py::cast(PyMesh(std::move(mesh), m.version()), py::return_value_policy::move), report);
+}
+
+}  // namespace metrica::python

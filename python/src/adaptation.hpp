@@ -1,0 +1,49 @@
+// Metrics, fields and the adaptation from Python: what `metrica metric
+// --analytic`, `metrica adapt` and `metrica quality` do, on a PyMesh and
+// numpy arrays, with the command's checks, defaults and results.
+#pragma once
+
+#include "mesh_arrays.hpp"
+
+#include <metrica/pipeline/adapt.hpp>
+
+#include <pybind11/functional.h>
+#include <string>
+
+namespace metrica::python {
+
+// The analytic metric `name` at the mesh's vertices, clamped to [hmin,
+// hmax] when given: (n, 6) in libMeshb order (xx, xy, yy, xz, yz, zz).
+py::array_t<double> analytic_metric(const PyMesh& m, const std::string& name, const py::object& hmin,
+                                    const py::object& hmax);
+
+// The fields of a .sol/.solb: one array per field, (n,), (n, 3) or (n, 6).
+py::list read_field(const std::string& path);
+// One field written: (n,) scalar, (n, 3) vector, (n, 6) symmetric tensor.
+void write_field(const std::string& path, const py::array& values, int version);
+
+// The UGAWG quality report of the mesh in `metric` ((n, 6), or none: the
+// metric the mesh holds) as a dict.
+py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space);
+
+// What adapt() is told: the metric (an (n, 6) array, or an analytic name
+// re-evaluated between iterations), the policies by name, the options of
+// `metrica adapt` by their names, a model, and a callback per cycle.
+struct AdaptCall {
+  py::object metric;
+  std::string analytic;
+  int iterations = 1;
+  int threads = 0;  // 0: the default
+  std::string concurrency, space, precision;
+  std::string geometry;
+  py::dict options;
+  py::object on_cycle;
+};
+
+// The adapted copy of the mesh and the report: per cycle what each
+// operation did, and the quality report. Runs without the GIL; Ctrl-C
+// (a pending signal, checked after each cycle) stops it with
+// KeyboardInterrupt and leaves the input as it was.
+py::tuple adapt(const PyMesh& m, const AdaptCall& call);
+
+}  // namespace metrica::python

@@ -1,0 +1,55 @@
+// Meshes between numpy arrays and Metrica: the Python Mesh object, built
+// from arrays or a file, and its arrays back (owned by numpy, copied out of
+// the file's layout: 0-based indices, ids as int32).
+#pragma once
+
+#include <metrica/io/mesh_data.hpp>
+#include <metrica/mesh.hpp>
+
+#include <optional>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <string>
+
+namespace metrica::python {
+
+namespace py = pybind11;
+
+// A mesh as Python holds it: the adjacency-rich Mesh, the libMeshb version
+// it was read with (written back the same, as the command does), and its
+// file layout, made when an array is first asked for.
+class PyMesh {
+ public:
+  PyMesh(Mesh mesh, int version) : mesh_(std::move(mesh)), version_(version) {}
+  const Mesh& mesh() const { return mesh_; }
+  int version() const { return version_; }
+  // The file layout (vertex ids ascending, removed ones skipped).
+  const io::MeshData& data() const;
+
+ private:
+  Mesh mesh_;
+  int version_;
+  mutable std::optional<io::MeshData> data_;
+};
+
+// Mesh(points, tets, triangles, triangle_ids, tet_ids): the arrays checked
+// (shapes, dtypes, indices in range, finite coordinates), then the mesh
+// built and checked like a file's (InputError with the command's message).
+PyMesh mesh_from_arrays(const py::array& points, const py::array& tets, const py::object& triangles,
+                        const py::object& triangle_ids, const py::object& tet_ids);
+
+// A file read and checked as every command reads its input.
+PyMesh read_mesh(const std::string& path);
+
+// The mesh's arrays.
+py::array_t<double> points_array(const io::MeshData& d);
+py::array_t<std::int32_t> tets_array(const io::MeshData& d);
+py::array_t<std::int32_t> triangles_array(const io::MeshData& d);
+py::array_t<std::int32_t> refs_array(const std::vector<int>& refs);
+
+// check(): InputError with validate()'s report; info(): counts, volume,
+// surfaces and regions as a dict.
+void check_mesh(const PyMesh& m);
+py::dict mesh_info(const PyMesh& m);
+
+}  // namespace metrica::python

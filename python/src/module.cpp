@@ -1,0 +1,88 @@
+// The `metrica._metrica` extension: meshes as numpy arrays, files, metrics
+// and the adaptation (python/metrica/__init__.py is the module users
+// import).
+#include "adaptation.hpp"
+#include "mesh_arrays.hpp"
+
+#include <metrica/error.hpp>
+#include <metrica/io/file_format.hpp>
+#include <metrica/mesh_build.hpp>
+
+#include <filesystem>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+namespace py = pybind11;
+using namespace metrica;
+using namespace metrica::python;
+
+PYBIND11_MODULE(_metrica, m) {
+  m.doc() = "Metrica: metric-based anisotropic adaptation of tetrahedral meshes";
+  auto input_error = py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  static_cast<void>(input_error);
+
+  py::class_<PyMesh>(m, "Mesh", "A tetrahedral mesh: vertices, tets with region ids, surface triangles with ids.")
+      .def(py::init(&mesh_from_arrays), py::arg("points"), py::arg("tets"), py::arg("triangles") = py::none(),
+           py::arg("triangle_ids") = py::none(), py::arg("tet_ids") = py::none(),
+           "A mesh from numpy arrays: points float64 (n, 3); tets (m, 4), triangles (k, 3): 0-based vertex "
+           "indices; ids int. Checked as a file is (InputError).")
+      .def_property_readonly("points", [](const PyMesh& x) { return points_array(x.data()); })
+      .def_property_readonly("tets", [](const PyMesh& x) { return tets_array(x.data()); })
+      .def_property_readonly("triangles", [](const PyMesh& x) { return triangles_array(x.data()); })
+      .def_property_readonly("triangle_ids", [](const PyMesh& x) { return refs_array(x.data().triangle_refs); })
+      .def_property_readonly("tet_ids", [](const PyMesh& x) { return refs_array(x.data().tet_refs); })
+      .def_property_readonly("num_vertices", [](const PyMesh& x) { return x.mesh().num_vertices(); })
+      .def_property_readonly("num_tets", [](const PyMesh& x) { return x.mesh().num_tets(); })
+      .def("check", &check_mesh, "Raises InputError with the report when an invariant does not hold.")
+      .def("info", &mesh_info, "Counts, extent, volume, surfaces and regions, as `metrica info` prints them.")
+      .def("__repr__", [](const PyMesh& x) {
+        return "<metrica.Mesh: " + std::to_string(x.mesh().num_vertices()) + " vertices, " +
+               std::to_string(x.mesh().num_tets()) + " tets>";
+      });
+
+  using Path = std::filesystem::path;
+  m.def(
+      "read", [](const Path& path) { return read_mesh(path.string()); }, py::arg("path"),
+      "A mesh file (.mesh, .meshb, .msh), checked as every command reads it.");
+  m.def(
+      "write",
+      [](const PyMesh& x, const Path& path, int version, bool binary) {
+        io::MeshData data = x.data();
+        data.version = x.version();
+        io::write_mesh_file(path.string(), data, version, {}, io::FileFormat::mesh,
+                            binary ? io::Encoding::binary : io::Encoding::ascii);
+      },
+      py::arg("mesh"), py::arg("path"), py::arg("version") = 0, py::arg("binary") = false,
+      "Writes .mesh, .meshb (libMeshb version: 0 keeps the one read), .msh (4.1, or 2.2 with version=2; "
+      "binary=True for binary), .vtu or .su2, through a temporary renamed when complete.");
+  m.def(
+      "read_field", [](const Path& path) { return read_field(path.string()); }, py::arg("path"),
+      "The fields of a .sol/.solb: a list of arrays, (n,), (n, 3) or (n, 6) (xx, xy, yy, xz, yz, zz).");
+  m.def(
+      "write_field",
+      [](const Path& path, const py::array& values, int version) { write_field(path.string(), values, version); },
+      py::arg("path"), py::arg("values"), py::arg("version") = 0,
+      "Writes one field to a .sol/.solb: (n,) scalar, (n, 3) vector, (n, 6) symmetric tensor.");
+  m.def("analytic_metric", &analytic_metric, py::arg("mesh"), py::arg("name"), py::arg("hmin") = py::none(),
+        py::arg("hmax") = py::none(), "The analytic metric (linear, polar-1, polar-2) at the mesh's vertices, (n, 6).");
+  m.def("quality", &quality, py::arg("mesh"), py::arg("metric"), py::arg("space") = "log-euclidean",
+        "The UGAWG quality report of the mesh in the metric, as a dict.");
+  m.def(
+      "_adapt",
+      [](const PyMesh& x, py::object metric, std::string analytic, int iterations, int threads, std::string concurrency,
+         std::string space, std::string precision, py::dict options, py::object on_cycle) {
+        AdaptCall call;
+        call.metric = std::move(metric);
+        call.analytic = std::move(analytic);
+        call.iterations = iterations;
+        call.threads = threads;
+        call.concurrency = std::move(concurrency);
+        call.space = std::move(space);
+        call.precision = std::move(precision);
+        call.options = std::move(options);
+        call.on_cycle = std::move(on_cycle);
+        return adapt(x, call);
+      },
+      py::arg("mesh"), py::arg("metric"), py::arg("analytic"), py::arg("iterations"), py::arg("threads"),
+      py::arg("concurrency"), py::arg("space"), py::arg("precision"), py::arg("options"), py::arg("on_cycle"));
+}

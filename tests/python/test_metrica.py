@@ -1,0 +1,141 @@
+"""The Python module: numpy <-> Mesh <-> file round trips, metrics, the
+adaptation (the command's serial output to the bit), errors, and Ctrl-C.
+Run by CTest (label python) with PYTHONPATH=BUILD/python and METRICA_CLI
+set to the command."""
+import filecmp
+import os
+import signal
+import subprocess
+import threading
+
+import numpy as np
+import pytest
+
+import metrica
+
+CLI = os.environ.get("METRICA_CLI", "metrica")
+
+
+def cube(tmp_path, n=3):
+    path = tmp_path / "cube.meshb"
+    subprocess.run([CLI, "cube", "--n", str(n), "-o", str(path), "-q"], check=True)
+    return path
+
+
+def two_tets():
+    points = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1]], dtype=float)
+    tets = np.array([[0, 1, 2, 3], [1, 2, 3, 4]])
+    return points, tets
+
+
+def test_arrays_round_trip_through_a_mesh_and_files(tmp_path):
+    mesh = metrica.read(cube(tmp_path))
+    again = metrica.Mesh(mesh.points, mesh.tets, mesh.triangles, mesh.triangle_ids, mesh.tet_ids)
+    for name in ("points", "tets", "triangles", "triangle_ids", "tet_ids"):
+        assert np.array_equal(getattr(again, name), getattr(mesh, name)), name
+    assert mesh.points.dtype == np.float64 and mesh.points.shape == (mesh.num_vertices, 3)
+    assert mesh.tets.shape == (mesh.num_tets, 4)
+    for suffix in (".mesh", ".meshb", ".msh"):
+        path = tmp_path / ("out" + suffix)
+        metrica.write(again, path)
+        back = metrica.read(path)
+        assert np.array_equal(back.points, mesh.points) and np.array_equal(back.tets, mesh.tets), suffix
+        assert np.array_equal(back.triangle_ids, mesh.triangle_ids), suffix
+
+
+def test_info_and_check():
+    mesh = metrica.Mesh(*two_tets(), tet_ids=np.array([2, 3]))
+    mesh.check()
+    info = mesh.info()
+    assert info["vertices"] == 5 and info["tets"] == 2
+    assert info["volume"] == pytest.approx(1 / 6 + 1 / 3)
+    assert set(info["regions"]) == {2, 3}
+    assert info["internal_faces"] == 1  # the face between the two regions
+
+
+def test_bad_arrays_raise_the_commands_messages():
+    points, tets = two_tets()
+    with pytest.raises(metrica.InputError, match=r"expected shape \(n, 3\)"):
+        metrica.Mesh(points[:, :2], tets)
+    with pytest.raises(metrica.InputError, match="expected float64"):
+        metrica.Mesh(points.astype(np.int64), tets)
+    with pytest.raises(metrica.InputError, match="out of range"):
+        metrica.Mesh(points, tets + 1)
+    bad = points.copy()
+    bad[2, 1] = np.nan
+    with pytest.raises(ValueError, match="not finite|NaN|nan"):
+        metrica.Mesh(bad, tets)
+    with pytest.raises(metrica.InputError, match="1 inverted of 2"):
+        metrica.Mesh(points, np.array([[0, 1, 2, 3], [2, 1, 3, 4]]))
+    with pytest.raises(metrica.InputError):
+        metrica.read("/nonexistent/mesh.meshb")
+
+
+def test_fields_round_trip(tmp_path):
+    values = np.arange(12, dtype=float).reshape(2, 6) + 1.0
+    metrica.write_field(tmp_path / "m.solb", values)
+    (back,) = metrica.read_field(tmp_path / "m.solb")
+    assert np.array_equal(back, values)
+    with pytest.raises(metrica.InputError):
+        metrica.write_field(tmp_path / "m.solb", np.zeros((2, 4)))
+
+
+def test_serial_adaptation_is_the_commands_to_the_bit(tmp_path):
+    start = cube(tmp_path)
+    by_command = tmp_path / "command.meshb"
+    subprocess.run([CLI, "adapt", str(start), "--analytic", "linear", "--iterations", "2", "--concurrency", "serial",
+                    "-o", str(by_command), "-q"], check=True)
+    adapted, report = metrica.adapt(metrica.read(start), analytic="linear", iterations=2, concurrency="serial")
+    by_python = tmp_path / "python.meshb"
+    metrica.write(adapted, by_python)
+    assert filecmp.cmp(by_command, by_python, shallow=False)
+    assert report["quality"]["unit_length_share"] > 0.9
+    assert report["ops"]["split"]["applied"] > 0 and report["cycles"]
+
+
+def test_adaptation_to_a_metric_array_leaves_the_input_alone(tmp_path):
+    mesh = metrica.read(cube(tmp_path))
+    before = mesh.points.copy()
+    metric = metrica.analytic_metric(mesh, "linear", hmin=0.05)
+    seen = []
+    adapted, report = metrica.adapt(mesh, metric, threads=2, on_cycle=seen.append, cycles=4)
+    adapted.check()
+    assert adapted.num_tets > mesh.num_tets and len(seen) == len(report["cycles"]) >= 4
+    assert np.array_equal(mesh.points, before)
+    q = metrica.quality(adapted, metrica.analytic_metric(adapted, "linear", hmin=0.05))
+    assert q["tets"] == adapted.num_tets
+
+
+def test_bad_adaptation_calls_raise(tmp_path):
+    mesh = metrica.read(cube(tmp_path))
+    with pytest.raises(metrica.InputError, match="one of metric"):
+        metrica.adapt(mesh)
+    with pytest.raises(metrica.InputError, match="unknown option 'cycle'"):
+        metrica.adapt(mesh, analytic="linear", cycle=3)
+    with pytest.raises(metrica.InputError, match="unknown analytic metric"):
+        metrica.adapt(mesh, analytic="quadratic")
+    with pytest.raises(metrica.InputError, match="unknown concurrency"):
+        metrica.adapt(mesh, analytic="linear", concurrency="mpi")
+    metric = metrica.analytic_metric(mesh, "linear")
+    metric[0] = [1, 0, -1, 0, 0, 1]  # not positive definite
+    with pytest.raises(metrica.InputError, match="positive definite|SPD"):
+        metrica.adapt(mesh, metric)
+    with pytest.raises(metrica.InputError, match="tensors for"):
+        metrica.adapt(mesh, metric[:-1])
+
+
+def test_ctrl_c_stops_the_run_and_leaves_the_input(tmp_path):
+    mesh = metrica.read(cube(tmp_path, 6))
+    before = mesh.points.copy()
+    # Python's own handler (a test runner may have started us without it).
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    timer = threading.Timer(0.2, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            metrica.adapt(mesh, analytic="polar-1", iterations=50, concurrency="serial")
+    finally:
+        timer.cancel()
+        signal.signal(signal.SIGINT, previous)
+    mesh.check()
+    assert np.array_equal(mesh.points, before)
