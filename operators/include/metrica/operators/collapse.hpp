@@ -169,9 +169,10 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
     if (local_index(v, b) >= 0) continue;
     v[local_index(v, a)] = b;
     s.new_tets.emplace_back(v);
-    s.new_refs.emplace_back(mesh.tet_ref(t));
   }
-  if (!regions) s.new_refs.clear();
+  if (regions)
+    for (TetId t : s.ball)
+      if (local_index(mesh.tet(t), b) < 0) s.new_refs.emplace_back(mesh.tet_ref(t));
   if (mesh.on_internal_surface(a) && !surface_link_kept(mesh, a, b, s)) return Refusal::rejected;
   // The tets of b's ball that b's move drags along (it keeps their topology).
   s.dragged.clear();
@@ -199,16 +200,17 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
     // Surface faces through a (and not b) keep their side and fit the
     // Geometry; off a model, an internal surface's keep their plane
     // exactly (b in the plane of the face it replaces a in).
-    const bool placed = geometry.places(mesh, a);
+    const bool interface = mesh.on_internal_surface(a);
     for (TetId t : s.ball) {
       const auto& v = mesh.tet(t);
       if (local_index(v, b) >= 0) continue;
       for (int f = 0; f < 4; ++f) {
-        if (v[f] == a || !mesh.is_surface_face(t, f)) continue;
+        const bool internal = mesh.neighbour(t, f).valid();
+        if (v[f] == a || (internal && (!interface || mesh.internal_surface_id(t, f) == 0))) continue;
         auto fv = face_vertices(v, f);
         const Eigen::Vector3d before = face_normal(mesh, fv[0], fv[1], fv[2]);
-        const bool internal = mesh.neighbour(t, f).valid();
-        if (internal && !placed && !in_plane(mesh.point(fv[0]), mesh.point(fv[1]), mesh.point(fv[2]), mesh.point(b)))
+        if (internal && !geometry.places(mesh, a) &&
+            !in_plane(mesh.point(fv[0]), mesh.point(fv[1]), mesh.point(fv[2]), mesh.point(b)))
           return Refusal::rejected;
         for (auto& x : fv)
           if (x == a) x = b;
