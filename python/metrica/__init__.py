@@ -16,7 +16,13 @@ import logging
 from ._metrica import (
     InputError,
     Mesh,
+    analytic_field,
     analytic_metric,
+    complexity,
+    error,
+    interpolate,
+    intersect,
+    multiscale_metric,
     quality,
     read,
     read_field,
@@ -28,11 +34,20 @@ from . import _metrica
 __all__ = [
     "InputError",
     "Mesh",
+    "Pipeline",
     "adapt",
+    "analytic_field",
     "analytic_metric",
+    "complexity",
+    "error",
+    "from_meshio",
+    "interpolate",
+    "intersect",
+    "multiscale_metric",
     "quality",
     "read",
     "read_field",
+    "to_meshio",
     "write",
     "write_field",
 ]
@@ -81,3 +96,102 @@ def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concu
 
     return _metrica._adapt(mesh, metric, analytic or "", int(iterations), int(threads or 0), concurrency, space,
                            precision, dict(options), each)
+
+
+class Pipeline:
+    """A pipeline of the standard stages, composed here (examples/compose in
+    C++). Each stage is a tuple (name, operation, options) or (operation,
+    options), the name then the operation's; a name is the stage's key in
+    the report and in the passes' epochs, so one list holds each name once.
+
+        p = metrica.Pipeline(
+            cycle=[("collapse", {}), ("split", {}),
+                   ("delaunay", "flip", {"criterion": "metric-delaunay"}),
+                   ("edge-weight", "flip", {"criterion": "edge-weight"}),
+                   ("smooth", {"below": 0.3})],
+            polish=[("flip", {}), ("smooth", {"below": 1.0})],
+            max_cycles=8)
+        adapted, report = p.run(mesh, analytic="polar-2", concurrency="serial")
+
+    Operations and their options:
+      collapse   min_length, max_new_length, shape_floor
+      split      max_length, min_new_distance, shape_floor (edge splits)
+      centroids  the same (centroid insertion)
+      flip       criterion ("min-quality", "metric-delaunay", "edge-weight"),
+                 seed_below, max_sweeps, face_flips, face_flip_below
+      smooth     below, shape_floor
+      swap       none (the internal surfaces' swaps and 2-2 flips)
+    Rules (keyword arguments): max_cycles, quality_passes, repair_rounds,
+    repair_below, min_change, min_conformity_gain, near_unit_conformity.
+    The cycles run until the rules stop them, then the polish stages
+    quality_passes times, then the repair stages while a tet is below
+    repair_below. Runs in the log-Euclidean space with filtered predicates,
+    serial or speculative.
+    """
+
+    def __init__(self, cycle=(), polish=(), repair=(), **rules):
+        self.cycle = list(cycle)
+        self.polish = list(polish)
+        self.repair = list(repair)
+        self.rules = rules
+
+    @staticmethod
+    def _specs(stages):
+        out = []
+        for stage in stages:
+            if len(stage) == 2:
+                op, options = stage
+                out.append((op, op, dict(options)))
+            elif len(stage) == 3:
+                name, op, options = stage
+                out.append((name, op, dict(options)))
+            else:
+                raise InputError(f"a stage is (name, operation, options) or (operation, options), got {stage!r}")
+        return out
+
+    def run(self, mesh, metric=None, *, analytic=None, concurrency="speculative", threads=None, on_cycle=None):
+        """Runs the pipeline on a copy of `mesh`; returns (adapted, report) as adapt() does."""
+        def each(cycle):
+            if _log.isEnabledFor(logging.INFO):
+                _log_cycle(cycle)
+            if on_cycle is not None:
+                on_cycle(cycle)
+
+        return _metrica._run_pipeline(mesh, metric, analytic or "", self._specs(self.cycle), self._specs(self.polish),
+                                      self._specs(self.repair), dict(self.rules), concurrency, int(threads or 0), each)
+
+
+def to_meshio(mesh):
+    """The mesh as a meshio.Mesh: "tetra" and "triangle" cells, their ids as
+    the cell data "ref" (needs meshio)."""
+    import meshio
+
+    return meshio.Mesh(
+        mesh.points,
+        [("tetra", mesh.tets), ("triangle", mesh.triangles)],
+        cell_data={"ref": [mesh.tet_ids, mesh.triangle_ids]},
+    )
+
+
+def from_meshio(m, ref=None):
+    """A Mesh from a meshio.Mesh: its "tetra" cells and its "triangle" cells
+    (the boundary and internal surfaces), ids from the cell data `ref` (by
+    default the first of "ref", "medit:ref", "gmsh:physical" it holds).
+    Other cells are left out."""
+    import numpy as np
+
+    names = [ref] if ref else ["ref", "medit:ref", "gmsh:physical"]
+    data = next((m.cell_data[n] for n in names if n in m.cell_data), None)
+    tets, tet_ids, triangles, triangle_ids = [], [], [], []
+    for k, block in enumerate(m.cells):
+        ids = data[k] if data is not None else np.zeros(len(block.data), dtype=np.int64)
+        if block.type == "tetra":
+            tets.append(block.data)
+            tet_ids.append(ids)
+        elif block.type == "triangle":
+            triangles.append(block.data)
+            triangle_ids.append(ids)
+    if not tets:
+        raise InputError("from_meshio: the mesh has no tetra cells")
+    cat = lambda parts: np.concatenate(parts) if parts else None
+    return Mesh(np.asarray(m.points, dtype=np.float64), cat(tets), cat(triangles), cat(triangle_ids), cat(tet_ids))

@@ -1,5 +1,7 @@
 #include "adaptation.hpp"
 
+#include "fields.hpp"
+
 #include <metrica/error.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
@@ -19,58 +21,6 @@
 namespace metrica::python {
 
 namespace {
-
-// Thrown from the cycle callback when Python has an error to raise (a
-// signal's KeyboardInterrupt, or the callback's own exception): the error
-// stays set in the thread's state and is raised once the GIL is back.
-struct PythonError {};
-
-MetricBounds bounds_of(const py::object& hmin, const py::object& hmax) {
-  MetricBounds b;
-  if (!hmin.is_none()) b.hmin = hmin.cast<double>();
-  if (!hmax.is_none()) b.hmax = hmax.cast<double>();
-  if (!(b.hmin >= 0.0) || !(b.hmax > 0.0) || b.hmin > b.hmax)
-    throw InputError(fmt::format("need 0 <= hmin <= hmax, hmax > 0 (got {} and {})", b.hmin, b.hmax));
-  return b;
-}
-
-// The metric at every vertex id of the mesh (indexed by id) from an (n, 6)
-// array in the file order (live vertices, ids ascending).
-std::vector<Sym6> metric_by_id(const Mesh& mesh, const py::object& metric) {
-  const auto a = py::array::ensure(metric);
-  if (!a || a.dtype().kind() != 'f' || a.ndim() != 2 || a.shape(1) != 6)
-    throw InputError("metric: expected a float64 array of shape (n, 6) (xx, xy, yy, xz, yz, zz)");
-  const auto m = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
-  if (static_cast<std::size_t>(m.shape(0)) != mesh.num_vertices())
-    throw InputError(fmt::format("metric: {} tensors for {} vertices", m.shape(0), mesh.num_vertices()));
-  std::vector<Sym6> out(mesh.vertex_capacity(), Sym6{1, 0, 1, 0, 0, 1});
-  const double* x = m.data();
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-    if (mesh.vertex_alive(v)) {
-      std::memcpy(out[v].data(), x, sizeof(Sym6));
-      x += 6;
-    }
-  return out;
-}
-
-// The live vertices' metrics as an (n, 6) array.
-py::array_t<double> metric_array(const Mesh& mesh, const std::vector<Sym6>& by_id) {
-  py::array_t<double> out({static_cast<py::ssize_t>(mesh.num_vertices()), py::ssize_t{6}});
-  double* x = out.mutable_data();
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-    if (mesh.vertex_alive(v)) {
-      std::memcpy(x, by_id[v].data(), sizeof(Sym6));
-      x += 6;
-    }
-  return out;
-}
-
-std::vector<Point> vertex_points(const Mesh& mesh) {
-  std::vector<Point> points(mesh.vertex_capacity(), Point::Zero());
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-    if (mesh.vertex_alive(v)) points[v] = mesh.point(v);
-  return points;
-}
 
 py::dict stats_dict(const OperatorStats& s) {
   return py::dict(py::arg("tried") = s.tried, py::arg("applied") = s.applied, py::arg("rejected") = s.rejected,
@@ -173,13 +123,37 @@ AdaptOptions adapt_options(const py::dict& options, MetricBounds& bounds) {
 
 }  // namespace
 
-py::array_t<double> analytic_metric(const PyMesh& m, const std::string& name, const py::object& hmin,
-                                    const py::object& hmax) {
-  const AnalyticMetric kind = analytic_metric_from_name(name);
-  std::vector<Sym6> field = analytic_metric_field(kind, vertex_points(m.mesh()));
-  clamp_metrics(field, bounds_of(hmin, hmax));
-  check_metric_field(field, fmt::format("metric '{}'", name));
-  return metric_array(m.mesh(), field);
+std::function<void(const CycleReport&)> cycle_callback(py::list& cycles, const py::object& on_cycle) {
+  // By address: the function is copied without the GIL, a Python object
+  // may not be.
+  return [cycles = &cycles, on_cycle = &on_cycle](const CycleReport& c) {
+    py::gil_scoped_acquire gil;
+    cycles->append(cycle_dict(c));
+    try {
+      if (!on_cycle->is_none()) (*on_cycle)((*cycles)[py::len(*cycles) - 1]);
+    } catch (py::error_already_set& e) {
+      e.restore();
+      throw PythonError{};
+    }
+    if (PyErr_CheckSignals() != 0) throw PythonError{};
+  };
+}
+
+void check_adapted(const Mesh& mesh, double volume, double tolerance) {
+  ValidateOptions vo;
+  vo.expected_volume = volume;
+  vo.volume_tolerance = tolerance;
+  const auto check = mesh.validate(vo);
+  if (!check.ok()) throw InputError(fmt::format("adapt: the adapted mesh is invalid\n{}", check.to_string()));
+}
+
+py::dict adapt_report(const py::list& cycles, const OperatorReport& ops, double seconds, const QualityReport& q) {
+  py::dict report;
+  report["cycles"] = cycles;
+  report["ops"] = ops_dict(ops);
+  report["seconds"] = seconds;
+  report["quality"] = quality_dict(q);
+  return report;
 }
 
 py::list read_field(const std::string& path) {
@@ -225,9 +199,7 @@ void write_field(const std::string& path, const py::array& values, int version) 
 py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space) {
   if (metric.is_none()) throw InputError("quality: give the metric, an (n, 6) array");
   Mesh mesh = m.mesh();
-  std::vector<Sym6> field = metric_by_id(mesh, metric);
-  check_metric_field(field, "metric");
-  assign_metric(mesh, field);
+  assign_metric(mesh, metric_by_id(mesh, metric));
   return quality_dict(quality_report(mesh, space));
 }
 
@@ -263,21 +235,10 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
       exact = [k = *kind](const Point& p) { return evaluate(k, p); };
     inputs.metric = &exact;
   } else {
-    given = metric_by_id(mesh, call.metric);
+    given = metric_by_id(mesh, call.metric, "metric", false);
   }
   py::list cycles;
-  const py::object on_cycle = call.on_cycle;
-  inputs.on_cycle = [&](const CycleReport& c) {
-    py::gil_scoped_acquire gil;
-    cycles.append(cycle_dict(c));
-    try {
-      if (!on_cycle.is_none()) on_cycle(cycles[py::len(cycles) - 1]);
-    } catch (py::error_already_set& e) {
-      e.restore();
-      throw PythonError{};
-    }
-    if (PyErr_CheckSignals() != 0) throw PythonError{};
-  };
+  inputs.on_cycle = cycle_callback(cycles, call.on_cycle);
   OperatorReport ops;
   double seconds = 0.0;
   QualityReport q;
@@ -292,22 +253,15 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
       ops += report.ops;
       seconds += report.seconds;
     }
+    // Each adaptation's budget is relative to the volume it starts from.
     const double budget = call.iterations * ao.volume_budget;
-    ValidateOptions vo;
-    vo.expected_volume = volume;
-    vo.volume_tolerance = budget * (1.0 + budget) + 1e-9;
-    const auto check = mesh.validate(vo);
-    if (!check.ok()) throw InputError(fmt::format("adapt: the adapted mesh is invalid\n{}", check.to_string()));
+    check_adapted(mesh, volume, budget * (1.0 + budget) + 1e-9);
     q = quality_report(mesh, policies.space, {.cached_quality = true});
   } catch (const PythonError&) {
     throw py::error_already_set();
   }
-  py::dict report;
-  report["cycles"] = cycles;
-  report["ops"] = ops_dict(ops);
-  report["seconds"] = seconds;
-  report["quality"] = quality_dict(q);
-  return py::make_tuple(py::cast(PyMesh(std::move(mesh), m.version()), py::return_value_policy::move), report);
+  return py::make_tuple(py::cast(PyMesh(std::move(mesh), m.version()), py::return_value_policy::move),
+                        adapt_report(cycles, ops, seconds, q));
 }
 
 }  // namespace metrica::python

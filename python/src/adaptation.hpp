@@ -5,17 +5,13 @@
 
 #include "mesh_arrays.hpp"
 
+#include <metrica/metrics/quality_report.hpp>
 #include <metrica/pipeline/adapt.hpp>
 
 #include <pybind11/functional.h>
 #include <string>
 
 namespace metrica::python {
-
-// The analytic metric `name` at the mesh's vertices, clamped to [hmin,
-// hmax] when given: (n, 6) in libMeshb order (xx, xy, yy, xz, yz, zz).
-py::array_t<double> analytic_metric(const PyMesh& m, const std::string& name, const py::object& hmin,
-                                    const py::object& hmax);
 
 // The fields of a .sol/.solb: one array per field, (n,), (n, 3) or (n, 6).
 py::list read_field(const std::string& path);
@@ -39,6 +35,24 @@ struct AdaptCall {
   py::dict options;
   py::object on_cycle;
 };
+
+// Thrown from the cycle callback when Python has an error to raise (a
+// signal's KeyboardInterrupt, or the callback's own exception): the error
+// stays set in the thread's state, raised once the GIL is back.
+struct PythonError {};
+
+// The callback of every cycle, pass and round, called without the GIL:
+// appends the cycle's dict to `cycles` (with the GIL), calls `on_cycle`
+// with it, and throws PythonError when Python has an error to raise. Both
+// must outlive the callback.
+std::function<void(const CycleReport&)> cycle_callback(py::list& cycles, const py::object& on_cycle);
+
+// InputError unless the adapted mesh is valid, of volume `volume` within
+// the relative `tolerance`.
+void check_adapted(const Mesh& mesh, double volume, double tolerance);
+
+// The report adapt() returns: cycles, operations, seconds, quality.
+py::dict adapt_report(const py::list& cycles, const OperatorReport& ops, double seconds, const QualityReport& q);
 
 // The adapted copy of the mesh and the report: per cycle what each
 // operation did, and the quality report. Runs without the GIL; Ctrl-C

@@ -2,7 +2,9 @@
 // and the adaptation (python/metrica/__init__.py is the module users
 // import).
 #include "adaptation.hpp"
+#include "fields.hpp"
 #include "mesh_arrays.hpp"
+#include "pipeline.hpp"
 
 #include <metrica/error.hpp>
 #include <metrica/io/file_format.hpp>
@@ -65,6 +67,20 @@ PYBIND11_MODULE(_metrica, m) {
       "Writes one field to a .sol/.solb: (n,) scalar, (n, 3) vector, (n, 6) symmetric tensor.");
   m.def("analytic_metric", &analytic_metric, py::arg("mesh"), py::arg("name"), py::arg("hmin") = py::none(),
         py::arg("hmax") = py::none(), "The analytic metric (linear, polar-1, polar-2) at the mesh's vertices, (n, 6).");
+  m.def("analytic_field", &analytic_field, py::arg("mesh"), py::arg("name"),
+        "An analytic field of `metrica metric --field` at the mesh's vertices, (n,).");
+  m.def("multiscale_metric", &multiscale_metric, py::arg("mesh"), py::arg("field"), py::arg("complexity"),
+        py::arg("norm") = 2.0, py::arg("gradation") = py::none(), py::arg("hmin") = py::none(),
+        py::arg("hmax") = py::none(), py::arg("max_anisotropy") = py::none(),
+        "The multiscale metric of a field (n,), or of k fields (n, k) intersected, scaled to `complexity`, "
+        "bounded and graded: (n, 6).");
+  m.def("intersect", &intersect, py::arg("a"), py::arg("b"), "The metric intersection of two (n, 6) fields.");
+  m.def("complexity", &complexity, py::arg("mesh"), py::arg("metric"), "The complexity of an (n, 6) metric.");
+  m.def("interpolate", &interpolate, py::arg("mesh"), py::arg("field"), py::arg("to_mesh"),
+        "The P1 interpolant of a field (n,) or (n, k) on `mesh` at the vertices of `to_mesh`.");
+  m.def("error", &l2_error, py::arg("mesh"), py::arg("values"), py::arg("exact") = py::none(),
+        py::arg("reference") = py::none(), py::arg("reference_values") = py::none(),
+        "The L2 error of a P1 field against an analytic field (exact=name), or against a reference mesh's field.");
   m.def("quality", &quality, py::arg("mesh"), py::arg("metric"), py::arg("space") = "log-euclidean",
         "The UGAWG quality report of the mesh in the metric, as a dict.");
   m.def(
@@ -85,4 +101,30 @@ PYBIND11_MODULE(_metrica, m) {
       },
       py::arg("mesh"), py::arg("metric"), py::arg("analytic"), py::arg("iterations"), py::arg("threads"),
       py::arg("concurrency"), py::arg("space"), py::arg("precision"), py::arg("options"), py::arg("on_cycle"));
+  m.def(
+      "_run_pipeline",
+      [](const PyMesh& x, py::object metric, std::string analytic, py::list cycle, py::list polish, py::list repair,
+         py::dict rules, std::string concurrency, int threads, py::object on_cycle) {
+        auto specs = [](const py::list& list) {
+          std::vector<StageSpec> out;
+          for (const auto& item : list) {
+            const auto t = item.cast<py::tuple>();
+            out.push_back({t[0].cast<std::string>(), t[1].cast<std::string>(), t[2].cast<py::dict>()});
+          }
+          return out;
+        };
+        PipelineCall call;
+        call.metric = std::move(metric);
+        call.analytic = std::move(analytic);
+        call.cycle = specs(cycle);
+        call.polish = specs(polish);
+        call.repair = specs(repair);
+        call.rules = std::move(rules);
+        call.concurrency = std::move(concurrency);
+        call.threads = threads;
+        call.on_cycle = std::move(on_cycle);
+        return run_pipeline(x, call);
+      },
+      py::arg("mesh"), py::arg("metric"), py::arg("analytic"), py::arg("cycle"), py::arg("polish"), py::arg("repair"),
+      py::arg("rules"), py::arg("concurrency"), py::arg("threads"), py::arg("on_cycle"));
 }

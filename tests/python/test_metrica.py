@@ -120,7 +120,7 @@ def test_bad_adaptation_calls_raise(tmp_path):
     metric[0] = [1, 0, -1, 0, 0, 1]  # not positive definite
     with pytest.raises(metrica.InputError, match="positive definite|SPD"):
         metrica.adapt(mesh, metric)
-    with pytest.raises(metrica.InputError, match="tensors for"):
+    with pytest.raises(metrica.InputError, match="rows for"):
         metrica.adapt(mesh, metric[:-1])
 
 
@@ -139,3 +139,81 @@ def test_ctrl_c_stops_the_run_and_leaves_the_input(tmp_path):
         signal.signal(signal.SIGINT, previous)
     mesh.check()
     assert np.array_equal(mesh.points, before)
+
+
+def test_multiscale_metric_intersection_complexity(tmp_path):
+    mesh = metrica.read(cube(tmp_path, 4))
+    u = metrica.analytic_field(mesh, "tanh3")
+    assert u.shape == (mesh.num_vertices,)
+    metric = metrica.multiscale_metric(mesh, u, complexity=2000, gradation=3.0)
+    assert metric.shape == (mesh.num_vertices, 6)
+    assert metrica.complexity(mesh, metric) == pytest.approx(2000, rel=0.02)
+    # Two fields intersected ask for at least what each asks.
+    both = metrica.multiscale_metric(mesh, np.stack([u, u * u], axis=1), complexity=2000)
+    assert both.shape == metric.shape
+    iso = np.tile([4.0, 0, 4.0, 0, 0, 4.0], (mesh.num_vertices, 1))
+    met = metrica.intersect(metric, iso)
+    assert np.all(met[:, 0] >= np.maximum(metric[:, 0], 4.0) - 1e-9)
+    assert np.array_equal(metrica.intersect(iso, iso), iso)
+    with pytest.raises(metrica.InputError):
+        metrica.multiscale_metric(mesh, u, complexity=-1)
+    with pytest.raises(metrica.InputError, match="rows for"):
+        metrica.multiscale_metric(mesh, u[:-1], complexity=100)
+
+
+def test_interpolation_and_error(tmp_path):
+    coarse = metrica.read(cube(tmp_path, 3))
+    fine, _ = metrica.adapt(coarse, analytic="linear", concurrency="serial")
+    u = metrica.analytic_field(coarse, "tanh3")
+    carried = metrica.interpolate(coarse, u, fine)
+    assert carried.shape == (fine.num_vertices,)
+    # A linear field is carried exactly.
+    x = coarse.points[:, 0] + 2 * coarse.points[:, 1]
+    assert np.allclose(metrica.interpolate(coarse, x, fine), fine.points[:, 0] + 2 * fine.points[:, 1])
+    two = metrica.interpolate(coarse, np.stack([x, -x], axis=1), fine)
+    assert two.shape == (fine.num_vertices, 2) and np.allclose(two[:, 1], -two[:, 0])
+    e_coarse = metrica.error(coarse, u, exact="tanh3")
+    e_fine = metrica.error(fine, metrica.analytic_field(fine, "tanh3"), exact="tanh3")
+    assert 0 < e_fine < e_coarse
+    against_fine = metrica.error(coarse, u, reference=fine, reference_values=metrica.analytic_field(fine, "tanh3"))
+    assert against_fine > 0
+
+
+def test_meshio_round_trip(tmp_path):
+    meshio = pytest.importorskip("meshio")
+    mesh = metrica.read(cube(tmp_path))
+    m = metrica.to_meshio(mesh)
+    assert isinstance(m, meshio.Mesh)
+    back = metrica.from_meshio(m)
+    assert np.array_equal(back.tets, mesh.tets) and np.array_equal(back.triangle_ids, mesh.triangle_ids)
+
+
+def test_a_pipeline_composed_in_python(tmp_path):
+    mesh = metrica.read(cube(tmp_path))
+    seen = []
+    p = metrica.Pipeline(
+        cycle=[("collapse", {}), ("split", {}),
+               ("delaunay", "flip", {"criterion": "metric-delaunay"}),
+               ("edge-weight", "flip", {"criterion": "edge-weight"}),
+               ("smooth", {"below": 0.3})],
+        polish=[("flip", {"seed_below": 0.75}), ("smooth", {"below": 1.0})],
+        max_cycles=4, quality_passes=2, repair_rounds=0)
+    adapted, report = p.run(mesh, analytic="linear", concurrency="serial", on_cycle=seen.append)
+    adapted.check()
+    assert report["ops"]["edge-weight"]["tried"] > 0 and report["ops"]["delaunay"]["applied"] > 0
+    assert sum(1 for c in report["cycles"] if c["kind"] == "cycle") <= 4 and seen
+    assert report["quality"]["unit_length_share"] > 0.8
+    # Serial runs are reproducible; a stage left out changes the result.
+    again, _ = p.run(mesh, analytic="linear", concurrency="serial")
+    assert np.array_equal(again.points, adapted.points)
+    p.cycle = p.cycle[:2] + p.cycle[4:]
+    fewer, report = p.run(mesh, analytic="linear", concurrency="serial")
+    assert "edge-weight" not in report["ops"] and fewer.num_tets != adapted.num_tets
+    with pytest.raises(metrica.InputError, match="unknown operation 'refine'"):
+        metrica.Pipeline(cycle=[("refine", {})]).run(mesh, analytic="linear")
+    with pytest.raises(metrica.InputError, match="unknown option 'below'"):
+        metrica.Pipeline(cycle=[("collapse", {"below": 1})]).run(mesh, analytic="linear")
+    with pytest.raises(metrica.InputError, match="unknown criterion"):
+        metrica.Pipeline(cycle=[("flip", {"criterion": "delaunay"})]).run(mesh, analytic="linear")
+    with pytest.raises(metrica.InputError, match="two stages named"):
+        metrica.Pipeline(cycle=[("flip", {}), ("flip", {})]).run(mesh, analytic="linear")
