@@ -123,6 +123,16 @@ AdaptOptions adapt_options(const py::dict& options, MetricBounds& bounds) {
 
 }  // namespace
 
+ThreadsForCall::ThreadsForCall(int threads) {
+  if (threads <= 0) return;
+  previous_ = thread_count();
+  set_thread_count(threads);
+}
+
+ThreadsForCall::~ThreadsForCall() {
+  if (previous_ > 0) set_thread_count(previous_);
+}
+
 std::function<void(const CycleReport&)> cycle_callback(py::list& cycles, const py::object& on_cycle) {
   // By address: the function is copied without the GIL, a Python object
   // may not be.
@@ -219,7 +229,7 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
     throw InputError("adapt: iterations > 1 needs analytic (an array holds values at the input's vertices only)");
   if (call.threads < 0 || call.threads > 4096)
     throw InputError(fmt::format("adapt: threads must be in [1, 4096] (got {})", call.threads));
-  if (call.threads > 0) set_thread_count(call.threads);
+  const ThreadsForCall threads(call.threads);
 
   Mesh mesh = m.mesh();  // the input stays as it was, whatever happens
   const double volume = mesh.volume();

@@ -51,6 +51,19 @@ std::function<void(const CycleReport&)> cycle_callback(py::list& cycles, const p
 // the relative `tolerance`.
 void check_adapted(const Mesh& mesh, double volume, double tolerance);
 
+// The thread count for one call (`threads` > 0), the previous one back
+// when the call ends, however it ends.
+class ThreadsForCall {
+ public:
+  explicit ThreadsForCall(int threads);
+  ~ThreadsForCall();
+  ThreadsForCall(const ThreadsForCall&) = delete;
+  ThreadsForCall& operator=(const ThreadsForCall&) = delete;
+
+ private:
+  int previous_ = 0;
+};
+
 // The report adapt() returns: cycles, operations, seconds, quality.
 py::dict adapt_report(const py::list& cycles, const OperatorReport& ops, double seconds, const QualityReport& q);
 

@@ -207,7 +207,7 @@ py::tuple run_pipeline(const PyMesh& m, const PipelineCall& call) {
     throw InputError("pipeline: give one of metric (an (n, 6) array) or analytic (a name)");
   if (call.threads < 0 || call.threads > 4096)
     throw InputError(fmt::format("pipeline: threads must be in [1, 4096] (got {})", call.threads));
-  if (call.threads > 0) set_thread_count(call.threads);
+  const ThreadsForCall threads(call.threads);
   if (call.concurrency == Serial::name) return run_with<Serial>(m, call);
   if (call.concurrency == Speculative::name) return run_with<Speculative>(m, call);
   throw InputError(fmt::format("pipeline: unknown concurrency '{}' (serial, speculative)", call.concurrency));
