@@ -30,7 +30,7 @@ struct BoundarySwapOptions {
 };
 
 template <MetricSpace S, Precision P, Geometry G>
-struct BoundarySwap {
+struct BoundarySwap : EdgeShellSteps {
   using Item = EdgeSeed;
   using Scratch = FlipScratch;
   using Plan = EdgeRemovalPlan;
@@ -39,13 +39,6 @@ struct BoundarySwap {
   G geometry{};
 
   PassRoom room() const { return {.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 0.05}; }
-  Found seed(const Mesh&, const Item& e, Scratch&, VertexList& hold) const { return hold_edge_ends(e, hold); }
-  Found find(const Mesh& mesh, const Item& e, Scratch& s, VertexList& hold) const {
-    const auto [a, b] = edge_from_key(e.key);
-    if (!find_edge_shell(mesh, a, b, s.ball, s.shell)) return Found::gone;
-    append_shell_vertices(mesh, a, b, s.shell, hold);
-    return Found::cavity;
-  }
   Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {
     const auto [a, b] = edge_from_key(e.key);
     const Shell& shell = s.shell;
@@ -114,7 +107,7 @@ OperatorStats swap_toward_model(Mesh& mesh, const BoundarySwapOptions& o, const 
   Stopwatch clock;
   OperatorStats stats;
   const std::vector<EdgeSeed> edges = boundary_edge_seeds(mesh);
-  stats = run_pass<C>(mesh, BoundarySwap<S, P, G>{o, geometry}, edges);
+  stats = run_pass<C>(mesh, BoundarySwap<S, P, G>{{}, o, geometry}, edges);
   stats.seconds = clock.seconds();
   return stats;
 }

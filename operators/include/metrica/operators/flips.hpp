@@ -366,6 +366,23 @@ inline Found hold_edge_ends(const EdgeSeed& e, VertexList& hold) {
   return Found::cavity;
 }
 
+// The seed and find steps of an operation on an edge's shell (the boundary
+// swap, the interface flip): the edge's ends held, then its shell walked
+// from a's ball and its vertices held. The Scratch has `ball` and `shell`.
+struct EdgeShellSteps {
+  template <class Scratch>
+  Found seed(const Mesh&, const EdgeSeed& e, Scratch&, VertexList& hold) const {
+    return hold_edge_ends(e, hold);
+  }
+  template <class Scratch>
+  Found find(const Mesh& mesh, const EdgeSeed& e, Scratch& s, VertexList& hold) const {
+    const auto [a, b] = edge_from_key(e.key);
+    if (!find_edge_shell(mesh, a, b, s.ball, s.shell)) return Found::gone;
+    append_shell_vertices(mesh, a, b, s.shell, hold);
+    return Found::cavity;
+  }
+};
+
 // The edge removal as an operation: items are edges with a tet that held
 // them when the work list was made (the shell walk starts there when the
 // tet still holds the edge, else from a's ball).

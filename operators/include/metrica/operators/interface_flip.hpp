@@ -61,7 +61,7 @@ struct InterfaceFlipPlan {
 };
 
 template <MetricSpace S, Precision P, Geometry G>
-struct InterfaceFlip {
+struct InterfaceFlip : EdgeShellSteps {
   using Item = EdgeSeed;
   using Scratch = InterfaceFlipScratch;
   using Plan = InterfaceFlipPlan;
@@ -70,13 +70,6 @@ struct InterfaceFlip {
   G geometry{};
 
   PassRoom room() const { return {.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 2}; }
-  Found seed(const Mesh&, const Item& e, Scratch&, VertexList& hold) const { return hold_edge_ends(e, hold); }
-  Found find(const Mesh& mesh, const Item& e, Scratch& s, VertexList& hold) const {
-    const auto [a, b] = edge_from_key(e.key);
-    if (!find_edge_shell(mesh, a, b, s.ball, s.shell)) return Found::gone;
-    append_shell_vertices(mesh, a, b, s.shell, hold);
-    return Found::cavity;
-  }
 
   Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {
     const auto [a, b] = edge_from_key(e.key);
@@ -191,7 +184,7 @@ OperatorStats flip_interfaces(Mesh& mesh, const InterfaceFlipOptions& o, const G
   Stopwatch clock;
   OperatorStats stats;
   const std::vector<EdgeSeed> edges = interface_edge_seeds(mesh);
-  if (!edges.empty()) stats = run_pass<C>(mesh, InterfaceFlip<S, P, G>{o, geometry}, edges);
+  if (!edges.empty()) stats = run_pass<C>(mesh, InterfaceFlip<S, P, G>{{}, o, geometry}, edges);
   stats.seconds = clock.seconds();
   return stats;
 }
