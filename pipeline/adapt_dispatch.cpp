@@ -36,13 +36,15 @@ void check_policy_choice(const PolicyChoice& c) {
 std::string not_compiled_message(std::string_view what, std::string_view name, std::string_view compiled) {
   return fmt::format(
       "{} '{}': this build compiles the pipeline for the {} '{}' only "
-      "(METRICA_DEFAULT_POLICIES_ONLY: the sanitizer builds and scripts/demo's; scripts/build "
-      "compiles every policy)",
+      "(METRICA_DEFAULT_POLICIES_ONLY, METRICA_SPECULATIVE_ONLY: the sanitizer builds and scripts/demo's; "
+      "scripts/build compiles every policy)",
       what, name, what, compiled);
 }
 
 bool policies_compiled(const PolicyChoice& p) {
-  return !METRICA_DEFAULT_POLICIES_ONLY || (p.space == Spaces::at<0>::name && p.precision == Precisions::at<0>::name);
+  return (!METRICA_DEFAULT_POLICIES_ONLY ||
+          (p.space == Spaces::at<0>::name && p.precision == Precisions::at<0>::name)) &&
+         (!METRICA_SPECULATIVE_ONLY || p.concurrency == Concurrencies::at<0>::name);
 }
 
 AdaptReport adapt_by_name(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& p, const AdaptInputs& inputs) {
@@ -50,6 +52,8 @@ AdaptReport adapt_by_name(Mesh& mesh, const AdaptOptions& options, const PolicyC
     return with_policy<Concurrencies>("concurrency", p.concurrency, [&]<class C>() -> AdaptReport {
       if constexpr (METRICA_DEFAULT_POLICIES_ONLY && !std::is_same_v<S, Spaces::at<0>>) {
         throw InputError(not_compiled_message("space", S::name, Spaces::at<0>::name));
+      } else if constexpr (METRICA_SPECULATIVE_ONLY && !std::is_same_v<C, Concurrencies::at<0>>) {
+        throw InputError(not_compiled_message("concurrency", C::name, Concurrencies::at<0>::name));
       } else {
         if (inputs.model != nullptr) return adapt_instance<S, C, CadGeometry>(mesh, options, inputs, p.precision);
         return adapt_instance<S, C, NoGeometry>(mesh, options, inputs, p.precision);

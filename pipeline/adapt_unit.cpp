@@ -30,6 +30,7 @@ using UnitGeometry = Geometries::at<kUnit % Geometries::size>;
 // The standard stages of the triple (declared in standard_stages.hpp).
 static_assert(Precisions::size == 3, "one line per precision below");
 static_assert(!METRICA_DEFAULT_POLICIES_ONLY || kUnit < kPerSpace, "the default space's units only");
+static_assert(!METRICA_SPECULATIVE_ONLY || kUnit < Geometries::size, "the default concurrency's units only");
 METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<0>, UnitConcurrency, UnitGeometry)
 #if !METRICA_DEFAULT_POLICIES_ONLY
 METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<1>, UnitConcurrency, UnitGeometry)

@@ -32,4 +32,8 @@ inline Run metrica_cli(const std::string& args) {
 
 inline bool has(const Run& r, const std::string& s) { return r.output.find(s) != std::string::npos; }
 
+// " --concurrency serial" where the command has the serial pipeline (the
+// AddressSanitizer build compiles the speculative one only).
+inline std::string serial_option() { return METRICA_SPECULATIVE_ONLY ? "" : " --concurrency serial"; }
+
 }  // namespace metrica::test

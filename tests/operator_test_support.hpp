@@ -24,9 +24,22 @@
 #include <map>
 #include <random>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace metrica::test {
+
+// Exact runs every predicate in rational arithmetic, about 20x slower than
+// Filtered: a whole adaptation under it takes at most two cycles, one
+// quality pass and one repair round (`rules`: AdaptOptions or a Pipeline).
+template <class P, class Rules>
+void shorten_under_exact(Rules& rules) {
+  if constexpr (std::is_same_v<P, Exact>) {
+    rules.max_cycles = std::min(rules.max_cycles, 2);
+    rules.quality_passes = std::min(rules.quality_passes, 1);
+    rules.repair_rounds = std::min(rules.repair_rounds, 1);
+  }
+}
 
 inline void set_uniform_metric(Mesh& mesh, double h) {
   std::vector<Sym6> f(mesh.vertex_capacity(), isotropic_metric(h));
@@ -144,8 +157,12 @@ struct SpeculativeOn {
 // 2 and 8 threads (8 on a 2-core machine forces interleavings). A test
 // body opens with `const ExecutorOf<T> executor;`. The sanitizer builds
 // compile the pipeline for the default space and precision only
-// (METRICA_DEFAULT_POLICIES_ONLY): there, those under each executor.
-#if METRICA_DEFAULT_POLICIES_ONLY
+// (METRICA_DEFAULT_POLICIES_ONLY): there, those under each executor; the
+// ThreadSanitizer build (METRICA_TSAN) only those that run threads.
+#if METRICA_TSAN
+#define METRICA_POLICY_COMBINATIONS \
+  metrica::Policies<LogEuclidean, Filtered, Speculative, 2>, metrica::Policies<LogEuclidean, Filtered, Speculative, 8>
+#elif METRICA_DEFAULT_POLICIES_ONLY
 #define METRICA_POLICY_COMBINATIONS                                                                             \
   metrica::Policies<LogEuclidean, Filtered, Serial>, metrica::Policies<LogEuclidean, Filtered, Speculative, 1>, \
       metrica::Policies<LogEuclidean, Filtered, Speculative, 2>,                                                \

@@ -18,6 +18,7 @@ using namespace metrica;
 using test::has;
 using test::metrica_cli;
 using test::Run;
+using test::serial_option;
 
 namespace {
 
@@ -158,7 +159,7 @@ TEST_SUITE("regression") {
     REQUIRE(run("convert " + cube + " -") == 0);
     REQUIRE(metrica_cli("convert " + cube + " " + (dir / "c.mesh")).code == 0);
     CHECK(slurp("out") == slurp("c.mesh"));
-    REQUIRE(run("adapt " + cube + " -m " + metric + " --concurrency serial --cycles 2 --quality-passes 1 -o " +
+    REQUIRE(run("adapt " + cube + " -m " + metric + serial_option() + " --cycles 2 --quality-passes 1 -o " +
                 (dir / "a.meshb") + " --metric-out -") == 0);
     CHECK(slurp("out").rfind("MeshVersionFormatted", 0) == 0);
     CHECK(slurp("out").find("SolAtVertices") != std::string::npos);
@@ -429,7 +430,7 @@ TEST_SUITE("regression") {
     CHECK(!start.on_geometry[2].empty());
     const auto adapt =
         metrica_cli("adapt " + (dir / "start.meshb") + " --geometry " + step +
-                    " --analytic polar-2 --cycles 4 --quality-passes 1 --concurrency serial -o " + (dir / "a.meshb"));
+                    " --analytic polar-2 --cycles 4 --quality-passes 1" + serial_option() + " -o " + (dir / "a.meshb"));
     INFO(adapt.output);
     REQUIRE(adapt.code == 0);
     CHECK(has(adapt, "largest distance to their entity"));

@@ -247,7 +247,7 @@ TEST_SUITE("regression") {
     const std::string out = dir / "out";
     // The loop stages each iteration's mesh while it runs; stop it after the first.
     const std::string cmd = std::string(METRICA_CLI) + " loop --field tanh3 --complexity 1000 --iterations 60 " +
-                            "--concurrency serial -q --output-dir " + out;
+                            test::serial_option() + " -q --output-dir " + out;
     const pid_t child = ::fork();
     REQUIRE(child >= 0);
     if (child == 0) {

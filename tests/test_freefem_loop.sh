@@ -17,7 +17,7 @@ fail() {
   exit 1
 }
 
-"$example/run" --iterations 1 --complexity 150 --size 0.15 --threads 2 --output-dir "$dir" --metrica "$metrica"
+"$example/run" --iterations 1 --complexity 80 --size 0.15 --threads 2 --output-dir "$dir" --metrica "$metrica"
 
 [ -f "$dir/history.csv" ] || fail "no history.csv"
 [ "$(head -1 "$dir/history.csv")" = "iteration,vertices,tets,cd,cl,solver_seconds,metrica_seconds,model_distance,newton" ] ||

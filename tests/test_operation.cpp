@@ -48,6 +48,9 @@ std::vector<EdgeSeed> all_edge_seeds(const Mesh& mesh) {
   return {seeds.begin(), seeds.end()};
 }
 
+// The plans' properties and the toy executor, which run no threads, are
+// not in the ThreadSanitizer build: neither are their helpers.
+#if !METRICA_TSAN
 std::vector<TetId> all_tets(const Mesh& mesh) {
   std::vector<TetId> out;
   for (TetId t = 0; t < mesh.tet_capacity(); ++t)
@@ -99,6 +102,7 @@ struct ReverseSerial : Serial {
   }
 };
 static_assert(Concurrency<ReverseSerial>);
+#endif  // !METRICA_TSAN
 
 template <class S, class P>
 struct SpacePrecision {
@@ -115,6 +119,7 @@ struct SpacePrecision {
   SpacePrecision<LogEuclidean, Filtered>, SpacePrecision<Anisotropic, Exact>, SpacePrecision<Isotropic, Fast>
 #endif
 
+#if !METRICA_TSAN
 TEST_SUITE("property") {
   TEST_CASE_TEMPLATE("a decided split or centroid insertion never inverts - applied it keeps areas and ridges", T,
                      METRICA_SPACE_PRECISION) {
@@ -277,6 +282,7 @@ TEST_SUITE("invariant") {
     CHECK(last.min_quality > 0.2);
   }
 }
+#endif  // !METRICA_TSAN
 
 TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE(

@@ -32,6 +32,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 using namespace metrica;
 using namespace metrica::test;
@@ -303,7 +304,10 @@ TEST_SUITE("parallel") {
       std::ifstream in(path, std::ios::binary);
       return std::string(std::istreambuf_iterator<char>(in), {});
     };
-    for (int version : {1, 2}) {
+    // The versions differ in the numbers' width only: under ThreadSanitizer
+    // one of them checks the parts' writes.
+    const std::vector<int> versions = METRICA_TSAN ? std::vector<int>{2} : std::vector<int>{1, 2};
+    for (int version : versions) {
       CAPTURE(version);
       const std::string mesh_text = io::format_mesh(m, io::Encoding::ascii, version);
       const std::string sol_text = io::format_sol(sol, io::Encoding::ascii, version);

@@ -37,6 +37,7 @@ TEST_SUITE("invariant") {
     AdaptOptions o;
     o.max_cycles = 3;
     o.repair_rounds = 2;
+    shorten_under_exact<P>(o);
     Adapter<S, P, C, NoGeometry> a(mesh, &metric);
     a.set_volume_budget(o.volume_budget);
     run_pipeline(a, standard_pipeline<Adapter<S, P, C, NoGeometry>>(o));

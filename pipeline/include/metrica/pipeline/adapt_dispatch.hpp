@@ -29,7 +29,7 @@ struct PolicyChoice {
 // InputError naming the choices when a name is not in its list.
 void check_policy_choice(const PolicyChoice& choice);
 // False for a choice whose pipeline this build leaves out
-// (METRICA_DEFAULT_POLICIES_ONLY, the sanitizer builds).
+// (METRICA_DEFAULT_POLICIES_ONLY, METRICA_SPECULATIVE_ONLY: the sanitizer builds).
 bool policies_compiled(const PolicyChoice& choice);
 // "space 'isotropic': this build compiles the pipeline for the space
 // 'log-euclidean' only (...)".

@@ -16,10 +16,14 @@
 #include <metrica/predicates/precision.hpp>
 
 // 1 in the sanitizer builds, which compile the default space and
-// precision only (pipeline/CMakeLists.txt sets it for every user of the
+// precision only, and the AddressSanitizer build the default concurrency
+// only too (pipeline/CMakeLists.txt sets both for every user of the
 // library).
 #ifndef METRICA_DEFAULT_POLICIES_ONLY
 #define METRICA_DEFAULT_POLICIES_ONLY 0
+#endif
+#ifndef METRICA_SPECULATIVE_ONLY
+#define METRICA_SPECULATIVE_ONLY 0
 #endif
 
 namespace metrica {
@@ -41,6 +45,7 @@ using Geometries = PolicyList<NoGeometry, CadGeometry>;
   kind template OperatorStats reconnect<S, P, C, MetricDelaunay, G>(Mesh&, const ReconnectOptions&, const G&); \
   kind template OperatorStats smooth_vertices<S, P, C, MinQuality, G>(Mesh&, const SmoothOptions&, const G&);  \
   kind template OperatorStats swap_toward_model<S, P, C, G>(Mesh&, const BoundarySwapOptions&, const G&);      \
+  kind template OperatorStats flip_interfaces<S, P, C, G>(Mesh&, const InterfaceFlipOptions&, const G&);       \
   kind template Pipeline<Adapter<S, P, C, G>> standard_pipeline<Adapter<S, P, C, G>>(const AdaptOptions&);     \
   kind template const AdaptReport& run_pipeline<Adapter<S, P, C, G>>(Adapter<S, P, C, G>&,                      \
                                                                      const Pipeline<Adapter<S, P, C, G>>&);    \
