@@ -169,10 +169,6 @@ double check_predicted_size(const Options& o, double complexity, const std::stri
 std::unique_ptr<CadModel> open_geometry(const std::string& path, Mesh& mesh, const io::MeshData* input);
 // One line: how far the boundary vertices are from their entities.
 std::string model_distance_text(const Mesh& mesh, const CadModel& model);
-// InputError naming `what` when a boundary vertex has no model entity or
-// lies farther than `check --geometry`'s default tolerance (1e-8) from it:
-// an output that check would refuse is never written.
-void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what);
 
 // What runs a command's sweeps over `n` items outside the operators
 // (validation, the formatting of ASCII outputs): the default policy's

@@ -30,14 +30,4 @@ std::string model_distance_text(const Mesh& mesh, const CadModel& model) {
   return text;
 }
 
-void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what) {
-  constexpr double kTolerance = 1e-8;
-  const ModelDistance d = model_distance(mesh, model, kTolerance);
-  if (d.unassociated == 0 && d.max <= kTolerance) return;
-  throw InputError(
-      fmt::format("{}: the boundary is not on {} ({} vertices without an entity, {} farther than {:.0e}, "
-                  "largest distance {:.3g}); nothing written",
-                  what, model.source(), count_text(d.unassociated), count_text(d.beyond), kTolerance, d.max));
-}
-
 }  // namespace metrica::cli

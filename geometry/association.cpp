@@ -195,4 +195,14 @@ void complete_geometry_records(io::MeshData& data, const CadModel& model) {
   curves.erase(std::unique(curves.begin(), curves.end(), same), curves.end());
 }
 
+void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what) {
+  constexpr double kTolerance = 1e-8;
+  const ModelDistance d = model_distance(mesh, model, kTolerance);
+  if (d.unassociated == 0 && d.max <= kTolerance) return;
+  throw InputError(
+      fmt::format("{}: the boundary is not on {} ({} vertices without an entity, {} farther than {:.0e}, "
+                  "largest distance {:.3g}); nothing written",
+                  what, model.source(), d.unassociated, d.beyond, kTolerance, d.max));
+}
+
 }  // namespace metrica

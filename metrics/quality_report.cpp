@@ -188,6 +188,21 @@ QualityReport quality_report(const Mesh& mesh, std::string_view space, const Qua
   return with_policy<Spaces>("metric space", space, [&]<class S>() { return report_in<S>(mesh, options); });
 }
 
+QualityMeasures quality_measures(const Mesh& mesh, std::string_view space) {
+  if (!mesh.has_metric()) throw InputError("quality measures: the mesh has no metric");
+  return with_policy<Spaces>("metric space", space, [&]<class S>() {
+    QualityMeasures m;
+    for_each_unique_edge(mesh, [&](VertexId a, VertexId b) {
+      m.edges.push_back({a, b});
+      m.lengths.push_back(S::edge_length(mesh, a, b));
+    });
+    m.mean_ratios.reserve(mesh.num_tets());
+    for (TetId t = 0; t < mesh.tet_capacity(); ++t)
+      if (mesh.tet_alive(t)) m.mean_ratios.push_back(S::mean_ratio(mesh, mesh.tet(t)));
+    return m;
+  });
+}
+
 std::string format_report(const QualityReport& r) {
   std::string out;
   out += fmt::format("quality in the metric ({} interpolation)\n", r.space);

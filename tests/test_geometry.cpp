@@ -328,7 +328,6 @@ TEST_SUITE("invariant") {
     test::set_metric_function(mesh, metric);
     AdaptOptions o;
     o.max_cycles = 4;
-    test::shorten_under_exact<typename T::Precision>(o);
     const AdaptReport adapted = adapt<S, typename T::Precision, typename T::Concurrency, CadGeometry>(
         mesh, o, {.metric = &metric, .model = &model});
     const auto report = mesh.validate();

@@ -67,7 +67,7 @@ def _log_cycle(cycle):
 
 
 def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concurrency="speculative",
-          space="log-euclidean", precision="filtered", on_cycle=None, **options):
+          space="log-euclidean", precision="filtered", geometry=None, on_cycle=None, **options):
     """Adapts a copy of `mesh` to a metric and returns (adapted mesh, report).
 
     metric:      an (n, 6) float64 array at the mesh's vertices (xx, xy, yy,
@@ -77,6 +77,9 @@ def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concu
     concurrency: "speculative" (threads) or "serial" (the command's serial
                  output, to the bit); space: "log-euclidean", "anisotropic",
                  "isotropic"; precision: "filtered", "exact", "fast".
+    geometry:    a CAD model (.step, .iges, .brep, .geo) the boundary lies
+                 on, as `metrica adapt --geometry`: its surface tags are the
+                 mesh's surface ids; new boundary vertices go on the model.
     options:     those of `metrica adapt`, '-' written '_': cycles,
                  quality_passes, repair_rounds, repair_below, max_length,
                  min_length, collapse_max_length, shape_floor, smooth_below,
@@ -95,7 +98,7 @@ def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concu
             on_cycle(cycle)
 
     return _metrica._adapt(mesh, metric, analytic or "", int(iterations), int(threads or 0), concurrency, space,
-                           precision, dict(options), each)
+                           precision, str(geometry or ""), dict(options), each)
 
 
 class Pipeline:

@@ -3,6 +3,8 @@
 #include "fields.hpp"
 
 #include <metrica/error.hpp>
+#include <metrica/geometry/association.hpp>
+#include <metrica/geometry/cad_model.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_bounds.hpp>
@@ -15,7 +17,9 @@
 #include <fmt/core.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <memory>
 #include <pybind11/stl.h>
 
 namespace metrica::python {
@@ -149,12 +153,16 @@ std::function<void(const CycleReport&)> cycle_callback(py::list& cycles, const p
   };
 }
 
-void check_adapted(const Mesh& mesh, double volume, double tolerance) {
+void check_adapted(const Mesh& mesh, double volume, double tolerance, const CadModel* model) {
+  // On a model the volume moves from the input's facets to the model's.
   ValidateOptions vo;
-  vo.expected_volume = volume;
-  vo.volume_tolerance = tolerance;
+  if (!model) {
+    vo.expected_volume = volume;
+    vo.volume_tolerance = tolerance;
+  }
   const auto check = mesh.validate(vo);
   if (!check.ok()) throw InputError(fmt::format("adapt: the adapted mesh is invalid\n{}", check.to_string()));
+  if (model) require_on_model(mesh, *model, "adapt");
 }
 
 py::dict adapt_report(const py::list& cycles, const OperatorReport& ops, double seconds, const QualityReport& q) {
@@ -185,11 +193,13 @@ py::list read_field(const std::string& path) {
   return out;
 }
 
-void write_field(const std::string& path, const py::array& values, int version) {
+void write_field(const std::string& path, const py::array& values, int version, int expected_width) {
   if (values.dtype().kind() != 'f') throw InputError("write_field: expected float64 values");
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
   io::SolData sol;
   const py::ssize_t width = a.ndim() == 1 ? 1 : a.ndim() == 2 ? a.shape(1) : 0;
+  if (expected_width != 0 && width != expected_width)
+    throw InputError(fmt::format("write: expected an (n, {}) metric", expected_width));
   if (width == 1)
     sol.types = {io::SolType::scalar};
   else if (width == 3)
@@ -206,11 +216,28 @@ void write_field(const std::string& path, const py::array& values, int version) 
   io::write_sol(path, sol, version);
 }
 
-py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space) {
+py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space, bool measures) {
   if (metric.is_none()) throw InputError("quality: give the metric, an (n, 6) array");
   Mesh mesh = m.mesh();
   assign_metric(mesh, metric_by_id(mesh, metric));
-  return quality_dict(quality_report(mesh, space));
+  py::dict out = quality_dict(quality_report(mesh, space));
+  if (!measures) return out;
+  const QualityMeasures q = quality_measures(mesh, space);
+  // Vertex ids to the arrays' indices (removed vertices skipped).
+  std::vector<std::int32_t> index(mesh.vertex_capacity(), -1);
+  std::int32_t next = 0;
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v)) index[v] = next++;
+  py::array_t<std::int32_t> edges({static_cast<py::ssize_t>(q.edges.size()), py::ssize_t{2}});
+  std::int32_t* e = edges.mutable_data();
+  for (const auto& [a, b] : q.edges) {
+    *e++ = index[a];
+    *e++ = index[b];
+  }
+  out["edge_ends"] = edges;
+  out["edge_lengths"] = py::array_t<double>(static_cast<py::ssize_t>(q.lengths.size()), q.lengths.data());
+  out["mean_ratios"] = py::array_t<double>(static_cast<py::ssize_t>(q.mean_ratios.size()), q.mean_ratios.data());
+  return out;
 }
 
 py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
@@ -236,6 +263,16 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
   std::optional<AnalyticMetric> kind;
   MetricFunction exact;
   AdaptInputs inputs;
+  // On a CAD model, as `metrica adapt --geometry`: the boundary vertices
+  // associated with their entities (from the mesh's own records when its
+  // ids are the arrays' indices, as for a mesh read or built from arrays).
+  std::unique_ptr<CadModel> model;
+  if (!call.geometry.empty()) {
+    model = std::make_unique<CadModel>(call.geometry);
+    const bool compact = mesh.vertex_capacity() == mesh.num_vertices();
+    associate(mesh, *model, compact ? &m.data() : nullptr);
+    inputs.model = model.get();
+  }
   std::vector<Sym6> given;
   if (!call.analytic.empty()) {
     kind = analytic_metric_from_name(call.analytic);
@@ -265,7 +302,7 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
     }
     // Each adaptation's budget is relative to the volume it starts from.
     const double budget = call.iterations * ao.volume_budget;
-    check_adapted(mesh, volume, budget * (1.0 + budget) + 1e-9);
+    check_adapted(mesh, volume, budget * (1.0 + budget) + 1e-9, model.get());
     q = quality_report(mesh, policies.space, {.cached_quality = true});
   } catch (const PythonError&) {
     throw py::error_already_set();

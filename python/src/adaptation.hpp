@@ -15,12 +15,15 @@ namespace metrica::python {
 
 // The fields of a .sol/.solb: one array per field, (n,), (n, 3) or (n, 6).
 py::list read_field(const std::string& path);
-// One field written: (n,) scalar, (n, 3) vector, (n, 6) symmetric tensor.
-void write_field(const std::string& path, const py::array& values, int version);
+// One field written: (n,) scalar, (n, 3) vector, (n, 6) symmetric tensor
+// (`width`, when not 0, the one expected).
+void write_field(const std::string& path, const py::array& values, int version, int width = 0);
 
-// The UGAWG quality report of the mesh in `metric` ((n, 6), or none: the
-// metric the mesh holds) as a dict.
-py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space);
+// The UGAWG quality report of the mesh in `metric` ((n, 6)) as a dict;
+// with `measures`, the measures too: "edge_ends" (k, 2) vertex indices,
+// "edge_lengths" (k,), "mean_ratios" (one per tet, in the order of
+// mesh.tets).
+py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space, bool measures);
 
 // What adapt() is told: the metric (an (n, 6) array, or an analytic name
 // re-evaluated between iterations), the policies by name, the options of
@@ -47,9 +50,9 @@ struct PythonError {};
 // must outlive the callback.
 std::function<void(const CycleReport&)> cycle_callback(py::list& cycles, const py::object& on_cycle);
 
-// InputError unless the adapted mesh is valid, of volume `volume` within
-// the relative `tolerance`.
-void check_adapted(const Mesh& mesh, double volume, double tolerance);
+// InputError unless the adapted mesh is valid and, without a model, of
+// volume `volume` within the relative `tolerance`, on a model on it.
+void check_adapted(const Mesh& mesh, double volume, double tolerance, const CadModel* model = nullptr);
 
 // The thread count for one call (`threads` > 0), the previous one back
 // when the call ends, however it ends.

@@ -88,7 +88,11 @@ py::array_t<std::int32_t> index_array(const std::vector<std::array<VertexId, N>>
 }  // namespace
 
 const io::MeshData& PyMesh::data() const {
-  if (!data_) data_ = extract_mesh_data(mesh_);
+  if (!data_) {
+    data_ = extract_mesh_data(mesh_);
+    for (std::size_t k = 0; k < 3; ++k)
+      if (data_->on_geometry[k].empty()) data_->on_geometry[k] = read_records_[k];
+  }
   return *data_;
 }
 
@@ -126,7 +130,7 @@ PyMesh read_mesh(const std::string& path) {
   o.require_boundary_triangles = true;
   Mesh mesh = build_mesh(d, o);
   check_valid_input(mesh, path);
-  return PyMesh(std::move(mesh), d.version);
+  return PyMesh(std::move(mesh), d.version, std::move(d.on_geometry));
 }
 
 py::array_t<double> points_array(const io::MeshData& d) {

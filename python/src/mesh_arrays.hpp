@@ -6,10 +6,12 @@
 #include <metrica/io/mesh_data.hpp>
 #include <metrica/mesh.hpp>
 
+#include <array>
 #include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <string>
+#include <vector>
 
 namespace metrica::python {
 
@@ -17,10 +19,15 @@ namespace py = pybind11;
 
 // A mesh as Python holds it: the adjacency-rich Mesh, the libMeshb version
 // it was read with (written back the same, as the command does), and its
-// file layout, made when an array is first asked for.
+// file layout, made when an array is first asked for. A mesh read from a
+// file keeps the file's association with a CAD model (its vertices'
+// entities and parameters, which the Mesh holds only once associated with
+// a model): written back, or adapted on that model, as the command does.
 class PyMesh {
  public:
-  PyMesh(Mesh mesh, int version) : mesh_(std::move(mesh)), version_(version) {}
+  using GeoRecords = std::array<std::vector<io::GeoRecord>, 3>;
+  PyMesh(Mesh mesh, int version, GeoRecords read_records = {})
+      : mesh_(std::move(mesh)), version_(version), read_records_(std::move(read_records)) {}
   const Mesh& mesh() const { return mesh_; }
   int version() const { return version_; }
   // The file layout (vertex ids ascending, removed ones skipped).
@@ -29,6 +36,7 @@ class PyMesh {
  private:
   Mesh mesh_;
   int version_;
+  GeoRecords read_records_;  // the file's, for a mesh read (its ids are the file's)
   mutable std::optional<io::MeshData> data_;
 };
 

@@ -8,7 +8,10 @@
 
 #include <metrica/error.hpp>
 #include <metrica/io/file_format.hpp>
+#include <metrica/io/output_set.hpp>
 #include <metrica/mesh_build.hpp>
+
+#include <fmt/core.h>
 
 #include <filesystem>
 #include <pybind11/stl.h>
@@ -48,15 +51,37 @@ PYBIND11_MODULE(_metrica, m) {
       "A mesh file (.mesh, .meshb, .msh), checked as every command reads it.");
   m.def(
       "write",
-      [](const PyMesh& x, const Path& path, int version, bool binary) {
+      [](const PyMesh& x, const Path& path, int version, bool binary, const py::object& metric) {
         io::MeshData data = x.data();
         data.version = x.version();
+        // The metric beside the mesh, both files replaced together.
+        std::string sol_path;
+        py::array values;
+        if (!metric.is_none()) {
+          const std::string ext = path.extension().string();
+          if (ext != ".mesh" && ext != ".meshb")
+            throw InputError(
+                fmt::format("write: metric= goes beside a .mesh or .meshb (got '{}'); write_field "
+                            "writes a .sol/.solb anywhere",
+                            path.string()));
+          sol_path = Path(path).replace_extension(ext == ".mesh" ? ".sol" : ".solb").string();
+          values = py::array::ensure(metric);
+          if (!values) throw InputError("write: metric must be an (n, 6) float64 array");
+          const py::ssize_t n = values.ndim() >= 1 ? values.shape(0) : 0;
+          if (n != static_cast<py::ssize_t>(data.vertices.size()))
+            throw InputError(fmt::format("write: the metric has {} rows for {} vertices", n, data.vertices.size()));
+        }
+        io::OutputSet outputs;
         io::write_mesh_file(path.string(), data, version, {}, io::FileFormat::mesh,
                             binary ? io::Encoding::binary : io::Encoding::ascii);
+        if (!sol_path.empty()) write_field(sol_path, values, version, 6);
+        outputs.commit();
       },
       py::arg("mesh"), py::arg("path"), py::arg("version") = 0, py::arg("binary") = false,
+      py::arg("metric") = py::none(),
       "Writes .mesh, .meshb (libMeshb version: 0 keeps the one read), .msh (4.1, or 2.2 with version=2; "
-      "binary=True for binary), .vtu or .su2, through a temporary renamed when complete.");
+      "binary=True for binary), .vtu or .su2, through a temporary renamed when complete; metric, an (n, 6) "
+      "array, beside a .mesh/.meshb as the .sol/.solb of the same name (both replaced together).");
   m.def(
       "read_field", [](const Path& path) { return read_field(path.string()); }, py::arg("path"),
       "The fields of a .sol/.solb: a list of arrays, (n,), (n, 3) or (n, 6) (xx, xy, yy, xz, yz, zz).");
@@ -82,11 +107,13 @@ PYBIND11_MODULE(_metrica, m) {
         py::arg("reference") = py::none(), py::arg("reference_values") = py::none(),
         "The L2 error of a P1 field against an analytic field (exact=name), or against a reference mesh's field.");
   m.def("quality", &quality, py::arg("mesh"), py::arg("metric"), py::arg("space") = "log-euclidean",
-        "The UGAWG quality report of the mesh in the metric, as a dict.");
+        py::arg("measures") = true,
+        "The UGAWG quality report of the mesh in the metric, as a dict; with measures, also \"edge_ends\" "
+        "(k, 2), \"edge_lengths\" (k,) and \"mean_ratios\" (one per tet, in the order of mesh.tets).");
   m.def(
       "_adapt",
       [](const PyMesh& x, py::object metric, std::string analytic, int iterations, int threads, std::string concurrency,
-         std::string space, std::string precision, py::dict options, py::object on_cycle) {
+         std::string space, std::string precision, std::string geometry, py::dict options, py::object on_cycle) {
         AdaptCall call;
         call.metric = std::move(metric);
         call.analytic = std::move(analytic);
@@ -95,12 +122,14 @@ PYBIND11_MODULE(_metrica, m) {
         call.concurrency = std::move(concurrency);
         call.space = std::move(space);
         call.precision = std::move(precision);
+        call.geometry = std::move(geometry);
         call.options = std::move(options);
         call.on_cycle = std::move(on_cycle);
         return adapt(x, call);
       },
       py::arg("mesh"), py::arg("metric"), py::arg("analytic"), py::arg("iterations"), py::arg("threads"),
-      py::arg("concurrency"), py::arg("space"), py::arg("precision"), py::arg("options"), py::arg("on_cycle"));
+      py::arg("concurrency"), py::arg("space"), py::arg("precision"), py::arg("geometry"), py::arg("options"),
+      py::arg("on_cycle"));
   m.def(
       "_run_pipeline",
       [](const PyMesh& x, py::object metric, std::string analytic, py::list cycle, py::list polish, py::list repair,

@@ -93,6 +93,46 @@ def test_serial_adaptation_is_the_commands_to_the_bit(tmp_path):
     assert report["ops"]["split"]["applied"] > 0 and report["cycles"]
 
 
+UGAWG = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data", "ugawg")
+
+
+def test_adaptation_on_a_cad_model_is_the_commands_to_the_bit(tmp_path):
+    step = os.path.join(UGAWG, "cube-cylinder.step")
+    start = tmp_path / "start.meshb"
+    subprocess.run([CLI, "bootstrap", step, "-o", str(start), "--size", "0.25", "--threads", "1", "-q"], check=True)
+    by_command = tmp_path / "command.meshb"
+    subprocess.run([CLI, "adapt", str(start), "--geometry", step, "--analytic", "polar-2", "--cycles", "4",
+                    "--quality-passes", "1", "--concurrency", "serial", "-o", str(by_command), "-q"], check=True)
+    adapted, _ = metrica.adapt(metrica.read(start), analytic="polar-2", geometry=step, cycles=4, quality_passes=1,
+                               concurrency="serial")
+    adapted.check()
+    assert np.array_equal(adapted.points, metrica.read(by_command).points)
+    assert np.array_equal(adapted.tets, metrica.read(by_command).tets)
+    with pytest.raises(metrica.InputError):
+        metrica.adapt(metrica.read(start), analytic="polar-2", geometry=tmp_path / "none.step", cycles=1)
+
+
+def test_quality_measures_and_a_metric_written_beside_its_mesh(tmp_path):
+    mesh = metrica.read(cube(tmp_path))
+    metric = metrica.analytic_metric(mesh, "linear")
+    q = metrica.quality(mesh, metric)
+    assert q["edge_ends"].shape == (q["edges"], 2) and q["edge_lengths"].shape == (q["edges"],)
+    assert q["mean_ratios"].shape == (mesh.num_tets,)
+    assert q["edge_lengths"].min() == pytest.approx(q["length"]["min"])
+    assert q["mean_ratios"].min() == pytest.approx(q["mean_ratio"]["min"])
+    a, b = q["edge_ends"][0]
+    assert 0 <= a < b < mesh.num_vertices
+    assert "edge_ends" not in metrica.quality(mesh, metric, measures=False)
+    metrica.write(mesh, tmp_path / "m.meshb", metric=metric)
+    (back,) = metrica.read_field(tmp_path / "m.solb")
+    assert np.array_equal(back, metric)
+    with pytest.raises(metrica.InputError, match="rows"):
+        metrica.write(mesh, tmp_path / "n.meshb", metric=metric[1:])
+    with pytest.raises(metrica.InputError, match="beside"):
+        metrica.write(mesh, tmp_path / "n.vtu", metric=metric)
+    assert not (tmp_path / "n.meshb").exists()
+
+
 def test_adaptation_to_a_metric_array_leaves_the_input_alone(tmp_path):
     mesh = metrica.read(cube(tmp_path))
     before = mesh.points.copy()

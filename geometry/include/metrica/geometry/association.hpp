@@ -14,6 +14,8 @@
 #include <metrica/io/mesh_data.hpp>
 #include <metrica/mesh.hpp>
 
+#include <string>
+
 namespace metrica {
 
 struct AssociationReport {
@@ -37,6 +39,11 @@ struct ModelDistance {
   std::size_t beyond = 0;        // vertices farther than the tolerance asked
 };
 ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance = 1e-8);
+
+// InputError naming `what` when a boundary vertex has no model entity or
+// lies farther than `check --geometry`'s default tolerance (1e-8) from it:
+// an output that check would refuse is never written.
+void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what);
 
 // Adds to `data` (whose primary records extract_mesh_data wrote) what
 // refine and Feflo.a also read: a model vertex's t on each of its curves,

@@ -8,6 +8,7 @@
 #include <metrica/mesh.hpp>
 #include <metrica/part_runner.hpp>
 
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,6 +52,16 @@ struct QualityReportOptions {
 // names of Spaces (InputError otherwise).
 QualityReport quality_report(const Mesh& mesh, std::string_view space = "log-euclidean",
                              const QualityReportOptions& options = {});
+
+// The measures the report sums up, one by one: each edge (lower id first,
+// by lower end) with its length, and each live tet's mean ratio in id
+// order; for plots and filters of one's own (the Python module's).
+struct QualityMeasures {
+  std::vector<std::array<VertexId, 2>> edges;
+  std::vector<double> lengths;
+  std::vector<double> mean_ratios;
+};
+QualityMeasures quality_measures(const Mesh& mesh, std::string_view space = "log-euclidean");
 
 // For people: a summary and both histograms as text.
 std::string format_report(const QualityReport& r);
