@@ -3,14 +3,16 @@
 // that point when its ball stays positively oriented, else as far toward
 // it as it can (the step halved up to five times) and waits for the next
 // projection pass, after the reconnection around it. A vertex that still
-// cannot reach the model at the end is collapsed onto a neighbour on the
-// boundary (collapse_off_model).
+// cannot reach the model at the end first has the way cleared
+// (clear_way_to_model), then is collapsed onto a neighbour on the boundary
+// (collapse_off_model).
 #pragma once
 
 #include <metrica/geometry/model.hpp>
 #include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/collapse.hpp>
+#include <metrica/operators/flips.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/pass_scope.hpp>
 #include <metrica/operators/smooth.hpp>
@@ -72,6 +74,90 @@ OperatorStats project_to_model(Mesh& mesh, const ProjectionOptions& o, const G& 
   const auto todo = vertices_off_model<C>(mesh, geometry, o.tolerance);
   OperatorStats stats;
   if (!todo.empty()) stats = run_pass<C>(mesh, Projection<S, P, G>{{}, o, geometry}, todo);
+  stats.seconds = clock.seconds();
+  return stats;
+}
+
+// A last resort for the vertices in `off` (off the model, their
+// projection refused because tets of their ball would invert at the
+// model point): each tet that stands in the way is taken out of the ball,
+// by collapsing its inner vertex (one off the boundary, sitting between
+// the vertex and its model point) onto the vertex or another neighbour,
+// or else by the 2-3 flip of its face opposite the vertex, which joins
+// the vertex to the tet beyond; then the vertex moves as far toward its
+// point as its new ball allows. A few rounds per vertex, any shape but a
+// non-positive tet (serial: few vertices, outside a pass). The flips and
+// smoothing that follow lift what this leaves.
+template <MetricSpace S, Precision P, Geometry G>
+OperatorStats clear_way_to_model(Mesh& mesh, std::span<const VertexId> off, const ProjectionOptions& o,
+                                 const G& geometry) {
+  constexpr int kRounds = 8;
+  Stopwatch clock;
+  OperatorStats stats;
+  CollapseOptions any_collapse;
+  any_collapse.min_length = std::numeric_limits<double>::infinity();
+  any_collapse.max_new_length = std::numeric_limits<double>::infinity();
+  any_collapse.shape_floor = 0.0;
+  FlipOptions any_flip;
+  any_flip.shape_floor = 0.0;
+  const Projection<S, P, G> projection{{}, o, geometry};
+  CollapseScratch cs;
+  FlipScratch fs;
+  SmoothScratch ms;
+  // Removes w by a collapse onto v, else onto another of its neighbours.
+  auto collapse_away = [&](VertexId w, VertexId v) {
+    vertex_ball(mesh, w, cs.ball);
+    vertex_neighbours(mesh, cs.ball, w, cs.neighbours);
+    VertexList targets{v};
+    for (VertexId u : cs.neighbours)
+      if (u != v) targets.emplace_back(u);
+    for (VertexId u : targets) {
+      vertex_ball(mesh, w, cs.ball);
+      vertex_neighbours(mesh, cs.ball, w, cs.neighbours);
+      vertex_ball(mesh, u, cs.ball_b);
+      vertex_neighbours(mesh, cs.ball_b, u, cs.neighbours_b);
+      const auto d = decide_collapse<S, P, ShapeOnly>(mesh, w, u, cs, any_collapse, nullptr, nullptr, geometry);
+      if (!d) continue;
+      apply_collapse(mesh, d.plan(), cs);
+      return true;
+    }
+    return false;
+  };
+  // Takes one tet in v's way out of its ball; false when none can go.
+  auto clear_one = [&](VertexId v, const Point& target) {
+    vertex_ball(mesh, v, fs.ball);
+    const TetList ball = fs.ball;
+    for (TetId t : ball) {
+      const TetVertices tv = mesh.tet(t);
+      const TetPoints moved = tet_points_moved(mesh, tv, v, target);
+      if (P::orient3d(moved[0], moved[1], moved[2], moved[3]) > 0) continue;
+      for (VertexId w : tv)
+        if (w != v && !(mesh.has_geo_params() && mesh.geo_param(w).valid()) && !mesh.is_fixed(w) && collapse_away(w, v))
+          return true;
+      int face = 0;
+      while (tv[face] != v) ++face;
+      if (mesh.internal_surface_id(t, face) != 0) continue;
+      const auto d = decide_flip23<S, P, ShapeOnly>(mesh, t, face, fs, any_flip);
+      if (!d) continue;
+      apply_flip23<S, ShapeOnly>(mesh, d.plan(), fs);
+      return true;
+    }
+    return false;
+  };
+  for (VertexId v : off) {
+    if (!mesh.vertex_alive(v)) continue;
+    ++stats.tried;
+    const Point target = geometry.point(mesh.geo_param(v));
+    bool on = false;
+    for (int round = 0; round < kRounds && !on; ++round) {
+      if (!clear_one(v, target)) break;
+      ++stats.candidates;
+      find_smoothing_cavity(mesh, v, ms);
+      if (const auto d = projection.decide(mesh, v, ms)) projection.apply(mesh, v, d.plan(), ms);
+      on = (geometry.point(mesh.geo_param(v)) - mesh.point(v)).norm() <= o.tolerance;
+    }
+    ++(on ? stats.applied : stats.rejected);
+  }
   stats.seconds = clock.seconds();
   return stats;
 }
