@@ -14,9 +14,9 @@
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapted_check.hpp>
 #include <metrica/policies/threads.hpp>
 #include <metrica/timer.hpp>
-#include <metrica/validate.hpp>
 
 #include <fmt/core.h>
 
@@ -165,32 +165,16 @@ std::vector<Sym6> metric_at_vertices(const Options& o, const Mesh& mesh, const s
   return field;
 }
 
-// The adapted mesh is valid (and, without a model, of the input's volume
-// within the bound its collapses kept) and, on a model, on it; else
-// InputError and nothing is written.
+// The adapted mesh passes require_adapted (else InputError, nothing
+// written); on a model the distance to it is printed first.
 void check_adapted(const Mesh& mesh, const CadModel* model, double volume, double volume_tolerance,
                    const PartRunner& sweeps, bool talk) {
-  // Flat boundaries keep the volume to round-off; on a curved discrete
-  // boundary, collapses may flatten it within their normal-deviation bound
-  // (2 degrees), each taking its change of volume from the adaptation's
-  // budget (AdaptOptions::volume_budget), so the volume stays within the
-  // budgets of the adaptations run (and round-off). On a model the volume
-  // moves from the input's facets to the model's.
-  ValidateOptions vo;
-  vo.run = sweeps;
-  if (!model) {
-    vo.expected_volume = volume;
-    vo.volume_tolerance = volume_tolerance;
-  }
-  const auto check = mesh.validate(vo);
-  if (!check.ok())
-    throw InputError(fmt::format("adapt: the adapted mesh is invalid; nothing written\n{}", check.to_string()));
+  if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
+  require_adapted(mesh, model, volume, volume_tolerance, sweeps);
   if (log::level() >= log::Level::verbose) {
     const double adapted = mesh.volume();
     log::info("volume {:.17g}, relative change {:.3g}", adapted, std::abs(adapted - volume) / volume);
   }
-  if (model && talk) fmt::print("{}\n", model_distance_text(mesh, *model));
-  if (model) require_on_model(mesh, *model, "adapt");
 }
 
 // The mesh (and --vtu, --metric-out) written, each to a temporary renamed
@@ -305,9 +289,10 @@ int run_adapt(const std::vector<std::string>& args) {
       fmt::print("{}adapting {} vertices, {} tets ({} space, {} predicates, {} points, {})\n",
                  iterations > 1 ? fmt::format("iteration {}: ", it + 1) : "", count_text(mesh.num_vertices()),
                  count_text(mesh.num_tets()), policies.space, policies.precision, to_string(ao.points),
-                 serial                                ? std::string("serial")
-                 : log::level() >= log::Level::verbose ? Speculative::describe()
-                                                       : fmt::format("speculative, {} threads", thread_count()));
+                 serial ? std::string("serial")
+                 : log::level() >= log::Level::verbose
+                     ? Speculative::describe()
+                     : fmt::format("speculative, {} thread{}", thread_count(), thread_count() == 1 ? "" : "s"));
     const auto report = adapt_by_name(mesh, ao, policies, inputs);
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
@@ -318,9 +303,7 @@ int run_adapt(const std::vector<std::string>& args) {
     if (talk && (!serial || log::level() >= log::Level::verbose)) print_operator_stats(report, serial, thread_count());
   }
   const PartRunner sweeps = sweep_runner(mesh.tet_capacity(), serial);
-  // Each adaptation's budget is relative to the volume it starts from.
-  const double budget = iterations * ao.volume_budget;
-  check_adapted(mesh, model.get(), volume, budget * (1.0 + budget) + 1e-9, sweeps, talk);
+  check_adapted(mesh, model.get(), volume, adapted_volume_tolerance(iterations, ao.volume_budget), sweeps, talk);
   write_outputs(o, mesh, model.get(), output, input_version, sweeps);
   if (talk) {
     fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());

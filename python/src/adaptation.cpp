@@ -11,8 +11,8 @@
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapted_check.hpp>
 #include <metrica/policies/threads.hpp>
-#include <metrica/validate.hpp>
 
 #include <fmt/core.h>
 
@@ -153,18 +153,6 @@ std::function<void(const CycleReport&)> cycle_callback(py::list& cycles, const p
   };
 }
 
-void check_adapted(const Mesh& mesh, double volume, double tolerance, const CadModel* model) {
-  // On a model the volume moves from the input's facets to the model's.
-  ValidateOptions vo;
-  if (!model) {
-    vo.expected_volume = volume;
-    vo.volume_tolerance = tolerance;
-  }
-  const auto check = mesh.validate(vo);
-  if (!check.ok()) throw InputError(fmt::format("adapt: the adapted mesh is invalid\n{}", check.to_string()));
-  if (model) require_on_model(mesh, *model, "adapt");
-}
-
 py::dict adapt_report(const py::list& cycles, const OperatorReport& ops, double seconds, const QualityReport& q) {
   py::dict report;
   report["cycles"] = cycles;
@@ -300,9 +288,7 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
       ops += report.ops;
       seconds += report.seconds;
     }
-    // Each adaptation's budget is relative to the volume it starts from.
-    const double budget = call.iterations * ao.volume_budget;
-    check_adapted(mesh, volume, budget * (1.0 + budget) + 1e-9, model.get());
+    require_adapted(mesh, model.get(), volume, adapted_volume_tolerance(call.iterations, ao.volume_budget));
     q = quality_report(mesh, policies.space, {.cached_quality = true});
   } catch (const PythonError&) {
     throw py::error_already_set();

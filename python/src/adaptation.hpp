@@ -50,10 +50,6 @@ struct PythonError {};
 // must outlive the callback.
 std::function<void(const CycleReport&)> cycle_callback(py::list& cycles, const py::object& on_cycle);
 
-// InputError unless the adapted mesh is valid and, without a model, of
-// volume `volume` within the relative `tolerance`, on a model on it.
-void check_adapted(const Mesh& mesh, double volume, double tolerance, const CadModel* model = nullptr);
-
 // The thread count for one call (`threads` > 0), the previous one back
 // when the call ends, however it ends.
 class ThreadsForCall {

@@ -7,6 +7,7 @@
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/pipeline/adapt.hpp>
+#include <metrica/pipeline/adapted_check.hpp>
 #include <metrica/policies/threads.hpp>
 
 #include <fmt/core.h>
@@ -191,7 +192,7 @@ py::tuple run_with(const PyMesh& m, const PipelineCall& call) {
     adapter.set_volume_budget(AdaptOptions{}.volume_budget);
     adapter.on_cycle = callback;
     report = metrica::run_pipeline(adapter, p);
-    check_adapted(mesh, volume, AdaptOptions{}.volume_budget * 1.01 + 1e-9);
+    require_adapted(mesh, nullptr, volume, adapted_volume_tolerance(1, AdaptOptions{}.volume_budget));
     q = quality_report(mesh, LogEuclidean::name, {.cached_quality = true});
   } catch (const PythonError&) {
     throw py::error_already_set();

@@ -12,7 +12,6 @@
 #include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/collapse.hpp>
-#include <metrica/operators/flips.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/pass_scope.hpp>
 #include <metrica/operators/smooth.hpp>
@@ -79,15 +78,13 @@ OperatorStats project_to_model(Mesh& mesh, const ProjectionOptions& o, const G& 
 }
 
 // A last resort for the vertices in `off` (off the model, their
-// projection refused because tets of their ball would invert at the
-// model point): each tet that stands in the way is taken out of the ball,
-// by collapsing its inner vertex (one off the boundary, sitting between
-// the vertex and its model point) onto the vertex or another neighbour,
-// or else by the 2-3 flip of its face opposite the vertex, which joins
-// the vertex to the tet beyond; then the vertex moves as far toward its
-// point as its new ball allows. A few rounds per vertex, any shape but a
-// non-positive tet (serial: few vertices, outside a pass). The flips and
-// smoothing that follow lift what this leaves.
+// projection refused because tets of their ball would invert at the model
+// point): each tet in the way whose inner vertex (one off the boundary)
+// sits between the vertex and its model point loses it, collapsed onto
+// the vertex or another neighbour, at any length and shape but a
+// non-positive tet; then the vertex moves as far toward its point as its
+// new ball allows, a few rounds per vertex (serial: few vertices, outside
+// a pass). The flips and smoothing that follow lift what this leaves.
 template <MetricSpace S, Precision P, Geometry G>
 OperatorStats clear_way_to_model(Mesh& mesh, std::span<const VertexId> off, const ProjectionOptions& o,
                                  const G& geometry) {
@@ -98,12 +95,10 @@ OperatorStats clear_way_to_model(Mesh& mesh, std::span<const VertexId> off, cons
   any_collapse.min_length = std::numeric_limits<double>::infinity();
   any_collapse.max_new_length = std::numeric_limits<double>::infinity();
   any_collapse.shape_floor = 0.0;
-  FlipOptions any_flip;
-  any_flip.shape_floor = 0.0;
   const Projection<S, P, G> projection{{}, o, geometry};
   CollapseScratch cs;
-  FlipScratch fs;
   SmoothScratch ms;
+  TetList ball;
   // Removes w by a collapse onto v, else onto another of its neighbours.
   auto collapse_away = [&](VertexId w, VertexId v) {
     vertex_ball(mesh, w, cs.ball);
@@ -123,24 +118,16 @@ OperatorStats clear_way_to_model(Mesh& mesh, std::span<const VertexId> off, cons
     }
     return false;
   };
-  // Takes one tet in v's way out of its ball; false when none can go.
+  // Removes one inner vertex in v's way; false when none can go.
   auto clear_one = [&](VertexId v, const Point& target) {
-    vertex_ball(mesh, v, fs.ball);
-    const TetList ball = fs.ball;
-    for (TetId t : ball) {
-      const TetVertices tv = mesh.tet(t);
+    vertex_ball(mesh, v, ball);
+    for (std::size_t i = 0; i < ball.size(); ++i) {
+      const TetVertices tv = mesh.tet(ball[i]);
       const TetPoints moved = tet_points_moved(mesh, tv, v, target);
       if (P::orient3d(moved[0], moved[1], moved[2], moved[3]) > 0) continue;
       for (VertexId w : tv)
         if (w != v && !(mesh.has_geo_params() && mesh.geo_param(w).valid()) && !mesh.is_fixed(w) && collapse_away(w, v))
           return true;
-      int face = 0;
-      while (tv[face] != v) ++face;
-      if (mesh.internal_surface_id(t, face) != 0) continue;
-      const auto d = decide_flip23<S, P, ShapeOnly>(mesh, t, face, fs, any_flip);
-      if (!d) continue;
-      apply_flip23<S, ShapeOnly>(mesh, d.plan(), fs);
-      return true;
     }
     return false;
   };
@@ -148,15 +135,14 @@ OperatorStats clear_way_to_model(Mesh& mesh, std::span<const VertexId> off, cons
     if (!mesh.vertex_alive(v)) continue;
     ++stats.tried;
     const Point target = geometry.point(mesh.geo_param(v));
-    bool on = false;
-    for (int round = 0; round < kRounds && !on; ++round) {
-      if (!clear_one(v, target)) break;
+    auto on_model = [&] { return (target - mesh.point(v)).norm() <= o.tolerance; };
+    for (int round = 0; round < kRounds && !on_model(); ++round) {
+      if (round > 0 && !clear_one(v, target)) break;
       ++stats.candidates;
       find_smoothing_cavity(mesh, v, ms);
       if (const auto d = projection.decide(mesh, v, ms)) projection.apply(mesh, v, d.plan(), ms);
-      on = (geometry.point(mesh.geo_param(v)) - mesh.point(v)).norm() <= o.tolerance;
     }
-    ++(on ? stats.applied : stats.rejected);
+    ++(on_model() ? stats.applied : stats.rejected);
   }
   stats.seconds = clock.seconds();
   return stats;
