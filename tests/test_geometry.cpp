@@ -13,6 +13,7 @@
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_summary.hpp>
 #include <metrica/operators/boundary_swap.hpp>
+#include <metrica/operators/clear_way.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/project.hpp>
 #include <metrica/operators/reconnect.hpp>
@@ -89,6 +90,53 @@ struct PlaneGeometry {
   bool places(const Mesh&, VertexId) const { return true; }
 };
 static_assert(Geometry<PlaneGeometry>);
+
+// A model whose internal surface (tag 100) is the cap z = 0.1 (1 - x^2 -
+// y^2) over its parameters (x, y), new vertices on it at their parents'
+// mean parameters; no model for the other surfaces.
+struct CapGeometry {
+  static constexpr bool on_model = true;
+  GeoParam boundary_vertex(const Mesh& mesh, std::span<const VertexId> parents, std::span<const double> weights,
+                           SurfaceId surface) const {
+    if (surface != 100) return {};
+    double u = 0.0, v = 0.0;
+    for (std::size_t i = 0; i < parents.size(); ++i) {
+      u += weights[i] * mesh.geo_param(parents[i]).u;
+      v += weights[i] * mesh.geo_param(parents[i]).v;
+    }
+    return {100, 2, u, v};
+  }
+  Point point(const GeoParam& p) const { return {p.u, p.v, 0.1 * (1.0 - p.u * p.u - p.v * p.v)}; }
+  bool facet_fits(const Mesh&, VertexId, VertexId, VertexId, SurfaceId, const Eigen::Vector3d&, double) const {
+    return true;
+  }
+  double facet_deviation(const Mesh&, VertexId, VertexId, VertexId, SurfaceId) const { return 0.0; }
+  bool places(const Mesh&, VertexId) const { return true; }
+};
+static_assert(Geometry<CapGeometry>);
+
+// Two pyramids on the square a b c d (z = 0, on the cap's rim): region 1
+// below (apex B), region 2 above (apex T), the square's two triangles
+// (diagonal ab) the internal surface 100. Inner vertex w of region 2 at
+// (0, 0, 0.05) stands between ab's midpoint and the cap's point above it
+// (0, 0, 0.1): the split of ab on the model would invert w's tets.
+Mesh cap_split_in_the_way() {
+  io::MeshData d;
+  d.vertices = {{-1, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, 0, 0.05}};
+  enum : VertexId { a, b, c, dd, T, B, w };
+  d.vertex_refs.assign(d.vertices.size(), 0);
+  d.tets = {{a, b, c, w}, {b, a, dd, w}, {a, c, w, T}, {c, b, w, T}, {b, dd, w, T}, {dd, a, w, T},
+            {a, b, c, B}, {b, a, dd, B}};
+  d.tet_refs = {2, 2, 2, 2, 2, 2, 1, 1};
+  d.triangles = {{a, c, T}, {c, b, T}, {b, dd, T}, {dd, a, T}, {a, c, B}, {c, b, B}, {b, dd, B}, {dd, a, B},
+                 {a, b, c}, {b, a, dd}};
+  d.triangle_refs = {1, 1, 1, 1, 2, 2, 2, 2, 100, 100};
+  test::orient_positively(d);
+  Mesh mesh = build_mesh(d);
+  mesh.enable_geo_params();
+  for (VertexId v : {a, b, c, dd}) mesh.set_geo_param(v, {100, 2, d.vertices[v].x(), d.vertices[v].y()});
+  return mesh;
+}
 
 // A hexagonal umbrella: vertex 0 on surface 1 but 0.002 above its model
 // point (0, 0, 1), its ring (1-6) on the plane z = 1, inner vertex 7 at
@@ -454,6 +502,43 @@ TEST_SUITE("invariant") {
     const auto report = mesh.validate();
     INFO(report.to_string());
     CHECK(report.ok());
+  }
+
+  TEST_CASE_TEMPLATE("an inner vertex in the way of an internal surface's split on the model goes - then the split", T,
+                     METRICA_POLICY_COMBINATIONS) {
+    using S = typename T::Space;
+    using P = typename T::Precision;
+    using C = typename T::Concurrency;
+    const ExecutorOf<T> executor;
+    Mesh mesh = cap_split_in_the_way();
+    test::set_uniform_metric(mesh, 0.5);
+    REQUIRE(mesh.validate().ok());
+    REQUIRE(mesh.has_internal_surfaces());
+    const CapGeometry g;
+    const Point cap_top(0.0, 0.0, 0.1);
+    auto vertex_at = [&](const Point& p) {
+      for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+        if (mesh.vertex_alive(v) && (mesh.point(v) - p).norm() < 1e-12) return true;
+      return false;
+    };
+    // Only ab is long (metric length 4; the others at most 2.83).
+    RefineOptions only_ab;
+    only_ab.max_length = 3.5;
+    // The split waits while the inner vertex stands there.
+    CHECK(refine_edges<S, P, C, ShapeOnly, CapGeometry>(mesh, only_ab, g).applied == 0);
+    CHECK(!vertex_at(cap_top));
+    const OperatorStats stats = clear_way_for_splits<S, P, C>(mesh, only_ab, g);
+    CHECK(stats.tried == 1);
+    CHECK(stats.applied == 1);
+    CHECK(!mesh.vertex_alive(6));
+    REQUIRE(mesh.validate().ok());
+    CHECK(refine_edges<S, P, C, ShapeOnly, CapGeometry>(mesh, only_ab, g).applied == 1);
+    CHECK(vertex_at(cap_top));
+    const auto report = mesh.validate();
+    INFO(report.to_string());
+    CHECK(report.ok());
+    // Nothing left in the way: nothing to clear.
+    CHECK(clear_way_for_splits<S, P, C>(mesh, only_ab, g).tried == 0);
   }
 
   TEST_CASE_TEMPLATE("collapse - flips and smoothing on a CAD model keep the boundary on it", T,

@@ -4,7 +4,7 @@
 // it as it can (the step halved up to five times) and waits for the next
 // projection pass, after the reconnection around it. A vertex that still
 // cannot reach the model at the end first has the way cleared
-// (clear_way_to_model), then is collapsed onto a neighbour on the boundary
+// (clear_way.hpp), then is collapsed onto a neighbour on the boundary
 // (collapse_off_model).
 #pragma once
 
@@ -73,77 +73,6 @@ OperatorStats project_to_model(Mesh& mesh, const ProjectionOptions& o, const G& 
   const auto todo = vertices_off_model<C>(mesh, geometry, o.tolerance);
   OperatorStats stats;
   if (!todo.empty()) stats = run_pass<C>(mesh, Projection<S, P, G>{{}, o, geometry}, todo);
-  stats.seconds = clock.seconds();
-  return stats;
-}
-
-// A last resort for the vertices in `off` (off the model, their
-// projection refused because tets of their ball would invert at the model
-// point): each tet in the way whose inner vertex (one off the boundary)
-// sits between the vertex and its model point loses it, collapsed onto
-// the vertex or another neighbour, at any length and shape but a
-// non-positive tet; then the vertex moves as far toward its point as its
-// new ball allows, a few rounds per vertex (serial: few vertices, outside
-// a pass). The flips and smoothing that follow lift what this leaves.
-template <MetricSpace S, Precision P, Geometry G>
-OperatorStats clear_way_to_model(Mesh& mesh, std::span<const VertexId> off, const ProjectionOptions& o,
-                                 const G& geometry) {
-  constexpr int kRounds = 8;
-  Stopwatch clock;
-  OperatorStats stats;
-  CollapseOptions any_collapse;
-  any_collapse.min_length = std::numeric_limits<double>::infinity();
-  any_collapse.max_new_length = std::numeric_limits<double>::infinity();
-  any_collapse.shape_floor = 0.0;
-  const Projection<S, P, G> projection{{}, o, geometry};
-  CollapseScratch cs;
-  SmoothScratch ms;
-  TetList ball;
-  // Removes w by a collapse onto v, else onto another of its neighbours.
-  auto collapse_away = [&](VertexId w, VertexId v) {
-    vertex_ball(mesh, w, cs.ball);
-    vertex_neighbours(mesh, cs.ball, w, cs.neighbours);
-    VertexList targets{v};
-    for (VertexId u : cs.neighbours)
-      if (u != v) targets.emplace_back(u);
-    for (VertexId u : targets) {
-      vertex_ball(mesh, w, cs.ball);
-      vertex_neighbours(mesh, cs.ball, w, cs.neighbours);
-      vertex_ball(mesh, u, cs.ball_b);
-      vertex_neighbours(mesh, cs.ball_b, u, cs.neighbours_b);
-      const auto d = decide_collapse<S, P, ShapeOnly>(mesh, w, u, cs, any_collapse, nullptr, nullptr, geometry);
-      if (!d) continue;
-      apply_collapse(mesh, d.plan(), cs);
-      return true;
-    }
-    return false;
-  };
-  // Removes one inner vertex in v's way; false when none can go.
-  auto clear_one = [&](VertexId v, const Point& target) {
-    vertex_ball(mesh, v, ball);
-    for (std::size_t i = 0; i < ball.size(); ++i) {
-      const TetVertices tv = mesh.tet(ball[i]);
-      const TetPoints moved = tet_points_moved(mesh, tv, v, target);
-      if (P::orient3d(moved[0], moved[1], moved[2], moved[3]) > 0) continue;
-      for (VertexId w : tv)
-        if (w != v && !(mesh.has_geo_params() && mesh.geo_param(w).valid()) && !mesh.is_fixed(w) && collapse_away(w, v))
-          return true;
-    }
-    return false;
-  };
-  for (VertexId v : off) {
-    if (!mesh.vertex_alive(v)) continue;
-    ++stats.tried;
-    const Point target = geometry.point(mesh.geo_param(v));
-    auto on_model = [&] { return (target - mesh.point(v)).norm() <= o.tolerance; };
-    for (int round = 0; round < kRounds && !on_model(); ++round) {
-      if (round > 0 && !clear_one(v, target)) break;
-      ++stats.candidates;
-      find_smoothing_cavity(mesh, v, ms);
-      if (const auto d = projection.decide(mesh, v, ms)) projection.apply(mesh, v, d.plan(), ms);
-    }
-    ++(on_model() ? stats.applied : stats.rejected);
-  }
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -249,8 +249,12 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   polish_smooth.below = o.quality_phase_smooth_below;
 
   p.cycle.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
+  constexpr bool on_model = A::Geometry::on_model;
   if (o.points == PointRule::edge) {
     p.cycle.push_back({"split", [=](A& a) { return a.split(refine); }});
+    // On a model, an internal surface's split whose model point an inner
+    // vertex stands in front of waits; that vertex goes, for the next pass.
+    if constexpr (on_model) p.cycle.push_back({"clear", [=](A& a) { return a.clear_way(refine); }});
   } else {
     p.cycle.push_back({"split", [=](A& a) { return a.insert_centroids(refine); }});
     // A centroid leaves its tet's long edge in place; metric Delaunay flips
@@ -260,7 +264,6 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   p.cycle.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(flips); }});
   // On a model: the vertices a split left off it (their tets would have
   // inverted) try again after the reconnection around them.
-  constexpr bool on_model = A::Geometry::on_model;
   if constexpr (on_model) p.cycle.push_back({"project", [](A& a) { return a.project(); }});
   // The 2-2 flips toward the model (on one) and of internal surfaces.
   const auto swap = [](A& a) {
