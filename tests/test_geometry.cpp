@@ -58,44 +58,42 @@ double largest_radius_error(const Mesh& mesh) {
   return e;
 }
 
-// A Geometry whose model point is `straight + offset` for any parameters,
-// to test placement without a CAD model.
-struct ShiftedGeometry {
+// What the test models below share: on a model, every facet fits it,
+// every vertex is placed by it.
+struct TestModel {
   static constexpr bool on_model = true;
-  Point target = Point::Zero();
-  GeoParam boundary_vertex(const Mesh&, std::span<const VertexId>, std::span<const double>, SurfaceId) const {
-    return {1, 2, 0.0, 0.0};
-  }
-  Point point(const GeoParam&) const { return target; }
   bool facet_fits(const Mesh&, VertexId, VertexId, VertexId, SurfaceId, const Eigen::Vector3d&, double) const {
     return true;
   }
   double facet_deviation(const Mesh&, VertexId, VertexId, VertexId, SurfaceId) const { return 0.0; }
   bool places(const Mesh&, VertexId) const { return true; }
 };
+
+// A Geometry whose model point is `straight + offset` for any parameters,
+// to test placement without a CAD model.
+struct ShiftedGeometry : TestModel {
+  Point target = Point::Zero();
+  GeoParam boundary_vertex(const Mesh&, std::span<const VertexId>, std::span<const double>, SurfaceId) const {
+    return {1, 2, 0.0, 0.0};
+  }
+  Point point(const GeoParam&) const { return target; }
+};
 static_assert(Geometry<ShiftedGeometry>);
 
 // A model of two surfaces: the plane z = 1 (tag 1, parameters x and y)
 // and the point (u, v, 0) for tag 2.
-struct PlaneGeometry {
-  static constexpr bool on_model = true;
+struct PlaneGeometry : TestModel {
   GeoParam boundary_vertex(const Mesh&, std::span<const VertexId>, std::span<const double>, SurfaceId) const {
     return {};
   }
   Point point(const GeoParam& p) const { return {p.u, p.v, p.tag == 1 ? 1.0 : 0.0}; }
-  bool facet_fits(const Mesh&, VertexId, VertexId, VertexId, SurfaceId, const Eigen::Vector3d&, double) const {
-    return true;
-  }
-  double facet_deviation(const Mesh&, VertexId, VertexId, VertexId, SurfaceId) const { return 0.0; }
-  bool places(const Mesh&, VertexId) const { return true; }
 };
 static_assert(Geometry<PlaneGeometry>);
 
 // A model whose internal surface (tag 100) is the cap z = 0.1 (1 - x^2 -
 // y^2) over its parameters (x, y), new vertices on it at their parents'
 // mean parameters; no model for the other surfaces.
-struct CapGeometry {
-  static constexpr bool on_model = true;
+struct CapGeometry : TestModel {
   GeoParam boundary_vertex(const Mesh& mesh, std::span<const VertexId> parents, std::span<const double> weights,
                            SurfaceId surface) const {
     if (surface != 100) return {};
@@ -107,11 +105,6 @@ struct CapGeometry {
     return {100, 2, u, v};
   }
   Point point(const GeoParam& p) const { return {p.u, p.v, 0.1 * (1.0 - p.u * p.u - p.v * p.v)}; }
-  bool facet_fits(const Mesh&, VertexId, VertexId, VertexId, SurfaceId, const Eigen::Vector3d&, double) const {
-    return true;
-  }
-  double facet_deviation(const Mesh&, VertexId, VertexId, VertexId, SurfaceId) const { return 0.0; }
-  bool places(const Mesh&, VertexId) const { return true; }
 };
 static_assert(Geometry<CapGeometry>);
 
@@ -125,11 +118,11 @@ Mesh cap_split_in_the_way() {
   d.vertices = {{-1, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, 0, 0.05}};
   enum : VertexId { a, b, c, dd, T, B, w };
   d.vertex_refs.assign(d.vertices.size(), 0);
-  d.tets = {{a, b, c, w}, {b, a, dd, w}, {a, c, w, T}, {c, b, w, T}, {b, dd, w, T}, {dd, a, w, T},
-            {a, b, c, B}, {b, a, dd, B}};
+  d.tets = {{a, b, c, w},  {b, a, dd, w}, {a, c, w, T}, {c, b, w, T},
+            {b, dd, w, T}, {dd, a, w, T}, {a, b, c, B}, {b, a, dd, B}};
   d.tet_refs = {2, 2, 2, 2, 2, 2, 1, 1};
-  d.triangles = {{a, c, T}, {c, b, T}, {b, dd, T}, {dd, a, T}, {a, c, B}, {c, b, B}, {b, dd, B}, {dd, a, B},
-                 {a, b, c}, {b, a, dd}};
+  d.triangles = {{a, c, T}, {c, b, T},  {b, dd, T}, {dd, a, T}, {a, c, B},
+                 {c, b, B}, {b, dd, B}, {dd, a, B}, {a, b, c},  {b, a, dd}};
   d.triangle_refs = {1, 1, 1, 1, 2, 2, 2, 2, 100, 100};
   test::orient_positively(d);
   Mesh mesh = build_mesh(d);
@@ -337,7 +330,7 @@ TEST_SUITE("unit") {
 
   TEST_CASE("backtracking halves the way to the model until the cavity accepts - else stays straight") {
     Mesh mesh;
-    const ShiftedGeometry g{Point(1.0, 0.0, 0.0)};
+    const ShiftedGeometry g{{}, Point(1.0, 0.0, 0.0)};
     const GeoParam param{1, 2, 0.0, 0.0};
     const Point straight = Point::Zero();
     auto within = [](double d) { return [d](const Point& q) { return q.norm() <= d + 1e-15; }; };
