@@ -80,16 +80,6 @@ struct ShiftedGeometry : TestModel {
 };
 static_assert(Geometry<ShiftedGeometry>);
 
-// A model of two surfaces: the plane z = 1 (tag 1, parameters x and y)
-// and the point (u, v, 0) for tag 2.
-struct PlaneGeometry : TestModel {
-  GeoParam boundary_vertex(const Mesh&, std::span<const VertexId>, std::span<const double>, SurfaceId) const {
-    return {};
-  }
-  Point point(const GeoParam& p) const { return {p.u, p.v, p.tag == 1 ? 1.0 : 0.0}; }
-};
-static_assert(Geometry<PlaneGeometry>);
-
 // A model whose internal surface (tag 100) is the cap z = 0.1 (1 - x^2 -
 // y^2) over its parameters (x, y), new vertices on it at their parents'
 // mean parameters; no model for the other surfaces.
@@ -128,37 +118,6 @@ Mesh cap_split_in_the_way() {
   Mesh mesh = build_mesh(d);
   mesh.enable_geo_params();
   for (VertexId v : {a, b, c, dd}) mesh.set_geo_param(v, {100, 2, d.vertices[v].x(), d.vertices[v].y()});
-  return mesh;
-}
-
-// A hexagonal umbrella: vertex 0 on surface 1 but 0.002 above its model
-// point (0, 0, 1), its ring (1-6) on the plane z = 1, inner vertex 7 at
-// (0, 0, 1.001) between vertex 0 and its point (every tet of 0's ball has
-// 7 as apex), vertex 8 at the bottom: the projection of 0 would invert its
-// whole ball.
-Mesh umbrella_in_the_way() {
-  io::MeshData d;
-  d.vertices.emplace_back(0.0, 0.0, 1.002);
-  for (int i = 0; i < 6; ++i) d.vertices.emplace_back(std::cos(i * kPi / 3), std::sin(i * kPi / 3), 1.0);
-  d.vertices.emplace_back(0.0, 0.0, 1.001);
-  d.vertices.emplace_back(0.0, 0.0, 0.0);
-  d.vertex_refs.assign(d.vertices.size(), 0);
-  for (VertexId i = 0; i < 6; ++i) {
-    const VertexId a = 1 + i, b = 1 + (i + 1) % 6;
-    d.tets.push_back({0, a, b, 7});
-    d.tets.push_back({7, a, b, 8});
-    d.triangles.push_back({0, a, b});
-    d.triangle_refs.push_back(1);
-    d.triangles.push_back({8, a, b});
-    d.triangle_refs.push_back(2);
-  }
-  d.tet_refs.assign(d.tets.size(), 1);
-  test::orient_positively(d);
-  Mesh mesh = build_mesh(d);
-  mesh.enable_geo_params();
-  mesh.set_geo_param(0, {1, 2, 0.0, 0.0});
-  for (VertexId i = 1; i <= 6; ++i) mesh.set_geo_param(i, {1, 2, d.vertices[i].x(), d.vertices[i].y()});
-  mesh.set_geo_param(8, {2, 2, 0.0, 0.0});
   return mesh;
 }
 
@@ -470,31 +429,6 @@ TEST_SUITE("invariant") {
     }
     CHECK(largest_distance(c.mesh, c.model) < 1e-8);
     CHECK(model_distance(c.mesh, c.model).unassociated == 0);
-  }
-
-  TEST_CASE_TEMPLATE("a vertex whose projection would invert its ball: the way is cleared, then it is on the model", T,
-                     METRICA_POLICY_COMBINATIONS) {
-    using S = typename T::Space;
-    using P = typename T::Precision;
-    using C = typename T::Concurrency;
-    const ExecutorOf<T> executor;
-    Mesh mesh = umbrella_in_the_way();
-    test::set_uniform_metric(mesh, 0.5);
-    REQUIRE(mesh.validate().ok());
-    const PlaneGeometry g;
-    // The projection alone only halves its way toward the inner vertex.
-    for (int i = 0; i < 4; ++i) project_to_model<S, P, C>(mesh, {}, g);
-    const auto off = vertices_off_model<C>(mesh, g, ProjectionOptions{}.tolerance);
-    REQUIRE(off == std::vector<VertexId>{0});
-    CHECK(mesh.point(0).z() > 1.001);
-    const OperatorStats stats = clear_way_to_model<S, P>(mesh, off, {}, g);
-    CHECK(stats.applied == 1);
-    CHECK(vertices_off_model<C>(mesh, g, ProjectionOptions{}.tolerance).empty());
-    CHECK(mesh.point(0) == Point(0.0, 0.0, 1.0));
-    CHECK(!mesh.vertex_alive(7));  // the inner vertex collapsed away
-    const auto report = mesh.validate();
-    INFO(report.to_string());
-    CHECK(report.ok());
   }
 
   TEST_CASE_TEMPLATE("an inner vertex in the way of an internal surface's split on the model goes - then the split", T,

@@ -1,34 +1,29 @@
 // Clearing the way to the model: an inner vertex (one off the boundary)
-// close to a curved surface can stand where a boundary vertex should go on
-// the model, so that every tet joining the two would invert. Such inner
-// vertices are collapsed away, for a boundary vertex off the model
-// (clear_way_to_model, the projection's last resort) and for a split of an
-// internal-surface edge whose model point the mesh cannot take
-// (clear_way_for_splits: on an internal surface such a split waits, and
-// its long edge would stay under the worst tets).
+// close to a curved internal surface can stand where the split of one of
+// its edges should put the new vertex on the model, so that the split's
+// tets would invert. On an internal surface such a split waits (both
+// regions hold the vertex: no later pass could move it onto the model),
+// and its long edge would stay under the worst tets; the inner vertex is
+// collapsed away instead (clear_way_for_splits).
 #pragma once
 
 #include <metrica/operators/collapse.hpp>
-#include <metrica/operators/project.hpp>
 #include <metrica/operators/split_edge.hpp>
 
 namespace metrica {
 
-// Removes inner vertex w by a collapse onto `prefer`, else onto another of
-// its neighbours, at any length and shape but a non-positive tet; false
-// when none is admitted. Serial.
+// Removes inner vertex w by a collapse onto one of its neighbours, at any
+// length and shape but a non-positive tet; false when none is admitted.
+// Serial.
 template <MetricSpace S, Precision P, Geometry G>
-bool collapse_inner_vertex(Mesh& mesh, VertexId w, VertexId prefer, CollapseScratch& cs, const G& geometry) {
+bool collapse_inner_vertex(Mesh& mesh, VertexId w, CollapseScratch& cs, const G& geometry) {
   CollapseOptions any;
   any.min_length = std::numeric_limits<double>::infinity();
   any.max_new_length = std::numeric_limits<double>::infinity();
   any.shape_floor = 0.0;
   vertex_ball(mesh, w, cs.ball);
   vertex_neighbours(mesh, cs.ball, w, cs.neighbours);
-  VertexList targets;
-  if (prefer != kNoId) targets.emplace_back(prefer);
-  for (VertexId u : cs.neighbours)
-    if (u != prefer) targets.emplace_back(u);
+  const VertexList targets = cs.neighbours;
   for (VertexId u : targets) {
     vertex_ball(mesh, w, cs.ball);
     vertex_neighbours(mesh, cs.ball, w, cs.neighbours);
@@ -46,54 +41,6 @@ bool collapse_inner_vertex(Mesh& mesh, VertexId w, VertexId prefer, CollapseScra
 inline bool removable_inner_vertex(const Mesh& mesh, VertexId w) {
   return !(mesh.has_geo_params() && mesh.geo_param(w).valid()) && !mesh.is_fixed(w) &&
          mesh.vertex_class(w) == VertexClass::interior;
-}
-
-// A last resort for the vertices in `off` (off the model, their
-// projection refused because tets of their ball would invert at the model
-// point): each tet in the way whose inner vertex (one off the boundary)
-// sits between the vertex and its model point loses it, collapsed onto
-// the vertex or another neighbour, at any length and shape but a
-// non-positive tet; then the vertex moves as far toward its point as its
-// new ball allows, a few rounds per vertex (serial: few vertices, outside
-// a pass). The flips and smoothing that follow lift what this leaves.
-template <MetricSpace S, Precision P, Geometry G>
-OperatorStats clear_way_to_model(Mesh& mesh, std::span<const VertexId> off, const ProjectionOptions& o,
-                                 const G& geometry) {
-  constexpr int kRounds = 8;
-  Stopwatch clock;
-  OperatorStats stats;
-  const Projection<S, P, G> projection{{}, o, geometry};
-  CollapseScratch cs;
-  SmoothScratch ms;
-  TetList ball;
-  // Removes one inner vertex in v's way; false when none can go.
-  auto clear_one = [&](VertexId v, const Point& target) {
-    vertex_ball(mesh, v, ball);
-    for (std::size_t i = 0; i < ball.size(); ++i) {
-      const TetVertices tv = mesh.tet(ball[i]);
-      const TetPoints moved = tet_points_moved(mesh, tv, v, target);
-      if (P::orient3d(moved[0], moved[1], moved[2], moved[3]) > 0) continue;
-      for (VertexId w : tv)
-        if (w != v && removable_inner_vertex(mesh, w) && collapse_inner_vertex<S, P>(mesh, w, v, cs, geometry))
-          return true;
-    }
-    return false;
-  };
-  for (VertexId v : off) {
-    if (!mesh.vertex_alive(v)) continue;
-    ++stats.tried;
-    const Point target = geometry.point(mesh.geo_param(v));
-    auto on_model = [&] { return (target - mesh.point(v)).norm() <= o.tolerance; };
-    for (int round = 0; round < kRounds && !on_model(); ++round) {
-      if (round > 0 && !clear_one(v, target)) break;
-      ++stats.candidates;
-      find_smoothing_cavity(mesh, v, ms);
-      if (const auto d = projection.decide(mesh, v, ms)) projection.apply(mesh, v, d.plan(), ms);
-    }
-    ++(on_model() ? stats.applied : stats.rejected);
-  }
-  stats.seconds = clock.seconds();
-  return stats;
 }
 
 // The internal-surface edges longer than o.max_length whose model point
@@ -140,7 +87,7 @@ OperatorStats clear_way_for_splits(Mesh& mesh, const RefineOptions& o, const G& 
         bool cleared = false;
         for (VertexId w : in_the_way) {
           ++stats.candidates;
-          cleared = (mesh.vertex_alive(w) && collapse_inner_vertex<S, P>(mesh, w, kNoId, cs, geometry)) || cleared;
+          cleared = (mesh.vertex_alive(w) && collapse_inner_vertex<S, P>(mesh, w, cs, geometry)) || cleared;
         }
         ++(cleared ? stats.applied : stats.rejected);
       }

@@ -3,9 +3,8 @@
 // that point when its ball stays positively oriented, else as far toward
 // it as it can (the step halved up to five times) and waits for the next
 // projection pass, after the reconnection around it. A vertex that still
-// cannot reach the model at the end first has the way cleared
-// (clear_way.hpp), then is collapsed onto a neighbour on the boundary
-// (collapse_off_model).
+// cannot reach the model at the end is collapsed onto a neighbour on the
+// boundary (collapse_off_model).
 #pragma once
 
 #include <metrica/geometry/model.hpp>

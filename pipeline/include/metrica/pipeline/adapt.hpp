@@ -323,9 +323,8 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   // On a model, the vertices still off it (their ball would invert) go
   // onto it after flips and smoothing around them, a few times; flips and
   // smoothing follow each projection (it moves vertices for the model,
-  // not for quality). For those the last round leaves, the tets in their
-  // way are taken out of their balls; those that still cannot move are
-  // collapsed onto a boundary neighbour.
+  // not for quality). Those the last round leaves are collapsed onto a
+  // boundary neighbour.
   if constexpr (on_model)
     p.closing.push_back({"project", [=, rounds = o.closing_rounds](A& a) {
                            OperatorStats stats;
@@ -340,14 +339,8 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
                                vertex_ball(a.mesh(), v, ball);
                                for (TetId t : ball) a.mesh().touch_tet(t);
                              }
-                             if (round == rounds && !off.empty()) {  // the last resorts
-                               using Pr = typename A::Precision;
-                               const ProjectionOptions po{.scope = {.metric = a.metric()}};
-                               stats += clear_way_to_model<S, Pr>(a.mesh(), off, po, a.geometry());
-                               const auto still =
-                                   vertices_off_model<C>(a.mesh(), a.geometry(), ProjectionOptions{}.tolerance);
-                               stats += collapse_off_model<S, Pr>(a.mesh(), still, a.geometry());
-                             }
+                             if (round == rounds && !off.empty())  // the last resort
+                               stats += collapse_off_model<S, typename A::Precision>(a.mesh(), off, a.geometry());
                              // The flips and smoothing of the quality phase, going on from their epochs.
                              a.template flips<MinQuality>(around, "flip");
                              a.smooth(polish_smooth, "smooth");
