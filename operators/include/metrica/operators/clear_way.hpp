@@ -12,31 +12,6 @@
 
 namespace metrica {
 
-// Removes inner vertex w by a collapse onto one of its neighbours, at any
-// length and shape but a non-positive tet; false when none is admitted.
-// Serial.
-template <MetricSpace S, Precision P, Geometry G>
-bool collapse_inner_vertex(Mesh& mesh, VertexId w, CollapseScratch& cs, const G& geometry) {
-  CollapseOptions any;
-  any.min_length = std::numeric_limits<double>::infinity();
-  any.max_new_length = std::numeric_limits<double>::infinity();
-  any.shape_floor = 0.0;
-  vertex_ball(mesh, w, cs.ball);
-  vertex_neighbours(mesh, cs.ball, w, cs.neighbours);
-  const VertexList targets = cs.neighbours;
-  for (VertexId u : targets) {
-    vertex_ball(mesh, w, cs.ball);
-    vertex_neighbours(mesh, cs.ball, w, cs.neighbours);
-    vertex_ball(mesh, u, cs.ball_b);
-    vertex_neighbours(mesh, cs.ball_b, u, cs.neighbours_b);
-    const auto d = decide_collapse<S, P, ShapeOnly>(mesh, w, u, cs, any, nullptr, nullptr, geometry);
-    if (!d) continue;
-    apply_collapse(mesh, d.plan(), cs);
-    return true;
-  }
-  return false;
-}
-
 // An inner vertex that may be collapsed away.
 inline bool removable_inner_vertex(const Mesh& mesh, VertexId w) {
   return !(mesh.has_geo_params() && mesh.geo_param(w).valid()) && !mesh.is_fixed(w) &&
@@ -60,6 +35,7 @@ OperatorStats clear_way_for_splits(Mesh& mesh, const RefineOptions& o, const G& 
       Shell shell;
       VertexList in_the_way;
       CollapseScratch cs;
+      auto any_neighbour = [](VertexId) { return true; };
       for (const EdgeCandidate& c : todo) {
         if (!mesh.vertex_alive(c.a) || !mesh.vertex_alive(c.b)) continue;
         vertex_ball(mesh, c.a, ball);
@@ -87,7 +63,8 @@ OperatorStats clear_way_for_splits(Mesh& mesh, const RefineOptions& o, const G& 
         bool cleared = false;
         for (VertexId w : in_the_way) {
           ++stats.candidates;
-          cleared = (mesh.vertex_alive(w) && collapse_inner_vertex<S, P>(mesh, w, cs, geometry)) || cleared;
+          if (mesh.vertex_alive(w) && collapse_onto_any_neighbour<S, P>(mesh, w, cs, geometry, any_neighbour).done)
+            cleared = true;
         }
         ++(cleared ? stats.applied : stats.rejected);
       }

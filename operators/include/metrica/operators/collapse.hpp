@@ -35,6 +35,7 @@
 #include <metrica/timer.hpp>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -359,6 +360,40 @@ OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}, const G&
   OperatorStats stats = run_pass<C>(mesh, Collapse<S, P, Criterion, G>{o, geometry}, todo);
   stats.seconds = clock.seconds();
   return stats;
+}
+
+// A last resort, outside a pass: v collapses onto the first of its
+// neighbours u with onto(u) whose collapse the class rules, the Geometry
+// and a positive ball allow, at any length and shape (the flips and
+// smoothing that follow lift what it leaves). Serial.
+struct AnyCollapse {
+  std::size_t weighed = 0;  // neighbours onto(u) admitted
+  bool done = false;
+};
+template <MetricSpace S, Precision P, Geometry G, class Onto>
+AnyCollapse collapse_onto_any_neighbour(Mesh& mesh, VertexId v, CollapseScratch& s, const G& geometry, Onto&& onto) {
+  CollapseOptions any;
+  any.min_length = std::numeric_limits<double>::infinity();
+  any.max_new_length = std::numeric_limits<double>::infinity();
+  any.shape_floor = 0.0;
+  AnyCollapse result;
+  vertex_ball(mesh, v, s.ball);
+  vertex_neighbours(mesh, s.ball, v, s.neighbours);
+  const VertexList around = s.neighbours;
+  for (VertexId u : around) {
+    if (!onto(u)) continue;
+    ++result.weighed;
+    vertex_ball(mesh, v, s.ball);
+    vertex_neighbours(mesh, s.ball, v, s.neighbours);
+    vertex_ball(mesh, u, s.ball_b);
+    vertex_neighbours(mesh, s.ball_b, u, s.neighbours_b);
+    const auto d = decide_collapse<S, P, ShapeOnly>(mesh, v, u, s, any, nullptr, nullptr, geometry);
+    if (!d) continue;
+    apply_collapse(mesh, d.plan(), s);
+    result.done = true;
+    break;
+  }
+  return result;
 }
 
 }  // namespace metrica

@@ -85,34 +85,15 @@ template <MetricSpace S, Precision P, Geometry G>
 OperatorStats collapse_off_model(Mesh& mesh, std::span<const VertexId> off, const G& geometry) {
   Stopwatch clock;
   OperatorStats stats;
-  // Any length, any shape but a non-positive tet: the smoothing and flips
-  // that follow lift what this leaves.
-  CollapseOptions o;
-  o.min_length = std::numeric_limits<double>::infinity();
-  o.max_new_length = std::numeric_limits<double>::infinity();
-  o.shape_floor = 0.0;
   CollapseScratch s;
+  // Onto a neighbour along a boundary edge.
+  auto on_boundary = [&](VertexId u) { return mesh.has_geo_params() && mesh.geo_param(u).valid(); };
   for (VertexId v : off) {
     if (!mesh.vertex_alive(v)) continue;
-    vertex_ball(mesh, v, s.ball);
-    vertex_neighbours(mesh, s.ball, v, s.neighbours);
-    const VertexList around = s.neighbours;
     ++stats.tried;
-    bool collapsed = false;
-    for (VertexId u : around) {
-      if (!mesh.has_geo_params() || !mesh.geo_param(u).valid()) continue;  // not on the boundary
-      ++stats.candidates;
-      vertex_ball(mesh, v, s.ball);
-      vertex_neighbours(mesh, s.ball, v, s.neighbours);
-      vertex_ball(mesh, u, s.ball_b);
-      vertex_neighbours(mesh, s.ball_b, u, s.neighbours_b);
-      const auto d = decide_collapse<S, P, ShapeOnly>(mesh, v, u, s, o, nullptr, nullptr, geometry);
-      if (!d) continue;
-      apply_collapse(mesh, d.plan(), s);
-      collapsed = true;
-      break;
-    }
-    ++(collapsed ? stats.applied : stats.rejected);
+    const AnyCollapse c = collapse_onto_any_neighbour<S, P>(mesh, v, s, geometry, on_boundary);
+    stats.candidates += c.weighed;
+    ++(c.done ? stats.applied : stats.rejected);
   }
   stats.seconds = clock.seconds();
   return stats;
