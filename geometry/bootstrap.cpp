@@ -23,6 +23,9 @@ io::MeshData bootstrap_mesh(const CadModel& model, const BootstrapOptions& optio
     gmsh_api::option::setNumber("Mesh.MeshSizeMin", 0.0);
     gmsh_api::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
     gmsh_api::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay
+    // On several threads gmsh's result varies in its last bits from run
+    // to run; one thread gives the same mesh every time.
+    gmsh_api::option::setNumber("General.NumThreads", 1);
     gmsh_api::model::mesh::generate(3);
 
     std::unordered_map<std::size_t, VertexId> index;

@@ -71,6 +71,15 @@ void release_freed_memory() {
 #endif
 }
 
+FreedMemoryKeptForRun::FreedMemoryKeptForRun() { keep_freed_memory(); }
+
+FreedMemoryKeptForRun::~FreedMemoryKeptForRun() {
+  release_freed_memory();
+#if defined(__GLIBC__)
+  if (!env_set("METRICA_RETURN_FREED_MEMORY")) mallopt(M_TRIM_THRESHOLD, 128 * 1024);  // glibc's default
+#endif
+}
+
 void* allocate_large(std::size_t bytes) {
 #if defined(__linux__)
   return map_aligned(mapped_size(bytes));

@@ -2,6 +2,7 @@
 
 #include "fields.hpp"
 
+#include <metrica/allocator.hpp>
 #include <metrica/error.hpp>
 #include <metrica/geometry/association.hpp>
 #include <metrica/geometry/cad_model.hpp>
@@ -279,6 +280,7 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
   QualityReport q;
   try {
     py::gil_scoped_release no_gil;
+    const FreedMemoryKeptForRun memory;  // as the command's (allocator.hpp)
     for (int it = 0; it < call.iterations; ++it) {
       std::vector<Sym6> field = kind ? analytic_metric_field(*kind, vertex_points(mesh)) : given;
       clamp_metrics(field, bounds);

@@ -90,6 +90,7 @@ py::array_t<std::int32_t> index_array(const std::vector<std::array<VertexId, N>>
 const io::MeshData& PyMesh::data() const {
   if (!data_) {
     data_ = extract_mesh_data(mesh_);
+    data_->version = version_;
     for (std::size_t k = 0; k < 3; ++k)
       if (data_->on_geometry[k].empty()) data_->on_geometry[k] = read_records_[k];
   }

@@ -30,7 +30,8 @@ class PyMesh {
       : mesh_(std::move(mesh)), version_(version), read_records_(std::move(read_records)) {}
   const Mesh& mesh() const { return mesh_; }
   int version() const { return version_; }
-  // The file layout (vertex ids ascending, removed ones skipped).
+  // The file layout (vertex ids ascending, removed ones skipped), with the
+  // libMeshb version read.
   const io::MeshData& data() const;
 
  private:

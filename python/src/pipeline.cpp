@@ -3,6 +3,7 @@
 #include "adaptation.hpp"
 #include "fields.hpp"
 
+#include <metrica/allocator.hpp>
 #include <metrica/error.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_field.hpp>
@@ -188,6 +189,7 @@ py::tuple run_with(const PyMesh& m, const PipelineCall& call) {
   QualityReport q;
   try {
     py::gil_scoped_release no_gil;
+    const FreedMemoryKeptForRun memory;  // as the command's (allocator.hpp)
     A adapter(mesh, exact ? &exact : nullptr);
     adapter.set_volume_budget(AdaptOptions{}.volume_budget);
     adapter.on_cycle = callback;

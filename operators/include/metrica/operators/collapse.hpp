@@ -362,37 +362,61 @@ OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}, const G&
   return stats;
 }
 
-// A last resort, outside a pass: v collapses onto the first of its
-// neighbours u with onto(u) whose collapse the class rules, the Geometry
-// and a positive ball allow, at any length and shape (the flips and
-// smoothing that follow lift what it leaves). Serial.
+// A last resort, outside a pass: v collapses onto a neighbour u with
+// onto(u) whose collapse the class rules, the Geometry and a positive ball
+// allow, at any length. By default the first such u at any shape (the
+// flips and smoothing that follow lift what it leaves); with `best`, the
+// u whose worst new tet is best, each new tet at or above `shape_floor`
+// unless it beats the ball's worst. Serial.
 struct AnyCollapse {
   std::size_t weighed = 0;  // neighbours onto(u) admitted
   bool done = false;
 };
+struct AnyCollapseRule {
+  double shape_floor = 0.0;
+  bool best = false;
+};
 template <MetricSpace S, Precision P, Geometry G, class Onto>
-AnyCollapse collapse_onto_any_neighbour(Mesh& mesh, VertexId v, CollapseScratch& s, const G& geometry, Onto&& onto) {
+AnyCollapse collapse_onto_any_neighbour(Mesh& mesh, VertexId v, CollapseScratch& s, const G& geometry, Onto&& onto,
+                                        AnyCollapseRule rule = {}) {
   CollapseOptions any;
   any.min_length = std::numeric_limits<double>::infinity();
   any.max_new_length = std::numeric_limits<double>::infinity();
-  any.shape_floor = 0.0;
+  any.shape_floor = rule.shape_floor;
   AnyCollapse result;
-  vertex_ball(mesh, v, s.ball);
-  vertex_neighbours(mesh, s.ball, v, s.neighbours);
-  const VertexList around = s.neighbours;
-  for (VertexId u : around) {
-    if (!onto(u)) continue;
-    ++result.weighed;
+  auto decide = [&](VertexId u) {
     vertex_ball(mesh, v, s.ball);
     vertex_neighbours(mesh, s.ball, v, s.neighbours);
     vertex_ball(mesh, u, s.ball_b);
     vertex_neighbours(mesh, s.ball_b, u, s.neighbours_b);
-    const auto d = decide_collapse<S, P, ShapeOnly>(mesh, v, u, s, any, nullptr, nullptr, geometry);
+    return decide_collapse<S, P, ShapeOnly>(mesh, v, u, s, any, nullptr, nullptr, geometry);
+  };
+  vertex_ball(mesh, v, s.ball);
+  vertex_neighbours(mesh, s.ball, v, s.neighbours);
+  const VertexList around = s.neighbours;
+  VertexId chosen = kNoId;
+  double chosen_worst = -1.0;
+  for (VertexId u : around) {
+    if (!onto(u)) continue;
+    ++result.weighed;
+    const auto d = decide(u);
     if (!d) continue;
-    apply_collapse(mesh, d.plan(), s);
-    result.done = true;
-    break;
+    if (!rule.best) {
+      apply_collapse(mesh, d.plan(), s);
+      result.done = true;
+      return result;
+    }
+    const double worst = s.new_quality.empty() ? 1.0 : *std::min_element(s.new_quality.begin(), s.new_quality.end());
+    if (worst > chosen_worst) {
+      chosen = u;
+      chosen_worst = worst;
+    }
   }
+  if (chosen == kNoId) return result;
+  const auto d = decide(chosen);  // again: the scratch as its decision leaves it
+  if (!d) return result;
+  apply_collapse(mesh, d.plan(), s);
+  result.done = true;
   return result;
 }
 

@@ -252,6 +252,9 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   constexpr bool on_model = A::Geometry::on_model;
   if (o.points == PointRule::edge) {
     p.cycle.push_back({"split", [=](A& a) { return a.split(refine); }});
+    // On a model, an internal surface's split whose model point an inner
+    // vertex stands in front of waits; that vertex goes, for the next pass.
+    if constexpr (on_model) p.cycle.push_back({"clear", [=](A& a) { return a.clear_way(refine); }});
   } else {
     p.cycle.push_back({"split", [=](A& a) { return a.insert_centroids(refine); }});
     // A centroid leaves its tet's long edge in place; metric Delaunay flips

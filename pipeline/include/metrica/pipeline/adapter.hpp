@@ -10,6 +10,7 @@
 #pragma once
 
 #include <metrica/operators/boundary_swap.hpp>
+#include <metrica/operators/clear_way.hpp>
 #include <metrica/operators/collapse.hpp>
 #include <metrica/operators/interface_flip.hpp>
 #include <metrica/operators/interface_swap.hpp>
@@ -284,6 +285,9 @@ class Adapter {
     stats += flip_interfaces<S, P, C>(mesh_, f, geometry_);
     return stats;
   }
+  // The inner vertices in the way of the internal surfaces' long edges'
+  // splits on the model go (clear_way.hpp; nothing without a model).
+  OperatorStats clear_way(const RefineOptions& o) { return clear_way_for_splits<S, P, C>(mesh_, o, geometry_); }
   // Boundary vertices off the model move onto it (none without a model).
   OperatorStats project(ProjectionOptions o = {}) {
     o.scope.metric = metric_;
