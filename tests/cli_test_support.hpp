@@ -16,9 +16,10 @@ struct Run {
   std::string output;  // stdout and stderr together
 };
 
-inline Run metrica_cli(const std::string& args) {
+// The command run through `prefix` (e.g. "env VAR=value").
+inline Run metrica_cli_in_env(const std::string& prefix, const std::string& args) {
   Run r;
-  const std::string cmd = std::string(METRICA_CLI) + " " + args + " 2>&1";
+  const std::string cmd = prefix + " " + std::string(METRICA_CLI) + " " + args + " 2>&1";
   std::FILE* p = popen(cmd.c_str(), "r");
   REQUIRE(p != nullptr);
   char buf[4096];
@@ -29,6 +30,8 @@ inline Run metrica_cli(const std::string& args) {
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+
+inline Run metrica_cli(const std::string& args) { return metrica_cli_in_env("", args); }
 
 inline bool has(const Run& r, const std::string& s) { return r.output.find(s) != std::string::npos; }
 

@@ -17,6 +17,7 @@
 using namespace metrica;
 using test::has;
 using test::metrica_cli;
+using test::metrica_cli_in_env;
 using test::Run;
 using test::serial_option;
 
@@ -32,6 +33,23 @@ std::size_t nth_comma(const std::string& line, int n) {
 }  // namespace
 
 TEST_SUITE("regression") {
+  TEST_CASE("OpenMP's threads wait passively unless the environment chooses - the command runs once") {
+    auto run = [](const std::string& env) { return metrica_cli_in_env(env + " OMP_DISPLAY_ENV=verbose", "--version"); };
+    const Run by_default = run("env -u OMP_WAIT_POLICY");
+    CHECK(by_default.code == 0);
+    std::size_t versions = 0;
+    for (std::size_t at = by_default.output.find("metrica "); at != std::string::npos;
+         at = by_default.output.find("metrica ", at + 1))
+      ++versions;
+    CHECK(versions == 1);
+    // libgomp prints its spin count: 0 once passive (its display of the
+    // policy says PASSIVE also while it spins).
+    if (has(by_default, "GOMP_SPINCOUNT")) {
+      CHECK(has(by_default, "GOMP_SPINCOUNT = '0'"));
+      CHECK(has(run("env OMP_WAIT_POLICY=active"), "OMP_WAIT_POLICY = 'ACTIVE'"));
+    }
+  }
+
   TEST_CASE("info prints the counts of every UGAWG file - check says valid") {
     struct Case {
       const char* file;

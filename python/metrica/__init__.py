@@ -12,6 +12,13 @@ docs/python.md.
 """
 
 import logging
+import os
+
+# OpenMP's threads sleep as soon as they wait unless the environment
+# chooses, as for the command (cli/main.cpp): spinning, they slowed two
+# threads 1.6x beside a busy process. libgomp reads this when it is
+# loaded, by the import below unless something loaded it before.
+os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
 from ._metrica import (
     InputError,
