@@ -27,7 +27,7 @@ void release_freed_memory();
 // keep_freed_memory() for one run inside a process that is not ours (the
 // Python module's adapt and pipeline): without it glibc's adaptive mmap
 // threshold rose past the passes' large blocks and the heap held them
-// (+113 MB at 4.3M tets). On leaving, the freed memory goes back to the
+// (8 MiB more at the peak at 4.3M tets). On leaving, the freed memory goes back to the
 // kernel and the heap's top is trimmed again at glibc's default; the
 // 4 MiB mmap threshold stays.
 class FreedMemoryKeptForRun {
