@@ -401,12 +401,7 @@ TEST_SUITE("invariant") {
     // and flipped away (serially, whose order is fixed: without the swap
     // the worst tet is 0.19; parallel orders leave 0.15 to 0.25 at times).
     CHECK(adapted.ops.get("swap").applied > 0);
-    if constexpr (std::same_as<typename T::Concurrency, Serial>) {
-      double worst = 1.0;
-      for (TetId t = 0; t < mesh.tet_capacity(); ++t)
-        if (mesh.tet_alive(t)) worst = std::min(worst, S::mean_ratio(mesh, mesh.tet(t)));
-      CHECK(worst > 0.3);
-    }
+    if constexpr (std::same_as<typename T::Concurrency, Serial>) CHECK(worst_quality<S>(mesh) > 0.3);
     const ModelDistance d = model_distance(mesh, model);
     CHECK(d.unassociated == 0);
     CHECK(d.max < 1e-8);
@@ -471,20 +466,14 @@ TEST_SUITE("invariant") {
     // The split waits while the inner vertex stands there.
     CHECK(refine_edges<S, P, C, ShapeOnly, CapGeometry>(mesh, only_ab, g).applied == 0);
     CHECK(!vertex_at(cap_top));
-    auto worst_tet = [&] {
-      double worst = 1.0;
-      for (TetId t = 0; t < mesh.tet_capacity(); ++t)
-        if (mesh.tet_alive(t)) worst = std::min(worst, S::mean_ratio(mesh, mesh.tet(t)));
-      return worst;
-    };
-    const double worst_before = worst_tet();
+    const double worst_before = worst_quality<S>(mesh);
     const OperatorStats stats = clear_way_for_splits<S, P, C>(mesh, only_ab, g);
     CHECK(stats.tried == 1);
     CHECK(stats.applied == 1);
     CHECK(!mesh.vertex_alive(6));
     // The clearing collapse leaves no tet below its floor unless above
     // the worst that was there.
-    CHECK(worst_tet() >= std::min(kClearingCollapse.shape_floor, worst_before));
+    CHECK(worst_quality<S>(mesh) >= std::min(kClearingCollapse.shape_floor, worst_before));
     REQUIRE(mesh.validate().ok());
     CHECK(refine_edges<S, P, C, ShapeOnly, CapGeometry>(mesh, only_ab, g).applied == 1);
     CHECK(vertex_at(cap_top));

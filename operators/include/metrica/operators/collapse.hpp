@@ -34,6 +34,7 @@
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
