@@ -49,6 +49,9 @@ const std::vector<Command>& commands();
 // io::OutputSet committed only when it returns 0, maps errors to exit codes
 // and prints them. Used by main() and by the option fuzzer.
 int run_command_line(const std::vector<std::string>& args);
+// This process's MPI rank (0 alone): errors every rank meets alike are
+// printed by rank 0 only.
+void set_process_rank(int rank);
 
 // A subcommand's options: its own plus the common ones (-h, -v, -q,
 // --threads), and positional names. parse() returns false when --help was

@@ -20,7 +20,12 @@
 
 #include <fmt/core.h>
 
+#include <cstdlib>
 #include <optional>
+#ifdef METRICA_HAS_MPI
+#include <metrica/distributed/distributed_adapt.hpp>
+#include <metrica/distributed/launch.hpp>
+#endif
 
 namespace metrica::cli {
 
@@ -117,6 +122,10 @@ void declare_options(Options& o) {
       "keep-surface",
       "keep the boundary and the internal surfaces exactly as they are (no vertex moved, added or removed on "
       "them, no face flipped) and adapt the volume only");
+  o.add()("rounds", po::value<int>()->default_value(3)->value_name("N"),
+          "under mpirun: cuts of the mesh per adaptation; each rank adapts its part with the faces between "
+          "parts kept, each cut avoids the faces the one before kept (docs/distributed.md); 0: cut, move "
+          "and write without adapting");
   o.output_option("metric-out", "also write the metric at the output's vertices (.sol, .solb)",
                   {io::FileFormat::sol, io::FileFormat::solb});
   o.output_option("vtu", "also write the adapted mesh for ParaView (.vtu)", {io::FileFormat::vtu});
@@ -198,6 +207,44 @@ void write_outputs(const Options& o, const Mesh& mesh, const CadModel* model, co
   }
 }
 
+#ifdef METRICA_HAS_MPI
+// Under mpirun with several ranks: the distributed executor. What it does
+// not carry yet is refused up front.
+int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice& policies,
+                    const std::optional<AnalyticMetric>& analytic, const MetricBounds& bounds, int iterations) {
+  for (const char* name : {"geometry", "keep-surface", "metric-out", "vtu", "dry-run"})
+    if (o.has(name))
+      throw UsageError(fmt::format("adapt: --{} is not available under mpirun yet (docs/distributed.md)", name));
+  distributed::DistributedAdapt run;
+  run.input = o.get<std::string>("input");
+  run.output = o.get<std::string>("output");
+  if (io::format_of(run.output) != io::FileFormat::meshb)
+    throw UsageError(fmt::format("adapt: under mpirun the output is one binary .meshb written by all ranks (got {})",
+                                 run.output));
+  if (o.has("metric")) {
+    run.metric = o.get<std::string>("metric");
+    if (io::format_of(run.metric) != io::FileFormat::solb && io::format_of(run.metric) != io::FileFormat::sol)
+      throw UsageError(fmt::format("adapt: {}: the metric must be a .sol or .solb", run.metric));
+  }
+  run.analytic = analytic;
+  run.bounds = bounds;
+  run.options = ao;
+  run.policies = policies;
+  run.iterations = iterations;
+  run.rounds = o.in_range("rounds", 0, 100);
+  run.version = o.format_version();
+  if (run.version == 1)
+    throw UsageError("adapt: under mpirun the output is libMeshb version 2, 3 or 4 (64-bit reals)");
+  run.talk = log::level() >= log::Level::normal;
+  // The node's cores shared among its ranks unless --threads or
+  // OMP_NUM_THREADS chooses.
+  if (!o.has("threads") && std::getenv("OMP_NUM_THREADS") == nullptr)
+    set_thread_count(std::max(1, core_count() / distributed::MpiSession::local_size()));
+  distributed::adapt_distributed(distributed::Comm{}, run);
+  return kOk;
+}
+#endif
+
 }  // namespace
 
 int run_adapt(const std::vector<std::string>& args) {
@@ -243,6 +290,9 @@ int run_adapt(const std::vector<std::string>& args) {
   AdaptInputs inputs;
   const MetricBounds bounds = o.size_bounds();
   const auto analytic = o.named("analytic", analytic_metric_from_name);
+#ifdef METRICA_HAS_MPI
+  if (distributed::MpiSession::size() > 1) return run_distributed(o, ao, policies, analytic, bounds, iterations);
+#endif
 
   Stopwatch clock;
   auto loaded = load_mesh(input);

@@ -31,13 +31,23 @@ void print_usage(std::FILE* out) {
              "(OMP_WAIT_POLICY=passive unless the environment sets it: a busy machine loses less).\n");
 }
 
-int fail(int code, const char* what) {
+int g_rank = 0;
+
+// Under mpirun every rank meets the same bad option or input: rank 0 says
+// it. Any other error may be one rank's own: it says it with its number.
+int fail(int code, const char* what, bool same_on_every_rank = true) {
   std::fflush(stdout);
+  if (g_rank != 0) {
+    if (!same_on_every_rank) fmt::print(stderr, "error: rank {}: {}\n", g_rank, what);
+    return code;
+  }
   fmt::print(stderr, "error: {}\n", what);
   return code;
 }
 
 }  // namespace
+
+void set_process_rank(int rank) { g_rank = rank; }
 
 int run_command_line(const std::vector<std::string>& args) {
   if (args.empty()) {
@@ -61,14 +71,16 @@ int run_command_line(const std::vector<std::string>& args) {
       const int code = c.run(rest);
       if (code == kOk) outputs.commit();
       return code;
+    } catch (const AlreadyReported&) {
+      return kInvalid;
     } catch (const UsageError& e) {
       return fail(kUsage, e.what());
     } catch (const InputError& e) {
       return fail(kInvalid, e.what());
     } catch (const std::bad_alloc&) {
-      return fail(kInvalid, "out of memory");
+      return fail(kInvalid, "out of memory", false);
     } catch (const std::exception& e) {
-      return fail(kInvalid, e.what());
+      return fail(kInvalid, e.what(), false);
     }
   }
   fmt::print(stderr, "error: unknown command '{}'\n\n", name);

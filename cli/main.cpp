@@ -4,6 +4,9 @@
 #include "cli.hpp"
 
 #include <metrica/allocator.hpp>
+#ifdef METRICA_HAS_MPI
+#include <metrica/distributed/launch.hpp>
+#endif
 
 #include <climits>
 #include <cstdlib>
@@ -38,5 +41,9 @@ void passive_openmp_wait(char** argv) {
 int main(int argc, char** argv) {
   passive_openmp_wait(argv);
   metrica::keep_freed_memory();  // allocator.hpp: pages reused from pass to pass
+#ifdef METRICA_HAS_MPI
+  const metrica::distributed::MpiSession mpi(&argc, &argv);
+  metrica::cli::set_process_rank(metrica::distributed::MpiSession::rank());
+#endif
   return metrica::cli::run_command_line(std::vector<std::string>(argv + 1, argv + argc));
 }

@@ -21,4 +21,12 @@ class IoError : public InputError {
   using InputError::InputError;
 };
 
+// An error already printed where it happened (on another MPI rank, or by
+// the rank itself with its number): the command exits 1 and prints nothing
+// more.
+class AlreadyReported : public std::runtime_error {
+ public:
+  AlreadyReported() : std::runtime_error("failed (reported above)") {}
+};
+
 }  // namespace metrica

@@ -56,7 +56,7 @@ OperatorStats clear_way_for_splits(Mesh& mesh, const RefineOptions& o, const G& 
         bool blocked = false;
         in_the_way.clear();
         all_split_children(mesh, shell, c.a, c.b, q, [&](TetId s, const TetVertices&, const TetPoints& x) {
-          if (P::orient3d(x[0], x[1], x[2], x[3]) > 0) return true;
+          if (positive_tet<P>(x[0], x[1], x[2], x[3])) return true;
           blocked = true;
           for (VertexId w : mesh.tet(s))
             if (w != c.a && w != c.b && removable_inner_vertex(mesh, w) &&

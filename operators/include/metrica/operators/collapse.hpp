@@ -188,7 +188,7 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
       const TetPoints x = tet_points_moved(mesh, t, b, pb);
-      if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0) return Refusal::rejected;
+      if (!positive_tet<P>(x[0], x[1], x[2], x[3])) return Refusal::rejected;
     }
   // New edges: b to a's neighbours; when b moves, all of b's edges too.
   const UnitBand allowed{0.0, o.max_new_length};

@@ -92,7 +92,7 @@ inline void fan_tets(const VertexList& ring, std::size_t k, VertexId a, VertexId
 template <Precision P>
 bool all_positive(const Mesh& mesh, std::span<const TetVertices> tets) {
   for (const auto& t : tets)
-    if (P::orient3d(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])) <= 0) return false;
+    if (!positive_tet<P>(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3]))) return false;
   return true;
 }
 
@@ -253,7 +253,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
     bool positive = true;
     for (std::size_t c = 0; c < s.candidate.size() && positive; ++c) {
       const auto& t = s.candidate[c];
-      auto orient = [&] { return P::orient3d(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])); };
+      auto orient = [&] { return positive_tet<P>(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])) ? 1 : -1; };
       if (memo) {
         auto& o8 = s.memo_orientation[slot(c)];
         if (o8 == 0) o8 = orient() > 0 ? 1 : -1;

@@ -149,7 +149,7 @@ template <Precision P>
 bool ball_positive_at(const Mesh& mesh, VertexId v, const TetList& ball, const Point& p) {
   for (TetId t : ball) {
     const TetPoints pts = tet_points_moved(mesh, mesh.tet(t), v, p);
-    if (P::orient3d(pts[0], pts[1], pts[2], pts[3]) <= 0) return false;
+    if (!positive_tet<P>(pts[0], pts[1], pts[2], pts[3])) return false;
   }
   return true;
 }

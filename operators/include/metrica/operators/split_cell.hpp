@@ -55,7 +55,7 @@ bool all_cell_children(const Mesh& mesh, TetId t, int face, const Point& p, F&& 
 template <Precision P>
 bool cell_split_is_valid(const Mesh& mesh, TetId t, int face, const Point& p) {
   return all_cell_children(
-      mesh, t, face, p, [](const TetVertices&, const TetPoints& x) { return P::orient3d(x[0], x[1], x[2], x[3]) > 0; });
+      mesh, t, face, p, [](const TetVertices&, const TetPoints& x) { return positive_tet<P>(x[0], x[1], x[2], x[3]); });
 }
 
 inline void preview_cell_split(const Mesh& mesh, TetId t, int face, const Point& p, PlannedTets& out) {

@@ -41,7 +41,7 @@ bool all_split_children(const Mesh& mesh, const Shell& shell, VertexId a, Vertex
 template <Precision P>
 bool split_is_valid(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p) {
   return all_split_children(mesh, shell, a, b, p, [](TetId, const TetVertices&, const TetPoints& x) {
-    return P::orient3d(x[0], x[1], x[2], x[3]) > 0;
+    return positive_tet<P>(x[0], x[1], x[2], x[3]);
   });
 }
 

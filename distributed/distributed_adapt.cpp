@@ -1,0 +1,173 @@
+#include <metrica/distributed/distributed_adapt.hpp>
+
+#include <metrica/distributed/adapt_part.hpp>
+#include <metrica/distributed/migrate.hpp>
+#include <metrica/distributed/partition.hpp>
+#include <metrica/distributed/read_part.hpp>
+#include <metrica/distributed/write_part.hpp>
+#include <metrica/error.hpp>
+#include <metrica/metrics/metric_field.hpp>
+#include <metrica/pipeline/adapted_check.hpp>
+#include <metrica/timer.hpp>
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace metrica::distributed {
+
+namespace {
+
+double det(const Sym6& m) {  // xx xy yy xz yz zz
+  return m[0] * (m[2] * m[5] - m[4] * m[4]) - m[1] * (m[1] * m[5] - m[4] * m[3]) + m[3] * (m[1] * m[4] - m[2] * m[3]);
+}
+
+// What each tet will weigh once adapted: its metric volume (the tet's
+// volume times the mean sqrt det M of its vertices) in output tets,
+// scaled to PT-Scotch's integers.
+std::vector<std::int32_t> predicted_tets(const Comm& comm, const Part& part, const MetricFunction* exact) {
+  const VertexIndex index(part.vertex_ids);
+  std::vector<double> root(part.vertex_ids.size());
+  for (std::size_t v = 0; v < root.size(); ++v)
+    root[v] = std::sqrt(std::max(0.0, det(exact ? (*exact)(part.points[v]) : part.metrics[v])));
+  std::vector<double> predicted(part.tets.size());
+  double sum = 0;
+  for (std::size_t t = 0; t < part.tets.size(); ++t) {
+    std::size_t v[4];
+    for (int c = 0; c < 4; ++c) v[c] = std::size_t(index.find(part.tets[t][std::size_t(c)]));
+    const Point &a = part.points[v[0]], &b = part.points[v[1]], &c = part.points[v[2]], &d = part.points[v[3]];
+    const double volume = std::abs((b - a).dot((c - a).cross(d - a))) / 6.0;
+    predicted[t] = volume * (root[v[0]] + root[v[1]] + root[v[2]] + root[v[3]]) / 4.0;
+    sum += predicted[t];
+  }
+  const double total = comm.sum(sum), count = double(comm.sum(std::int64_t(part.tets.size())));
+  const double mean = total / std::max(1.0, count);
+  const double scale = mean > 0 ? std::min(100.0 / mean, double(1 << 30) / total) : 1.0;
+  std::vector<std::int32_t> w(part.tets.size());
+  for (std::size_t t = 0; t < w.size(); ++t) w[t] = std::int32_t(std::max(1.0, std::round(predicted[t] * scale)));
+  return w;
+}
+
+struct Spread {
+  std::int64_t total, low, high;
+};
+Spread spread(const Comm& comm, std::int64_t local) {
+  return {comm.sum(local), -comm.max(-local), comm.max(local)};
+}
+
+}  // namespace
+
+void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
+  const bool talk = run.talk && comm.rank() == 0;
+  Stopwatch clock;
+  ReadCounts counts;
+  Part part = read_part(comm, run.input, run.metric, counts);
+  comm.step([&] {
+    if (comm.rank() != 0) return;
+    if (counts.tets < kMinTetsPerRank * comm.size()) {
+      const std::int64_t most = counts.tets / kMinTetsPerRank;
+      throw InputError(fmt::format("{} has {} tets: too few for {} ranks (at least {} each); {}", run.input,
+                                   counts.tets, comm.size(), kMinTetsPerRank,
+                                   most > 1 ? fmt::format("run it on at most {}", most)
+                                            : std::string("run it without mpirun")));
+    }
+  });
+  std::int32_t max_ref = 0;
+  comm.step([&] {
+    for (int r : part.triangle_refs) {
+      if (r >= kPartFaceId)
+        throw InputError(fmt::format("{}: surface id {} is reserved under mpirun (ids up to {})", run.input, r,
+                                     kPartFaceId - 1));
+      max_ref = std::max(max_ref, r);
+    }
+    if (!run.metric.empty()) {
+      clamp_metrics(part.metrics, run.bounds);
+      check_metric_field(part.metrics, run.metric);
+    }
+  });
+  if (talk) {
+    fmt::print("distributed: {} ranks read {} vertices, {} tets, {} triangles of {} in slices ({:.2f} s)\n",
+               comm.size(), counts.vertices, counts.tets, counts.triangles, run.input, clock.seconds());
+    if (!counts.dropped.empty()) {
+      std::string names;
+      for (const auto& d : counts.dropped) names += (names.empty() ? "" : ", ") + d;
+      fmt::print("distributed: not carried under mpirun: {}\n", names);
+    }
+    std::fflush(stdout);
+  }
+  MetricFunction exact;
+  if (run.analytic) exact = [kind = *run.analytic, b = run.bounds](const Point& p) { return clamp_metric(evaluate(kind, p), b); };
+
+  PartAdaptSettings settings;
+  settings.options = run.options;
+  settings.policies = run.policies;
+  settings.exact = run.analytic ? &exact : nullptr;
+  settings.default_surface_id = std::int32_t(comm.max(std::int64_t(max_ref))) + 1;
+  GlobalId next_id = counts.vertices;
+  double volume_in = 0;
+  std::vector<GlobalId> frozen_before;
+  QualityReport last;
+  // --rounds 0: cut and move once, no adaptation (the parallel read and
+  // write round trip).
+  if (run.rounds == 0) {
+    PartitionWeights weights;
+    weights.tets.assign(part.tets.size(), 1);
+    part = migrate(comm, part, partition(comm, part, weights));
+    make_parts_manifold(comm, part);
+  }
+  for (int it = 0; it < run.iterations && run.rounds > 0; ++it)
+    for (int round = 0; round < run.rounds; ++round) {
+      Stopwatch round_clock;
+      PartitionWeights weights;
+      weights.tets = predicted_tets(comm, part, settings.exact);
+      weights.avoid = frozen_before;
+      const auto dest = partition(comm, part, weights);
+      part = migrate(comm, part, dest);
+      const int moves = make_parts_manifold(comm, part);
+      const auto result = adapt_part(comm, part, settings, next_id);
+      const double before = comm.sum(result.volume_before), after = comm.sum(result.volume_after);
+      if (it == 0 && round == 0) volume_in = before;
+      frozen_before.clear();
+      for (const auto& f : part.shared_faces) frozen_before.insert(frozen_before.end(), f.begin(), f.end());
+      std::sort(frozen_before.begin(), frozen_before.end());
+      frozen_before.erase(std::unique(frozen_before.begin(), frozen_before.end()), frozen_before.end());
+      const auto tets = spread(comm, std::int64_t(part.tets.size()));
+      // The quality over all parts (edges on faces between parts counted on each side).
+      const auto& q = result.quality;
+      const double edges = double(comm.sum(std::int64_t(q.edges)));
+      const double in_range = comm.sum(q.unit_length_share * double(q.edges)) / std::max(1.0, edges);
+      const double min_q = comm.min(q.tets ? q.quality.min : 1.0);
+      last.unit_length_share = in_range, last.quality.min = min_q, last.tets = std::size_t(tets.total);
+      last.quality.mean = comm.sum(q.quality.mean * double(q.tets)) / std::max(1.0, double(tets.total));
+      if (talk) {
+        fmt::print("  {}round {}: {} tets ({} .. {} per rank, {} pinch move round{}) | in range {:5.1f}% min Q {:.3f} "
+                   "| volume change {:.2g} | {:.2f} s\n",
+                   run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, tets.low,
+                   tets.high, moves, moves == 1 ? "" : "s", 100.0 * in_range, min_q,
+                   std::abs(after - before) / before, round_clock.seconds());
+        std::fflush(stdout);
+      }
+      const double volume_now = after;
+      comm.step([&] {
+        const double tolerance = adapted_volume_tolerance(it + 1, run.options.volume_budget);
+        if (comm.rank() == 0 && std::abs(volume_now - volume_in) > tolerance * volume_in)
+          throw InputError(fmt::format("adapt: the volume moved by {:.3g} relative (at most {:.3g}); nothing written",
+                                       std::abs(volume_now - volume_in) / volume_in, tolerance));
+      });
+    }
+  const auto written = write_part(comm, part, run.output, run.version);
+  const auto tets = spread(comm, std::int64_t(part.tets.size()));
+  if (talk) {
+    fmt::print("wrote {}: {} vertices, {} triangles, {} tets (libMeshb v{}) on {} ranks ({:.2f} s in all)\n",
+               run.output, written.vertices, written.triangles, written.tets, written.version, comm.size(),
+               clock.seconds());
+    fmt::print("tets per rank {} .. {}, the most {:.3f} x the mean\n", tets.low, tets.high,
+               double(tets.high) * comm.size() / double(std::max<std::int64_t>(1, tets.total)));
+    if (run.rounds > 0)
+      fmt::print("edges in [1/sqrt2, sqrt2] {:.2f}%, mean ratio min {:.4f} mean {:.4f}\n",
+                 100.0 * last.unit_length_share, last.quality.min, last.quality.mean);
+  }
+}
+
+}  // namespace metrica::distributed

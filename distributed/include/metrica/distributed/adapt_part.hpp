@@ -1,0 +1,43 @@
+// The adaptation of one rank's part: the part becomes a Mesh whose faces
+// shared with other parts are required boundary faces (a reserved surface
+// id, kept exactly as the input's RequiredTriangles are: their vertices
+// and edges neither move, split nor go), the standard pipeline adapts the
+// rest, and the result goes back to global ids. The shared faces' vertices
+// keep theirs (found again by their unchanged coordinates); every other
+// vertex gets a new one.
+#pragma once
+
+#include <metrica/distributed/comm.hpp>
+#include <metrica/distributed/part.hpp>
+#include <metrica/metrics/quality_report.hpp>
+#include <metrica/operators/metric_source.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
+
+namespace metrica::distributed {
+
+// The surface id of the faces between parts while a part is adapted: the
+// largest id a mesh may have, which inputs may not use under mpirun.
+inline constexpr SurfaceId kPartFaceId = kMaxSurfaceId - 1;
+
+struct PartAdaptSettings {
+  AdaptOptions options;
+  PolicyChoice policies;
+  // The analytic metric (new vertices take it); none: the part's metrics.
+  const MetricFunction* exact = nullptr;
+  // The id of boundary faces no input triangle covers (the same on all ranks).
+  SurfaceId default_surface_id = 1;
+};
+
+struct PartAdaptResult {
+  double volume_before = 0, volume_after = 0;
+  double seconds = 0;
+  QualityReport quality;  // of the adapted part
+};
+
+// Adapts the part in place. `next_id` (the same on every rank) is the
+// first unused global id, advanced past the new vertices of all ranks.
+// Throws (on every rank) when one part's adaptation failed or left an
+// invalid mesh.
+PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings& settings, GlobalId& next_id);
+
+}  // namespace metrica::distributed

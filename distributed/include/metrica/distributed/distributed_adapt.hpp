@@ -1,0 +1,37 @@
+// `metrica adapt` on several MPI ranks (docs/distributed.md): read in
+// slices, then rounds of cut (PT-Scotch) - move - adapt with the faces
+// between parts frozen, each cut avoiding the faces the round before
+// froze, then one .meshb written by all ranks together.
+#pragma once
+
+#include <metrica/distributed/comm.hpp>
+#include <metrica/metrics/analytic_metric.hpp>
+#include <metrica/metrics/metric_bounds.hpp>
+#include <metrica/pipeline/adapt_dispatch.hpp>
+
+#include <optional>
+#include <string>
+
+namespace metrica::distributed {
+
+struct DistributedAdapt {
+  std::string input, output;
+  std::string metric;  // a .sol/.solb at the input's vertices, or empty with `analytic`
+  std::optional<AnalyticMetric> analytic;
+  MetricBounds bounds;
+  AdaptOptions options;
+  PolicyChoice policies;
+  int iterations = 1;  // --analytic only: the metric re-evaluated between them
+  int rounds = 3;      // cuts per adaptation
+  int version = 0;     // libMeshb version of the output (0: chosen by size)
+  bool talk = true;    // rank 0 prints progress
+};
+
+// Fewer tets per rank than this at the start is refused.
+inline constexpr std::int64_t kMinTetsPerRank = 8;
+
+// Runs on every rank of comm; throws ReportedFailure (every rank) after an
+// error on any, which that rank has printed.
+void adapt_distributed(const Comm& comm, const DistributedAdapt& run);
+
+}  // namespace metrica::distributed

@@ -1,0 +1,86 @@
+// One rank's part of a distributed mesh: its tets, the vertices they use
+// and the boundary and internal-surface triangles on their faces, all
+// named by 64-bit global vertex ids. A vertex on the boundary between two
+// parts is held by both with the same global id and coordinates; the faces
+// between parts are listed with the rank across them.
+#pragma once
+
+#include <metrica/ids.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace metrica::distributed {
+
+using GlobalId = std::int64_t;
+// A face by its three global vertex ids, sorted.
+using FaceKey = std::array<GlobalId, 3>;
+
+inline FaceKey face_key(GlobalId a, GlobalId b, GlobalId c) {
+  FaceKey k{a, b, c};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// The faces of a tet, each by the three corners it keeps.
+inline constexpr int kTetFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+
+// Whether sorting the triangle (a, b, c) into its key turns it over.
+inline bool turned_over(const std::array<GlobalId, 3>& t) {
+  return ((t[0] > t[1]) + (t[0] > t[2]) + (t[1] > t[2])) % 2 == 1;
+}
+inline FaceKey face_key(const std::array<GlobalId, 3>& t) { return face_key(t[0], t[1], t[2]); }
+// The triangle of `key` with the orientation turned_over gave.
+inline std::array<GlobalId, 3> oriented(const FaceKey& key, bool turned) {
+  return turned ? std::array<GlobalId, 3>{key[0], key[2], key[1]} : key;
+}
+
+// A point as plain doubles, for messages (Eigen's types are not
+// trivially copyable).
+using Coords = std::array<double, 3>;
+inline Coords coords(const Point& p) { return {p.x(), p.y(), p.z()}; }
+inline Point point(const Coords& c) { return {c[0], c[1], c[2]}; }
+
+// The rank that pairs the tets of a face, or holds a vertex's rendezvous:
+// a mix of the ids, so that faces spread evenly over the ranks.
+inline int owner_of(std::uint64_t h, int ranks) {
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdULL;
+  h ^= h >> 33;
+  h *= 0xc4ceb9fe1a85ec53ULL;
+  h ^= h >> 33;
+  return int(h % std::uint64_t(ranks));
+}
+inline int owner_of(const FaceKey& k, int ranks) {
+  return owner_of(std::uint64_t(k[0]) * 0x9e3779b97f4a7c15ULL ^ std::uint64_t(k[1]) * 0xbf58476d1ce4e5b9ULL ^
+                      std::uint64_t(k[2]),
+                  ranks);
+}
+
+struct Part {
+  std::vector<GlobalId> vertex_ids;  // global id of each local vertex
+  std::vector<Point> points;
+  std::vector<Sym6> metrics;  // per local vertex; empty with an analytic metric
+  std::vector<std::array<GlobalId, 4>> tets;
+  std::vector<int> tet_refs;
+  std::vector<std::array<GlobalId, 3>> triangles;  // oriented as read or written
+  std::vector<int> triangle_refs;
+  // The faces this part shares with another part, and that part's rank.
+  std::vector<FaceKey> shared_faces;
+  std::vector<int> shared_with;
+};
+
+// The local index of each global id of `part` (a sorted lookup).
+class VertexIndex {
+ public:
+  explicit VertexIndex(const std::vector<GlobalId>& ids);
+  // Local index of id; -1 when the part does not hold it.
+  std::int64_t find(GlobalId id) const;
+
+ private:
+  std::vector<std::pair<GlobalId, std::uint32_t>> sorted_;
+};
+
+}  // namespace metrica::distributed

@@ -1,0 +1,250 @@
+#include <metrica/distributed/migrate.hpp>
+
+#include <metrica/error.hpp>
+
+#include <fmt/core.h>
+
+#include <numeric>
+
+namespace metrica::distributed {
+
+namespace {
+
+struct TetRecord {
+  std::array<GlobalId, 4> v;
+  std::int32_t ref;
+  std::int32_t pad = 0;
+};
+struct VertexRecord {
+  GlobalId id;
+  Coords p;
+  Sym6 m;
+};
+// A face at its pairing rank: a tet's face (kind 0, value: the tet's new
+// rank) or a triangle (kind 1, or 3 when its key turned it over; value:
+// its surface id).
+struct FaceRecord {
+  FaceKey key;
+  std::int32_t kind, value;
+};
+// Back to a rank: a triangle of its part (kind 1 or 3, value: surface id)
+// or a face it shares (kind 2, value: the rank across).
+using FaceReply = FaceRecord;
+
+}  // namespace
+
+Part migrate(const Comm& comm, const Part& part, const std::vector<int>& dest) {
+  const auto n = std::size_t(comm.size());
+  const VertexIndex index(part.vertex_ids);
+  std::vector<std::vector<TetRecord>> tets_out(n);
+  std::vector<std::vector<VertexRecord>> verts_out(n);
+  {
+    std::vector<std::vector<std::uint32_t>> by_rank(n);
+    for (std::size_t t = 0; t < part.tets.size(); ++t) by_rank[std::size_t(dest[t])].push_back(std::uint32_t(t));
+    std::vector<int> sent_to(part.vertex_ids.size(), -1);
+    for (std::size_t q = 0; q < n; ++q)
+      for (auto t : by_rank[q]) {
+        tets_out[q].push_back({part.tets[t], part.tet_refs[t]});
+        for (GlobalId g : part.tets[t]) {
+          const auto v = std::size_t(index.find(g));
+          if (sent_to[v] == int(q)) continue;
+          sent_to[v] = int(q);
+          verts_out[q].push_back({g, coords(part.points[v]), part.metrics.empty() ? Sym6{} : part.metrics[v]});
+        }
+      }
+  }
+  std::vector<std::vector<FaceRecord>> faces_out(n);
+  for (std::size_t t = 0; t < part.tets.size(); ++t)
+    for (const auto& f : kTetFaces) {
+      const auto& v = part.tets[t];
+      const auto key = face_key(v[f[0]], v[f[1]], v[f[2]]);
+      faces_out[std::size_t(owner_of(key, comm.size()))].push_back({key, 0, dest[t]});
+    }
+  for (std::size_t i = 0; i < part.triangles.size(); ++i)
+  {
+    const auto key = face_key(part.triangles[i]);
+    faces_out[std::size_t(owner_of(key, comm.size()))].push_back(
+        {key, turned_over(part.triangles[i]) ? 3 : 1, part.triangle_refs[i]});
+  }
+
+  auto tets_in = comm.exchange(tets_out);
+  tets_out = {};
+  auto verts_in = comm.exchange(verts_out);
+  verts_out = {};
+  auto faces_in = comm.exchange(faces_out);
+  faces_out = {};
+
+  std::vector<std::vector<FaceReply>> replies(n);
+  comm.step([&] {
+    std::sort(faces_in.begin(), faces_in.end(), [](const FaceRecord& a, const FaceRecord& b) {
+      return a.key != b.key ? a.key < b.key : a.kind != b.kind ? a.kind < b.kind : a.value < b.value;
+    });
+    for (std::size_t i = 0; i < faces_in.size();) {
+      std::size_t j = i;
+      int ranks[2] = {-1, -1}, tets = 0;
+      while (j < faces_in.size() && faces_in[j].key == faces_in[i].key && faces_in[j].kind == 0) {
+        if (tets < 2) ranks[tets] = faces_in[j].value;
+        ++tets, ++j;
+      }
+      const bool triangle = j < faces_in.size() && faces_in[j].key == faces_in[i].key;
+      const auto& k = faces_in[i].key;
+      if (tets > 2)
+        throw InputError(fmt::format("the face ({} {} {}) has {} tets (at most 2)", k[0] + 1, k[1] + 1, k[2] + 1, tets));
+      if (triangle && tets == 0)
+        throw InputError(fmt::format("the triangle ({} {} {}) is not a face of any tet", k[0] + 1, k[1] + 1, k[2] + 1));
+      if (triangle) {
+        // A triangle listed twice keeps its first (smallest) id.
+        const FaceReply r{k, faces_in[j].kind, faces_in[j].value};
+        replies[std::size_t(ranks[0])].push_back(r);
+        if (tets == 2 && ranks[1] != ranks[0]) replies[std::size_t(ranks[1])].push_back(r);
+      }
+      if (tets == 2 && ranks[0] != ranks[1]) {
+        replies[std::size_t(ranks[0])].push_back({k, 2, ranks[1]});
+        replies[std::size_t(ranks[1])].push_back({k, 2, ranks[0]});
+      }
+      while (j < faces_in.size() && faces_in[j].key == k) ++j;
+      i = j;
+    }
+  });
+  faces_in = {};
+  auto got = comm.exchange(replies);
+  replies = {};
+
+  Part out;
+  // Vertices by global id, once each (several ranks may send the same).
+  std::vector<std::uint32_t> order(verts_in.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return verts_in[a].id < verts_in[b].id; });
+  const bool metric = !part.metrics.empty() || comm.max(std::int64_t(part.metrics.size())) > 0;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const auto& r = verts_in[order[i]];
+    if (i > 0 && verts_in[order[i - 1]].id == r.id) continue;
+    out.vertex_ids.push_back(r.id);
+    out.points.push_back(point(r.p));
+    if (metric) out.metrics.push_back(r.m);
+  }
+  for (const auto& t : tets_in) out.tets.push_back(t.v), out.tet_refs.push_back(t.ref);
+  std::sort(got.begin(), got.end(), [](const FaceReply& a, const FaceReply& b) {
+    return a.key != b.key ? a.key < b.key : a.kind < b.kind;
+  });
+  for (const auto& r : got) {
+    if (r.kind == 1 || r.kind == 3) out.triangles.push_back(oriented(r.key, r.kind == 3)), out.triangle_refs.push_back(r.value);
+    if (r.kind == 2) out.shared_faces.push_back(r.key), out.shared_with.push_back(r.value);
+  }
+  return out;
+}
+
+namespace {
+
+// Union-find over a handful of tets.
+int root_of(std::vector<int>& parent, int i) {
+  while (parent[std::size_t(i)] != i) i = parent[std::size_t(i)] = parent[std::size_t(parent[std::size_t(i)])];
+  return i;
+}
+
+int shared_vertices(const std::array<GlobalId, 4>& a, const std::array<GlobalId, 4>& b) {
+  int s = 0;
+  for (auto x : a)
+    for (auto y : b) s += x == y;
+  return s;
+}
+
+}  // namespace
+
+int make_parts_manifold(const Comm& comm, Part& part, int max_rounds) {
+  for (int round = 0;; ++round) {
+    const VertexIndex index(part.vertex_ids);
+    const auto nv = part.vertex_ids.size();
+    // Tets around each vertex.
+    std::vector<std::uint32_t> first(nv + 1, 0), around;
+    for (const auto& t : part.tets)
+      for (GlobalId g : t) ++first[std::size_t(index.find(g)) + 1];
+    for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
+    around.resize(first[nv]);
+    {
+      auto fill = first;
+      for (std::size_t t = 0; t < part.tets.size(); ++t)
+        for (GlobalId g : part.tets[t]) around[fill[std::size_t(index.find(g))]++] = std::uint32_t(t);
+    }
+    // The rank across each shared face, by key.
+    std::vector<std::pair<FaceKey, int>> across;
+    for (std::size_t i = 0; i < part.shared_faces.size(); ++i) across.emplace_back(part.shared_faces[i], part.shared_with[i]);
+    std::sort(across.begin(), across.end());
+    std::vector<bool> on_shared(nv, false);
+    for (const auto& f : part.shared_faces)
+      for (GlobalId g : f) on_shared[std::size_t(index.find(g))] = true;
+
+    std::vector<int> dest(part.tets.size(), comm.rank());
+    std::int64_t pinched = 0;
+    // The pieces of `tets` (all holding `entity`'s vertices) joined by
+    // faces; every piece but the largest goes across one of its shared
+    // faces at the entity.
+    auto split = [&](const std::vector<std::uint32_t>& tets, const std::vector<GlobalId>& entity) {
+      const int k = int(tets.size());
+      std::vector<int> parent(static_cast<std::size_t>(k));
+      std::iota(parent.begin(), parent.end(), 0);
+      for (int a = 0; a < k; ++a)
+        for (int b = a + 1; b < k; ++b)
+          if (shared_vertices(part.tets[tets[std::size_t(a)]], part.tets[tets[std::size_t(b)]]) == 3)
+            parent[std::size_t(root_of(parent, a))] = root_of(parent, b);
+      std::vector<int> size(std::size_t(k), 0);
+      int pieces = 0;
+      for (int a = 0; a < k; ++a) pieces += size[std::size_t(root_of(parent, a))]++ == 0;
+      if (pieces < 2) return;
+      ++pinched;
+      int keep = -1;
+      for (int a = 0; a < k; ++a) {
+        const int r = root_of(parent, a);
+        if (keep < 0 || size[std::size_t(r)] > size[std::size_t(keep)]) keep = r;
+      }
+      for (int a = 0; a < k; ++a) {
+        const int r = root_of(parent, a);
+        if (r == keep) continue;
+        // The lowest rank across a shared face of this piece at the entity.
+        int to = -1;
+        for (int b = 0; b < k; ++b) {
+          if (root_of(parent, b) != r) continue;
+          const auto& t = part.tets[tets[std::size_t(b)]];
+          for (int f = 0; f < 4; ++f) {
+            const auto key = face_key(t[(f + 1) % 4], t[(f + 2) % 4], t[(f + 3) % 4]);
+            bool holds = true;
+            for (GlobalId g : entity) holds &= std::find(key.begin(), key.end(), g) != key.end();
+            if (!holds) continue;
+            auto it = std::lower_bound(across.begin(), across.end(), std::pair<FaceKey, int>{key, -1});
+            if (it != across.end() && it->first == key && (to < 0 || it->second < to)) to = it->second;
+          }
+        }
+        if (to >= 0 && dest[tets[std::size_t(a)]] == comm.rank()) dest[tets[std::size_t(a)]] = to;
+      }
+    };
+    std::vector<std::uint32_t> shell;
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (!on_shared[v]) continue;
+      shell.assign(around.begin() + first[v], around.begin() + first[v + 1]);
+      split(shell, {part.vertex_ids[v]});
+    }
+    // Edges of shared faces.
+    for (const auto& f : part.shared_faces)
+      for (int e = 0; e < 3; ++e) {
+        const GlobalId a = f[std::size_t(e)], b = f[std::size_t((e + 1) % 3)];
+        const auto va = std::size_t(index.find(a));
+        shell.clear();
+        for (auto i = first[va]; i < first[va + 1]; ++i) {
+          const auto& t = part.tets[around[i]];
+          if (std::find(t.begin(), t.end(), b) != t.end()) shell.push_back(around[i]);
+        }
+        split(shell, {a, b});
+      }
+    const std::int64_t total = comm.sum(pinched);
+    if (total == 0) return round;
+    if (round >= max_rounds)
+      comm.step([&] {
+        if (comm.rank() == 0)
+          throw std::runtime_error(fmt::format("{} pinched part boundaries left after {} rounds of moving tets",
+                                               total, max_rounds));
+      });
+    part = migrate(comm, part, dest);
+  }
+}
+
+}  // namespace metrica::distributed

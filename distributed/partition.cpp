@@ -1,0 +1,131 @@
+#include <metrica/distributed/partition.hpp>
+
+#include <metrica/error.hpp>
+
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <limits>
+// ptscotch.h needs <mpi.h>, <stdio.h> and <stdint.h> first.
+#include <ptscotch.h>
+
+namespace metrica::distributed {
+
+namespace {
+
+struct FaceOfTet {
+  FaceKey key;
+  GlobalId tet;
+  std::int32_t heavy;
+  std::int32_t pad = 0;
+};
+struct Neighbour {
+  GlobalId tet, other;
+  std::int32_t weight;
+  std::int32_t pad = 0;
+};
+
+}  // namespace
+
+std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWeights& weights) {
+  const auto n = std::size_t(comm.size());
+  const auto local = std::int64_t(part.tets.size());
+  const std::int64_t total = comm.sum(local);
+  if (total > std::numeric_limits<SCOTCH_Num>::max() / 8)
+    throw InputError(fmt::format("{} tets: the partitioner's {}-bit graph ids cannot number their faces", total,
+                                 8 * sizeof(SCOTCH_Num)));
+  const std::int64_t first = comm.exclusive_scan(local);
+  std::vector<std::int64_t> starts(n + 1);
+  MPI_Allgather(&first, 1, MPI_INT64_T, starts.data(), 1, MPI_INT64_T, comm.get());
+  starts[n] = total;
+
+  // Each face to the rank that pairs its tets.
+  std::vector<std::vector<FaceOfTet>> out(n);
+  for (std::size_t t = 0; t < part.tets.size(); ++t) {
+    const auto& v = part.tets[t];
+    std::int32_t heavy = 0;
+    for (GlobalId g : v) heavy |= std::binary_search(weights.avoid.begin(), weights.avoid.end(), g) ? 1 : 0;
+    for (const auto& f : kTetFaces) {
+      FaceOfTet r{face_key(v[f[0]], v[f[1]], v[f[2]]), first + GlobalId(t), heavy};
+      out[std::size_t(owner_of(r.key, comm.size()))].push_back(r);
+    }
+  }
+  auto faces = comm.exchange(out);
+  out = {};
+  std::vector<std::vector<Neighbour>> pairs(n);
+  comm.step([&] {
+    std::sort(faces.begin(), faces.end(),
+              [](const FaceOfTet& a, const FaceOfTet& b) { return a.key != b.key ? a.key < b.key : a.tet < b.tet; });
+    const auto rank_of = [&](GlobalId t) {
+      return std::size_t(std::upper_bound(starts.begin(), starts.end(), t) - starts.begin() - 1);
+    };
+    for (std::size_t i = 0; i < faces.size();) {
+      std::size_t j = i + 1;
+      while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+      if (j - i > 2)
+        throw InputError(fmt::format("the face ({} {} {}) has {} tets (at most 2)", faces[i].key[0] + 1,
+                                     faces[i].key[1] + 1, faces[i].key[2] + 1, j - i));
+      if (j - i == 2) {
+        const std::int32_t w = (faces[i].heavy || faces[i + 1].heavy) ? weights.heavy : 1;
+        pairs[rank_of(faces[i].tet)].push_back({faces[i].tet, faces[i + 1].tet, w});
+        pairs[rank_of(faces[i + 1].tet)].push_back({faces[i + 1].tet, faces[i].tet, w});
+      }
+      i = j;
+    }
+  });
+  faces = {};
+  auto nb = comm.exchange(pairs);
+  pairs = {};
+  std::sort(nb.begin(), nb.end(),
+            [](const Neighbour& a, const Neighbour& b) { return a.tet != b.tet ? a.tet < b.tet : a.other < b.other; });
+
+  // The rank's slice of the graph in PT-Scotch's compressed rows.
+  std::vector<SCOTCH_Num> vert(std::size_t(local) + 1, 0), edges, edge_weights, vert_weights(static_cast<std::size_t>(local));
+  for (const auto& e : nb) ++vert[std::size_t(e.tet - first) + 1];
+  for (std::size_t t = 0; t < std::size_t(local); ++t) vert[t + 1] += vert[t];
+  for (const auto& e : nb) edges.push_back(SCOTCH_Num(e.other)), edge_weights.push_back(e.weight);
+  for (std::size_t t = 0; t < std::size_t(local); ++t) vert_weights[t] = std::max<std::int32_t>(1, weights.tets[t]);
+  nb = {};
+
+  std::vector<SCOTCH_Num> parts(std::size_t(local), 0);
+  // A context of its own, deterministic with a fixed seed: the same cut
+  // for the same graph on the same number of ranks, run after run.
+  int failed = 0;
+  SCOTCH_Context context;
+  SCOTCH_Dgraph graph, bound;
+  SCOTCH_Strat strat;
+  failed |= SCOTCH_contextInit(&context);
+  failed |= SCOTCH_contextOptionSetNum(&context, SCOTCH_OPTIONNUMDETERMINISTIC, 1);
+  failed |= SCOTCH_contextOptionSetNum(&context, SCOTCH_OPTIONNUMRANDOMFIXEDSEED, 1);
+  failed |= SCOTCH_contextRandomClone(&context);
+  SCOTCH_contextRandomSeed(&context, 1);
+  failed |= SCOTCH_dgraphInit(&graph, comm.get());
+  SCOTCH_stratInit(&strat);
+  if (!failed) {
+    const auto m = SCOTCH_Num(edges.size());
+    // An empty slice still passes valid pointers.
+    SCOTCH_Num dummy = 0;
+    failed |= SCOTCH_dgraphBuild(&graph, 0, SCOTCH_Num(local), SCOTCH_Num(local), vert.data(), nullptr,
+                                 local ? vert_weights.data() : &dummy, nullptr, m, m,
+                                 m ? edges.data() : &dummy, nullptr, m ? edge_weights.data() : &dummy);
+    failed |= SCOTCH_stratDgraphMapBuild(&strat, SCOTCH_STRATBALANCE, SCOTCH_Num(n), SCOTCH_Num(n), 0.03);
+    if (!failed) failed |= SCOTCH_contextBindDgraph(&context, &graph, &bound);
+    if (!failed) {
+      failed |= SCOTCH_dgraphPart(&bound, SCOTCH_Num(n), &strat, local ? parts.data() : &dummy);
+      SCOTCH_dgraphExit(&bound);
+    }
+  }
+  SCOTCH_stratExit(&strat);
+  SCOTCH_dgraphExit(&graph);
+  SCOTCH_contextExit(&context);
+  int any = 0;
+  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, comm.get());
+  if (any) {
+    comm.step([&] {
+      if (failed) throw std::runtime_error("PT-Scotch could not partition the dual graph");
+    });
+  }
+  return {parts.begin(), parts.end()};
+}
+
+}  // namespace metrica::distributed

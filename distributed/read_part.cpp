@@ -1,0 +1,349 @@
+#include <metrica/distributed/read_part.hpp>
+
+#include <metrica/error.hpp>
+#include <metrica/io/file_format.hpp>
+#include <metrica/io/meshb.hpp>
+#include <metrica/metrics/metric_field.hpp>
+#include <metrica/part_runner.hpp>
+
+#include <fmt/core.h>
+
+#include <cstring>
+#include <fcntl.h>
+#include <map>
+#include <unistd.h>
+
+namespace metrica::distributed {
+
+namespace {
+
+constexpr int kVerticesCode = 4, kTrianglesCode = 6, kTetrahedraCode = 8, kEndCode = 54, kSolCode = 62;
+
+// Where each keyword of a native-order binary libMeshb file starts: its
+// row count and the offset of its first row.
+struct Keyword {
+  std::int64_t count = 0;
+  std::uint64_t rows = 0;  // offset of the first row
+  std::vector<int> types;  // SolAtVertices only
+};
+
+class BinaryFile {
+ public:
+  BinaryFile(const std::string& path) : path_(path) {
+    fd_ = ::open(path.c_str(), O_RDONLY);
+    if (fd_ < 0) throw IoError(fmt::format("{}: cannot open ({})", path, std::strerror(errno)));
+  }
+  ~BinaryFile() { ::close(fd_); }
+  BinaryFile(const BinaryFile&) = delete;
+  BinaryFile& operator=(const BinaryFile&) = delete;
+
+  void read(std::uint64_t at, void* out, std::size_t n) const {
+    auto* p = static_cast<char*>(out);
+    while (n > 0) {
+      const ssize_t got = ::pread(fd_, p, n, off_t(at));
+      if (got <= 0) throw IoError(fmt::format("{}: truncated at byte {}", path_, at));
+      p += got, at += std::uint64_t(got), n -= std::size_t(got);
+    }
+  }
+  template <class T>
+  T get(std::uint64_t at) const {
+    T v;
+    read(at, &v, sizeof(T));
+    return v;
+  }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
+
+struct Layout {
+  int version = 0;
+  bool native = false;
+  std::map<int, Keyword> keywords;
+  int real() const { return version == 1 ? 4 : 8; }
+  int integer() const { return version == 4 ? 8 : 4; }
+  int offset() const { return version >= 3 ? 8 : 4; }
+};
+
+Layout scan(const BinaryFile& f, const std::string& path) {
+  Layout l;
+  const auto magic = f.get<std::int32_t>(0);
+  if (magic != 1) return l;  // the other byte order: read by rank 0
+  l.native = true;
+  l.version = f.get<std::int32_t>(4);
+  if (l.version < 1 || l.version > 4) throw IoError(fmt::format("{}: libMeshb version {} unknown", path, l.version));
+  std::uint64_t at = 8;
+  for (int guard = 0; guard < 10000; ++guard) {
+    const int code = f.get<std::int32_t>(at);
+    const std::uint64_t next =
+        l.offset() == 4 ? std::uint64_t(std::uint32_t(f.get<std::int32_t>(at + 4))) : std::uint64_t(f.get<std::int64_t>(at + 4));
+    std::uint64_t body = at + 4 + std::uint64_t(l.offset());
+    if (code == kVerticesCode || code == kTrianglesCode || code == kTetrahedraCode || code == kSolCode) {
+      Keyword k;
+      k.count = l.integer() == 4 ? f.get<std::int32_t>(body) : f.get<std::int64_t>(body);
+      body += std::uint64_t(l.integer());
+      if (k.count < 0) throw IoError(fmt::format("{}: negative count in keyword {}", path, code));
+      if (code == kSolCode) {
+        const int n = f.get<std::int32_t>(body);
+        if (n < 1 || n > 20) throw IoError(fmt::format("{}: SolAtVertices with {} fields", path, n));
+        for (int i = 0; i < n; ++i) k.types.push_back(f.get<std::int32_t>(body + 4 + 4 * std::uint64_t(i)));
+        body += 4 + 4 * std::uint64_t(n);
+      }
+      k.rows = body;
+      l.keywords[code] = k;
+    } else if (code != 3 && code != kEndCode) {
+      l.keywords[code] = Keyword{};  // present, not read here
+    }
+    if (code == kEndCode || next == 0 || next <= at) break;
+    at = next;
+  }
+  return l;
+}
+
+std::int64_t read_integer(const char* p, int width) {
+  if (width == 4) {
+    std::int32_t v;
+    std::memcpy(&v, p, 4);
+    return v;
+  }
+  std::int64_t v;
+  std::memcpy(&v, p, 8);
+  return v;
+}
+double read_real(const char* p, int width) {
+  if (width == 4) {
+    float v;
+    std::memcpy(&v, p, 4);
+    return v;
+  }
+  double v;
+  std::memcpy(&v, p, 8);
+  return v;
+}
+
+// Rows [first, last) of keyword `code`, each row's bytes.
+std::vector<char> rows(const BinaryFile& f, const Keyword& k, std::size_t row_bytes, std::int64_t first,
+                       std::int64_t last) {
+  std::vector<char> out(std::size_t(last - first) * row_bytes);
+  if (!out.empty()) f.read(k.rows + std::uint64_t(first) * row_bytes, out.data(), out.size());
+  return out;
+}
+
+// The slice of every keyword this rank reads (global ids are 0-based).
+struct Slices {
+  std::vector<Point> points;
+  std::vector<Sym6> metrics;
+  GlobalId first_vertex = 0;
+  std::vector<std::int64_t> vertex_starts;  // first vertex of every rank's slice, and the count last
+  Part part;                                // tets and triangles of the slice
+};
+
+void check_vertex(GlobalId v, std::int64_t n, const std::string& path, const char* what) {
+  if (v < 0 || v >= n)
+    throw IoError(fmt::format("{}: a {} names vertex {} (the mesh has {})", path, what, v + 1, n));
+}
+
+Slices read_binary_slices(const Comm& comm, const std::string& path, const Layout& l, const BinaryFile& f,
+                          const std::string& metric_path, ReadCounts& counts) {
+  Slices s;
+  const auto kw = [&](int code) -> const Keyword& {
+    static const Keyword none;
+    auto it = l.keywords.find(code);
+    return it == l.keywords.end() ? none : it->second;
+  };
+  const Keyword& kv = kw(kVerticesCode);
+  const Keyword& kt = kw(kTetrahedraCode);
+  const Keyword& kf = kw(kTrianglesCode);
+  counts.vertices = kv.count, counts.tets = kt.count, counts.triangles = kf.count;
+  if (kv.count == 0 || kt.count == 0) throw IoError(fmt::format("{}: no vertices or no tetrahedra", path));
+  const auto n = std::size_t(comm.size()), r = std::size_t(comm.rank());
+  for (std::size_t q = 0; q <= n; ++q) s.vertex_starts.push_back(std::int64_t(std::size_t(kv.count) * q / n));
+  auto [v0, v1] = part_slice(std::size_t(kv.count), n, r);
+  s.first_vertex = GlobalId(v0);
+  const int R = l.real(), I = l.integer();
+  {
+    const std::size_t row = 3 * std::size_t(R) + std::size_t(I);
+    const auto bytes = rows(f, kv, row, std::int64_t(v0), std::int64_t(v1));
+    for (std::size_t i = 0; i < v1 - v0; ++i) {
+      const char* p = bytes.data() + i * row;
+      s.points.emplace_back(read_real(p, R), read_real(p + R, R), read_real(p + 2 * R, R));
+      if (!s.points.back().allFinite())
+        throw IoError(fmt::format("{}: vertex {} has a coordinate that is not finite", path, v0 + i + 1));
+    }
+  }
+  {
+    auto [t0, t1] = part_slice(std::size_t(kt.count), n, r);
+    const std::size_t row = 5 * std::size_t(I);
+    const auto bytes = rows(f, kt, row, std::int64_t(t0), std::int64_t(t1));
+    for (std::size_t i = 0; i < t1 - t0; ++i) {
+      const char* p = bytes.data() + i * row;
+      std::array<GlobalId, 4> t;
+      for (int c = 0; c < 4; ++c) {
+        t[c] = read_integer(p + c * I, I) - 1;
+        check_vertex(t[c], kv.count, path, "tetrahedron");
+      }
+      s.part.tets.push_back(t);
+      s.part.tet_refs.push_back(int(read_integer(p + 4 * I, I)));
+    }
+  }
+  {
+    auto [f0, f1] = part_slice(std::size_t(kf.count), n, r);
+    const std::size_t row = 4 * std::size_t(I);
+    const auto bytes = rows(f, kf, row, std::int64_t(f0), std::int64_t(f1));
+    for (std::size_t i = 0; i < f1 - f0; ++i) {
+      const char* p = bytes.data() + i * row;
+      GlobalId a = read_integer(p, I) - 1, b = read_integer(p + I, I) - 1, c = read_integer(p + 2 * I, I) - 1;
+      for (GlobalId v : {a, b, c}) check_vertex(v, kv.count, path, "triangle");
+      s.part.triangles.push_back({a, b, c});
+      s.part.triangle_refs.push_back(int(read_integer(p + 3 * I, I)));
+    }
+  }
+  for (const auto& [code, k] : l.keywords)
+    if (code != kVerticesCode && code != kTetrahedraCode && code != kTrianglesCode)
+      counts.dropped.push_back(fmt::format("keyword {}", code));
+  if (!metric_path.empty()) {
+    const BinaryFile mf(metric_path);
+    const Layout ml = scan(mf, metric_path);
+    if (!ml.native) throw IoError(fmt::format("{}: a metric in the other byte order is not read under mpirun", metric_path));
+    auto it = ml.keywords.find(kSolCode);
+    if (it == ml.keywords.end()) throw IoError(fmt::format("{}: no SolAtVertices keyword", metric_path));
+    const Keyword& ks = it->second;
+    if (ks.count != kv.count)
+      throw InputError(fmt::format("{}: the metric has {} entries but the mesh has {} vertices", metric_path,
+                                   ks.count, kv.count));
+    io::SolData sol;
+    sol.count = v1 - v0;
+    for (int t : ks.types) {
+      if (t < 1 || t > 4) throw IoError(fmt::format("{}: solution type {} unknown", metric_path, t));
+      sol.types.push_back(io::SolType(t));
+    }
+    const std::size_t stride = std::size_t(sol.stride()), rr = std::size_t(ml.real());
+    const auto bytes = rows(mf, ks, stride * rr, std::int64_t(v0), std::int64_t(v1));
+    sol.values.resize(sol.count * stride);
+    for (std::size_t i = 0; i < sol.values.size(); ++i) sol.values[i] = read_real(bytes.data() + i * rr, int(rr));
+    s.metrics = metric_field_from_sol(sol, sol.count, metric_path);
+  }
+  return s;
+}
+
+// Rank 0 reads the whole input with the single-process readers and sends
+// each rank its slices (ASCII .mesh, .msh, the other byte order).
+Slices read_on_rank0(const Comm& comm, const std::string& path, const std::string& metric_path, ReadCounts& counts) {
+  struct Row {
+    Coords p;
+    Sym6 m;
+  };
+  struct Tet {
+    std::array<GlobalId, 4> v;
+    int ref;
+  };
+  struct Tri {
+    std::array<GlobalId, 3> v;
+    int ref;
+  };
+  const auto n = std::size_t(comm.size());
+  std::vector<std::vector<Row>> rows_out(n);
+  std::vector<std::vector<Tet>> tets_out(n);
+  std::vector<std::vector<Tri>> tris_out(n);
+  std::int64_t header[3] = {0, 0, 0};
+  if (comm.rank() == 0) {
+    comm.step([&] {
+      const io::MeshData d = io::read_mesh_file(path);
+      std::vector<Sym6> metric;
+      if (!metric_path.empty())
+        metric = metric_field_from_sol(io::read_sol(metric_path), d.vertices.size(), metric_path);
+      for (std::size_t q = 0; q < n; ++q) {
+        auto [a, b] = part_slice(d.vertices.size(), n, q);
+        for (std::size_t i = a; i < b; ++i) rows_out[q].push_back({coords(d.vertices[i]), metric.empty() ? Sym6{} : metric[i]});
+        auto [ta, tb] = part_slice(d.tets.size(), n, q);
+        for (std::size_t i = ta; i < tb; ++i)
+          tets_out[q].push_back({{d.tets[i][0], d.tets[i][1], d.tets[i][2], d.tets[i][3]}, d.tet_refs[i]});
+        auto [fa, fb] = part_slice(d.triangles.size(), n, q);
+        for (std::size_t i = fa; i < fb; ++i)
+          tris_out[q].push_back({{d.triangles[i][0], d.triangles[i][1], d.triangles[i][2]}, d.triangle_refs[i]});
+      }
+      header[0] = std::int64_t(d.vertices.size()), header[1] = std::int64_t(d.tets.size()),
+      header[2] = std::int64_t(d.triangles.size());
+      if (!d.edges.empty()) counts.dropped.push_back("Edges");
+      if (!d.required_vertices.empty() || !d.required_edges.empty() || !d.required_triangles.empty())
+        counts.dropped.push_back("Required*");
+      if (!d.on_geometry[0].empty() || !d.on_geometry[1].empty() || !d.on_geometry[2].empty())
+        counts.dropped.push_back("VerticesOnGeometric*");
+    });
+  } else {
+    comm.step([] {});
+  }
+  MPI_Bcast(header, 3, MPI_INT64_T, 0, comm.get());
+  counts.vertices = header[0], counts.tets = header[1], counts.triangles = header[2];
+  Slices s;
+  const auto rows_in = comm.exchange(rows_out);
+  const auto tets_in = comm.exchange(tets_out);
+  const auto tris_in = comm.exchange(tris_out);
+  for (std::size_t q = 0; q <= n; ++q) s.vertex_starts.push_back(std::int64_t(std::size_t(header[0]) * q / n));
+  s.first_vertex = s.vertex_starts[std::size_t(comm.rank())];
+  for (const auto& r : rows_in) {
+    s.points.push_back(point(r.p));
+    if (!metric_path.empty()) s.metrics.push_back(r.m);
+  }
+  for (const auto& t : tets_in) s.part.tets.push_back(t.v), s.part.tet_refs.push_back(t.ref);
+  for (const auto& t : tris_in) s.part.triangles.push_back(t.v), s.part.triangle_refs.push_back(t.ref);
+  return s;
+}
+
+}  // namespace
+
+Part read_part(const Comm& comm, const std::string& mesh_path, const std::string& metric_path, ReadCounts& counts) {
+  Slices s;
+  bool binary = false;
+  comm.step([&] {
+    if (io::format_of(mesh_path) != io::FileFormat::meshb) return;
+    const BinaryFile f(mesh_path);
+    const Layout l = scan(f, mesh_path);
+    if (!l.native) return;
+    if (!metric_path.empty() && io::encoding_of(metric_path, ".sol", ".solb") != io::Encoding::binary) return;
+    binary = true;
+    s = read_binary_slices(comm, mesh_path, l, f, metric_path, counts);
+  });
+  // Every rank takes the same path: the file is the same for all.
+  if (!binary) s = read_on_rank0(comm, mesh_path, metric_path, counts);
+
+  // The vertices of the slice's tets, from the ranks that read them.
+  const auto n = std::size_t(comm.size());
+  std::vector<GlobalId> wanted;
+  for (const auto& t : s.part.tets) wanted.insert(wanted.end(), t.begin(), t.end());
+  std::sort(wanted.begin(), wanted.end());
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  std::vector<std::vector<GlobalId>> ask(n);
+  for (GlobalId v : wanted) {
+    const auto q = std::size_t(std::upper_bound(s.vertex_starts.begin(), s.vertex_starts.end(), v) -
+                               s.vertex_starts.begin() - 1);
+    ask[std::min(q, n - 1)].push_back(v);
+  }
+  std::vector<std::int64_t> from;
+  const auto asked = comm.exchange(ask, &from);
+  struct Answer {
+    Coords p;
+    Sym6 m;
+  };
+  std::vector<std::vector<Answer>> answers(n);
+  std::size_t at = 0;
+  for (std::size_t q = 0; q < n; ++q)
+    for (std::int64_t i = 0; i < from[q]; ++i, ++at) {
+      const auto local = std::size_t(asked[at] - s.first_vertex);
+      answers[q].push_back({coords(s.points[local]), s.metrics.empty() ? Sym6{} : s.metrics[local]});
+    }
+  const auto got = comm.exchange(answers);
+  Part part = std::move(s.part);
+  at = 0;
+  for (std::size_t q = 0; q < n; ++q)
+    for (GlobalId v : ask[q]) {
+      part.vertex_ids.push_back(v);
+      part.points.push_back(point(got[at].p));
+      if (!metric_path.empty()) part.metrics.push_back(got[at].m);
+      ++at;
+    }
+  return part;
+}
+
+}  // namespace metrica::distributed

@@ -1,0 +1,226 @@
+#include <metrica/distributed/write_part.hpp>
+
+#include <metrica/error.hpp>
+
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <unistd.h>
+
+namespace metrica::distributed {
+
+namespace {
+
+struct Holder {
+  GlobalId id;
+  std::int64_t rank;
+};
+
+class Rows {
+ public:
+  Rows(int integer, int real) : integer_(integer), real_(real) {}
+  void integer(std::int64_t v) {
+    if (integer_ == 4) {
+      const auto x = std::int32_t(v);
+      put(&x, 4);
+    } else {
+      put(&v, 8);
+    }
+  }
+  void offset(std::uint64_t v, int width) {
+    if (width == 4) {
+      const auto x = std::int32_t(v);
+      put(&x, 4);
+    } else {
+      put(&v, 8);
+    }
+  }
+  void real(double v) { put(&v, 8); }
+  void int32(std::int32_t v) { put(&v, 4); }
+  std::string& bytes() { return out_; }
+
+ private:
+  void put(const void* p, std::size_t n) { out_.append(static_cast<const char*>(p), n); }
+  int integer_, real_;
+  std::string out_;
+};
+
+void write_at(MPI_File file, std::uint64_t at, const std::string& bytes) {
+  constexpr std::size_t kPiece = std::size_t{1} << 30;
+  for (std::size_t off = 0; off < bytes.size(); off += kPiece) {
+    const int n = int(std::min(kPiece, bytes.size() - off));
+    if (MPI_File_write_at(file, MPI_Offset(at + off), bytes.data() + off, n, MPI_BYTE, MPI_STATUS_IGNORE) !=
+        MPI_SUCCESS)
+      throw IoError(fmt::format("cannot write {} bytes at {}", n, at + off));
+  }
+}
+
+}  // namespace
+
+WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& path, int version) {
+  const auto n = std::size_t(comm.size());
+  const int me = comm.rank();
+  const VertexIndex index(part.vertex_ids);
+  // Which vertices other ranks hold too, and the lowest holder of each.
+  std::vector<bool> on_shared(part.vertex_ids.size(), false);
+  std::vector<std::vector<Holder>> ask(n);
+  for (const auto& f : part.shared_faces)
+    for (GlobalId g : f) {
+      const auto v = std::size_t(index.find(g));
+      if (on_shared[v]) continue;
+      on_shared[v] = true;
+      ask[std::size_t(owner_of(std::uint64_t(g), comm.size()))].push_back({g, me});
+    }
+  std::vector<std::int64_t> from;
+  auto holders = comm.exchange(ask, &from);
+  {
+    std::vector<Holder> lowest = holders;
+    std::sort(lowest.begin(), lowest.end(),
+              [](const Holder& a, const Holder& b) { return a.id != b.id ? a.id < b.id : a.rank < b.rank; });
+    lowest.erase(std::unique(lowest.begin(), lowest.end(), [](auto& a, auto& b) { return a.id == b.id; }),
+                 lowest.end());
+    std::vector<std::vector<Holder>> reply(n);
+    std::size_t at = 0;
+    for (std::size_t q = 0; q < n; ++q)
+      for (std::int64_t i = 0; i < from[q]; ++i, ++at) {
+        auto it = std::lower_bound(lowest.begin(), lowest.end(), holders[at],
+                                   [](const Holder& a, const Holder& b) { return a.id < b.id; });
+        reply[q].push_back({holders[at].id, it->rank});
+      }
+    holders = comm.exchange(reply);
+  }
+  // The owner of each local vertex (this rank unless a lower one holds it).
+  std::vector<int> owner(part.vertex_ids.size(), me);
+  for (const auto& h : holders) owner[std::size_t(index.find(h.id))] = int(h.rank);
+  std::int64_t owned = 0;
+  for (int o : owner) owned += o == me;
+  const std::int64_t first_vertex = comm.exclusive_scan(owned);
+  std::vector<std::int64_t> number(part.vertex_ids.size(), 0);  // 1-based in the file
+  {
+    std::int64_t at = first_vertex;
+    for (std::size_t v = 0; v < owner.size(); ++v)
+      if (owner[v] == me) number[v] = ++at;
+    // The numbers of the vertices a lower rank writes, from that rank.
+    std::vector<std::vector<GlobalId>> want(n);
+    for (std::size_t v = 0; v < owner.size(); ++v)
+      if (owner[v] != me) want[std::size_t(owner[v])].push_back(part.vertex_ids[v]);
+    std::vector<std::int64_t> asked_from;
+    const auto asked = comm.exchange(want, &asked_from);
+    std::vector<std::vector<std::int64_t>> answer(n);
+    std::size_t k = 0;
+    for (std::size_t q = 0; q < n; ++q)
+      for (std::int64_t i = 0; i < asked_from[q]; ++i, ++k) answer[q].push_back(number[std::size_t(index.find(asked[k]))]);
+    const auto got = comm.exchange(answer);
+    k = 0;
+    for (std::size_t q = 0; q < n; ++q)
+      for (GlobalId g : want[q]) number[std::size_t(index.find(g))] = got[k++];
+  }
+  // A triangle on a face between parts is written by the lower rank.
+  std::vector<std::pair<FaceKey, int>> across;
+  for (std::size_t i = 0; i < part.shared_faces.size(); ++i) across.emplace_back(part.shared_faces[i], part.shared_with[i]);
+  std::sort(across.begin(), across.end());
+  std::vector<std::uint32_t> triangles;
+  for (std::size_t i = 0; i < part.triangles.size(); ++i) {
+    const auto key = face_key(part.triangles[i]);
+    auto it = std::lower_bound(across.begin(), across.end(), std::pair<FaceKey, int>{key, -1});
+    if (it != across.end() && it->first == key && it->second < me) continue;
+    triangles.push_back(std::uint32_t(i));
+  }
+
+  WrittenCounts total;
+  total.vertices = comm.sum(owned);
+  total.triangles = comm.sum(std::int64_t(triangles.size()));
+  total.tets = comm.sum(std::int64_t(part.tets.size()));
+  const std::int64_t first_triangle = comm.exclusive_scan(std::int64_t(triangles.size()));
+  const std::int64_t first_tet = comm.exclusive_scan(std::int64_t(part.tets.size()));
+  if (version == 0) {
+    const auto rows_max = std::max({total.vertices, total.triangles, total.tets});
+    const double v2_bytes = double(total.vertices) * 28 + double(total.triangles) * 16 + double(total.tets) * 20;
+    version = rows_max >= std::numeric_limits<std::int32_t>::max() ? 4 : v2_bytes > 2.0e9 ? 3 : 2;
+  }
+  total.version = version;
+  const int I = version == 4 ? 8 : 4, O = version >= 3 ? 8 : 4;
+  const std::uint64_t head = 4 + std::uint64_t(O) + std::uint64_t(I);  // code, next offset, count
+  // Byte layout: header, Dimension, Vertices, Triangles, Tetrahedra, End.
+  const std::uint64_t dimension_at = 8, vertices_at = dimension_at + 4 + std::uint64_t(O) + 4;
+  const std::uint64_t vertex_row = 24 + std::uint64_t(I), triangle_row = 4 * std::uint64_t(I),
+                      tet_row = 5 * std::uint64_t(I);
+  const std::uint64_t triangles_at = vertices_at + head + std::uint64_t(total.vertices) * vertex_row;
+  const std::uint64_t tets_at = triangles_at + (total.triangles ? head + std::uint64_t(total.triangles) * triangle_row : 0);
+  const std::uint64_t end_at = tets_at + head + std::uint64_t(total.tets) * tet_row;
+
+  std::string temporary;
+  if (me == 0) temporary = fmt::format("{}.part-{}.tmp", path, ::getpid());
+  {
+    std::uint64_t size = temporary.size();
+    MPI_Bcast(&size, 1, MPI_UINT64_T, 0, comm.get());
+    temporary.resize(size);
+    MPI_Bcast(temporary.data(), int(size), MPI_CHAR, 0, comm.get());
+  }
+  MPI_File file;
+  int opened = MPI_File_open(comm.get(), temporary.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file);
+  if (opened != MPI_SUCCESS)
+    comm.step([&] {
+      if (me == 0) throw IoError(fmt::format("{}: cannot create the output next to it ({})", path, temporary));
+    });
+  bool written = true;
+  try {
+    comm.step([&] {
+      if (me == 0) {
+        Rows h(I, 8);
+        h.int32(1), h.int32(version);
+        h.int32(3), h.offset(vertices_at, O), h.int32(3);
+        h.int32(4), h.offset(total.triangles ? triangles_at : tets_at, O), h.integer(total.vertices);
+        write_at(file, 0, h.bytes());
+        Rows t(I, 8);
+        if (total.triangles) {
+          t.int32(6), t.offset(tets_at, O), t.integer(total.triangles);
+          write_at(file, triangles_at, t.bytes());
+        }
+        Rows e(I, 8);
+        e.int32(8), e.offset(end_at, O), e.integer(total.tets);
+        write_at(file, tets_at, e.bytes());
+        Rows end(I, 8);
+        end.int32(54), end.offset(0, O);
+        write_at(file, end_at, end.bytes());
+      }
+      Rows v(I, 8);
+      for (std::size_t i = 0; i < owner.size(); ++i) {
+        if (owner[i] != me) continue;
+        const auto& p = part.points[i];
+        v.real(p.x()), v.real(p.y()), v.real(p.z()), v.integer(0);
+      }
+      write_at(file, vertices_at + head + std::uint64_t(first_vertex) * vertex_row, v.bytes());
+      Rows f(I, 8);
+      for (auto i : triangles) {
+        for (GlobalId g : part.triangles[i]) f.integer(number[std::size_t(index.find(g))]);
+        f.integer(part.triangle_refs[i]);
+      }
+      write_at(file, triangles_at + head + std::uint64_t(first_triangle) * triangle_row, f.bytes());
+      Rows t(I, 8);
+      for (std::size_t i = 0; i < part.tets.size(); ++i) {
+        for (GlobalId g : part.tets[i]) t.integer(number[std::size_t(index.find(g))]);
+        t.integer(part.tet_refs[i]);
+      }
+      write_at(file, tets_at + head + std::uint64_t(first_tet) * tet_row, t.bytes());
+    });
+  } catch (const ReportedFailure&) {
+    written = false;
+  }
+  MPI_File_close(&file);
+  if (!written) {
+    if (me == 0) std::remove(temporary.c_str());
+    throw ReportedFailure{};
+  }
+  comm.step([&] {
+    if (me == 0 && std::rename(temporary.c_str(), path.c_str()) != 0) {
+      std::remove(temporary.c_str());
+      throw IoError(fmt::format("{}: cannot rename {} to it ({})", path, temporary, std::strerror(errno)));
+    }
+  });
+  return total;
+}
+
+}  // namespace metrica::distributed

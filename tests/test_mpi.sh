@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# `metrica adapt` under mpirun (docs/distributed.md) on small cases, each
+# run under a timeout so that a hang fails instead of blocking: valid and
+# conforming output (metrica check), balanced parts, the same output to the
+# bit for a given N with --concurrency serial, the parallel read and write
+# round trip (--rounds 0), an error on one rank and too many ranks (every
+# rank exits 1, one message, no output left behind).
+# Usage: tests/test_mpi.sh METRICA [CASE]   (CASE: adapt, repeat, roundtrip, errors; all by default)
+set -euo pipefail
+metrica="$1"
+only="${2:-all}"
+dir="$(mktemp -d)"
+trap 'rm -rf "$dir"' EXIT
+fail() {
+  echo "test_mpi: $*" >&2
+  exit 1
+}
+# Root in CI; two cores for up to three ranks.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+run() {
+  local n=$1
+  shift
+  timeout 300 mpirun --oversubscribe -np "$n" "$metrica" "$@"
+}
+"$metrica" cube --n 8 -o "$dir/cube.meshb" -q
+
+# Valid, conforming, in the unit band, balanced: on 2 and 3 ranks.
+if [ "$only" = all ] || [ "$only" = adapt ]; then
+  for n in 2 3; do
+    out="$dir/adapt-$n.txt"
+    run "$n" adapt "$dir/cube.meshb" --analytic linear -o "$dir/a$n.meshb" --concurrency serial >"$out" 2>&1 ||
+      { cat "$out"; fail "adapt on $n ranks failed"; }
+    "$metrica" check "$dir/a$n.meshb" -q || fail "the output of $n ranks is not valid"
+    # Every face of the output between two tets or listed as a triangle:
+    # metrica check refuses an open (non-conforming) boundary.
+    report=$("$metrica" quality "$dir/a$n.meshb" --analytic linear)
+    share=$(sed -n 's/.*edges in \[1\/sqrt2, sqrt2\] *\([0-9.]*\)%.*/\1/p' <<<"$report")
+    minq=$(sed -n 's/.*mean ratio *min \([0-9.]*\).*/\1/p' <<<"$report")
+    awk -v s="$share" -v q="$minq" 'BEGIN { exit !(s >= 95 && q >= 0.2) }' ||
+      { cat "$out"; fail "$n ranks: $share% of the edges in range, min Q $minq (want >= 95%, >= 0.2)"; }
+    balance=$(sed -n 's/.*the most \([0-9.]*\) x the mean.*/\1/p' "$out")
+    awk -v b="$balance" 'BEGIN { exit !(b <= 1.10) }' || { cat "$out"; fail "$n ranks: the largest part is $balance x the mean"; }
+    volume=$("$metrica" info "$dir/a$n.meshb" | sed -n 's/^  volume *\([0-9.e+-]*\).*/\1/p')
+    awk -v v="$volume" 'BEGIN { exit !(v > 0.999999999 && v < 1.000000001) }' || fail "$n ranks: volume $volume (the cube's is 1)"
+  done
+fi
+
+# The same output to the bit for a given N (serial concurrency).
+if [ "$only" = all ] || [ "$only" = repeat ]; then
+  run 2 adapt "$dir/cube.meshb" --analytic polar-1 -o "$dir/r1.meshb" --concurrency serial -q
+  run 2 adapt "$dir/cube.meshb" --analytic polar-1 -o "$dir/r2.meshb" --concurrency serial -q
+  cmp "$dir/r1.meshb" "$dir/r2.meshb" || fail "two serial runs on 2 ranks differ"
+fi
+
+# Read in slices, cut, move and write in parallel: the same mesh back.
+if [ "$only" = all ] || [ "$only" = roundtrip ]; then
+  run 3 adapt "$dir/cube.meshb" --analytic linear --rounds 0 -o "$dir/rt.meshb" -q
+  "$metrica" check "$dir/rt.meshb" -q || fail "the round trip is not valid"
+  strip() { "$metrica" info "$1" | grep -E '^  (vertices|tetrahedra|triangles|volume) |^ +[0-9]+ +[0-9,]+ +[0-9.]+$'; }
+  diff <(strip "$dir/cube.meshb") <(strip "$dir/rt.meshb") || fail "the round trip changed the mesh's counts, volume or surfaces"
+  # The ASCII path: rank 0 reads and sends the slices out.
+  "$metrica" convert "$dir/cube.meshb" "$dir/cube.mesh" -q
+  run 2 adapt "$dir/cube.mesh" --analytic linear --rounds 0 -o "$dir/rt2.meshb" -q
+  diff <(strip "$dir/cube.meshb") <(strip "$dir/rt2.meshb") || fail "the ASCII round trip changed the mesh"
+fi
+
+# Errors: a bad slice on the last rank only, too many ranks, an output that
+# cannot be written. Every rank exits 1 (no hang: the timeout), one message.
+if [ "$only" = all ] || [ "$only" = errors ]; then
+  python3 - "$dir/cube.meshb" "$dir/bad.meshb" <<'PY'
+import struct, sys
+data = bytearray(open(sys.argv[1], "rb").read())
+# The last tet's first vertex out of range (version 2: 32-bit ints, offsets).
+pos = 8
+while True:
+    code, nxt = struct.unpack_from("<ii", data, pos)
+    if code == 8:
+        count = struct.unpack_from("<i", data, pos + 8)[0]
+        last = pos + 12 + (count - 1) * 20
+        struct.pack_into("<i", data, last, 999999)
+        break
+    pos = nxt
+open(sys.argv[2], "wb").write(data)
+PY
+  set +e
+  msg=$(run 3 adapt "$dir/bad.meshb" --analytic linear -o "$dir/bad-out.meshb" 2>&1)
+  code=$?
+  set -e
+  [ "$code" -ne 0 ] && [ "$code" -ne 124 ] || fail "a bad slice: exit $code (want 1, no hang): $msg"
+  grep -q "rank 2 of 3: .*names vertex 999999" <<<"$msg" || fail "a bad slice: no message from rank 2: $msg"
+  [ "$(grep -c '^error' <<<"$msg")" -eq 1 ] || fail "a bad slice: not one message: $msg"
+  [ ! -e "$dir/bad-out.meshb" ] || fail "a bad slice left an output"
+  "$metrica" cube --n 1 -o "$dir/tiny.meshb" -q
+  set +e
+  msg=$(run 2 adapt "$dir/tiny.meshb" --analytic linear -o "$dir/tiny-out.meshb" 2>&1)
+  code=$?
+  set -e
+  [ "$code" -ne 0 ] && [ "$code" -ne 124 ] || fail "too many ranks: exit $code: $msg"
+  grep -q "too few for 2 ranks" <<<"$msg" || fail "too many ranks: $msg"
+  set +e
+  msg=$(run 2 adapt "$dir/cube.meshb" --analytic linear -o "$dir/cube.mesh" 2>&1)
+  code=$?
+  set -e
+  [ "$code" -eq 2 ] || fail "an ASCII output under mpirun: exit $code (want 2): $msg"
+  ls "$dir" | grep -q tmp && fail "a temporary file was left: $(ls "$dir")"
+fi
+echo "test_mpi: ok"
