@@ -1,5 +1,6 @@
 #include <metrica/distributed/adapt_part.hpp>
 
+#include <metrica/distributed/pinches.hpp>
 #include <metrica/error.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/metrics/metric_field.hpp>
@@ -21,54 +22,106 @@ Bits bits_of(const Point& p) {
   return b;
 }
 
+// Faces of the tets flagged in `which`, sorted, each once per tet.
+std::vector<FaceKey> faces_of(const Part& part, const std::vector<bool>& active, bool which) {
+  std::vector<FaceKey> faces;
+  for (std::size_t t = 0; t < part.tets.size(); ++t) {
+    if (active[t] != which) continue;
+    const auto& v = part.tets[t];
+    for (const auto& f : kTetFaces) faces.push_back(face_key(v[std::size_t(f[0])], v[std::size_t(f[1])], v[std::size_t(f[2])]));
+  }
+  std::sort(faces.begin(), faces.end());
+  return faces;
+}
+
+bool holds(const std::vector<FaceKey>& sorted, const FaceKey& k) {
+  return std::binary_search(sorted.begin(), sorted.end(), k);
+}
+
 }  // namespace
 
 PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings& settings, GlobalId& next_id) {
   PartAdaptResult result;
   std::int64_t fresh = 0;
   Part adapted;
+  std::vector<bool> active;
+  bool changed = false;  // this rank adapted some tets
   comm.step([&] {
     if (part.tets.empty()) return;
     Stopwatch clock;
+    active = adaptable_tets(part);
+    const auto active_faces = faces_of(part, active, true);
+    const auto kept_faces = faces_of(part, active, false);
+    // The faces kept as they are: those shared with another rank and those
+    // between an adapted tet and one kept out.
+    std::vector<FaceKey> frozen = part.shared_faces;
+    for (const auto& k : kept_faces)
+      if (holds(active_faces, k)) frozen.push_back(k);
+    std::sort(frozen.begin(), frozen.end());
+    frozen.erase(std::unique(frozen.begin(), frozen.end()), frozen.end());
+
+    // The adapted tets' mesh, numbered locally.
     const VertexIndex index(part.vertex_ids);
+    std::vector<std::int64_t> local(part.vertex_ids.size(), -1);
+    std::vector<std::uint32_t> global_of;  // local -> part vertex
     io::MeshData data;
-    data.vertices = part.points;
-    for (const auto& t : part.tets) {
-      TetVertices l;
-      for (int c = 0; c < 4; ++c) l[std::size_t(c)] = VertexId(index.find(t[std::size_t(c)]));
-      data.tets.push_back(l);
-    }
-    data.tet_refs = part.tet_refs;
-    auto local_face = [&](const std::array<GlobalId, 3>& k) {
-      return TriangleVertices{VertexId(index.find(k[0])), VertexId(index.find(k[1])), VertexId(index.find(k[2]))};
+    auto number = [&](GlobalId g) {
+      const auto v = std::size_t(index.find(g));
+      if (local[v] < 0) {
+        local[v] = std::int64_t(global_of.size());
+        global_of.push_back(std::uint32_t(v));
+        data.vertices.push_back(part.points[v]);
+      }
+      return VertexId(local[v]);
     };
-    std::vector<FaceKey> shared = part.shared_faces;
-    std::sort(shared.begin(), shared.end());
+    for (std::size_t t = 0; t < part.tets.size(); ++t) {
+      if (!active[t]) {
+        ++result.kept_out;
+        continue;
+      }
+      TetVertices l;
+      for (int c = 0; c < 4; ++c) l[std::size_t(c)] = number(part.tets[t][std::size_t(c)]);
+      data.tets.push_back(l);
+      data.tet_refs.push_back(part.tet_refs[t]);
+    }
+    auto local_face = [&](const std::array<GlobalId, 3>& k) {
+      return TriangleVertices{number(k[0]), number(k[1]), number(k[2])};
+    };
+    std::vector<FaceKey> listed;
+    std::vector<std::uint32_t> untouched_triangles;
     for (std::size_t i = 0; i < part.triangles.size(); ++i) {
+      const auto key = face_key(part.triangles[i]);
+      if (!holds(active_faces, key)) {
+        untouched_triangles.push_back(std::uint32_t(i));
+        continue;
+      }
+      listed.push_back(key);
+      if (holds(frozen, key)) data.required_triangles.push_back(std::uint32_t(data.triangles.size()));
       data.triangles.push_back(local_face(part.triangles[i]));
       data.triangle_refs.push_back(part.triangle_refs[i]);
-      if (std::binary_search(shared.begin(), shared.end(), face_key(part.triangles[i])))
-        data.required_triangles.push_back(std::uint32_t(i));
     }
-    std::vector<FaceKey> listed;
-    for (const auto& t : part.triangles) listed.push_back(face_key(t));
     std::sort(listed.begin(), listed.end());
-    for (const auto& k : shared) {
-      if (std::binary_search(listed.begin(), listed.end(), k)) continue;
+    for (const auto& k : frozen) {
+      if (!holds(active_faces, k) || holds(listed, k)) continue;
       data.required_triangles.push_back(std::uint32_t(data.triangles.size()));
       data.triangles.push_back(local_face(k));
       data.triangle_refs.push_back(kPartFaceId);
     }
+    if (data.tets.empty()) return;
+    changed = true;
     BuildOptions bo;
     bo.default_surface_id = settings.default_surface_id;
     bo.source = fmt::format("part {}", comm.rank());
     Mesh mesh = build_mesh(data, bo);
     data = io::MeshData{};
     result.volume_before = mesh.volume();
-    if (settings.exact)
+    if (settings.exact) {
       assign_metric(mesh, *settings.exact);
-    else
-      assign_metric(mesh, part.metrics);
+    } else {
+      std::vector<Sym6> metrics;
+      for (auto v : global_of) metrics.push_back(part.metrics[v]);
+      assign_metric(mesh, metrics);
+    }
     AdaptInputs inputs;
     inputs.metric = settings.exact;
     adapt_by_name(mesh, settings.options, settings.policies, inputs);
@@ -77,9 +130,9 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     result.volume_after = mesh.volume();
     result.quality = quality_report(mesh, settings.policies.space, {.cached_quality = true});
 
-    // Back to global ids: the shared faces' vertices by their coordinates.
+    // Back to global ids: the kept faces' vertices by their coordinates.
     std::vector<std::pair<Bits, GlobalId>> kept;
-    for (const auto& k : shared)
+    for (const auto& k : frozen)
       for (GlobalId g : k) kept.emplace_back(bits_of(part.points[std::size_t(index.find(g))]), g);
     std::sort(kept.begin(), kept.end());
     kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
@@ -88,8 +141,10 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     for (std::size_t v = 0; v < out.vertices.size(); ++v) {
       const auto b = bits_of(out.vertices[v]);
       auto it = std::lower_bound(kept.begin(), kept.end(), std::pair<Bits, GlobalId>{b, -1});
-      if (it != kept.end() && it->first == b) ids[v] = it->second;
-      else ++fresh;
+      if (it != kept.end() && it->first == b)
+        ids[v] = it->second;
+      else
+        ++fresh;
     }
     adapted.vertex_ids = std::move(ids);
     adapted.points = out.vertices;
@@ -97,21 +152,27 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
         if (mesh.vertex_alive(v)) adapted.metrics.push_back(mesh.metric(v));
     }
+    // Local numbers for now (turned into global ids below), then the
+    // tets kept out with their global ids and the vertices only they hold.
     for (std::size_t t = 0; t < out.tets.size(); ++t) {
       const auto& l = out.tets[t];
-      adapted.tets.push_back({GlobalId(l[0]), GlobalId(l[1]), GlobalId(l[2]), GlobalId(l[3])});  // local for now
+      adapted.tets.push_back({GlobalId(l[0]), GlobalId(l[1]), GlobalId(l[2]), GlobalId(l[3])});
       adapted.tet_refs.push_back(out.tet_refs[t]);
     }
     for (std::size_t f = 0; f < out.triangles.size(); ++f) {
       if (out.triangle_refs[f] == kPartFaceId) continue;
       const auto& l = out.triangles[f];
-      adapted.triangles.push_back({GlobalId(l[0]), GlobalId(l[1]), GlobalId(l[2])});  // local for now
+      adapted.triangles.push_back({GlobalId(l[0]), GlobalId(l[1]), GlobalId(l[2])});
       adapted.triangle_refs.push_back(out.triangle_refs[f]);
     }
     result.seconds = clock.seconds();
   });
   const std::int64_t base = next_id + comm.exclusive_scan(fresh);
   next_id += comm.sum(fresh);
+  if (!changed) {
+    comm.step([] {});  // the others' check below
+    return result;
+  }
   GlobalId at = base;
   for (auto& g : adapted.vertex_ids)
     if (g < 0) g = at++;
@@ -119,6 +180,35 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     for (auto& v : t) v = adapted.vertex_ids[std::size_t(v)];
   for (auto& f : adapted.triangles)
     for (auto& v : f) v = adapted.vertex_ids[std::size_t(v)];
+  // The tets kept out, their vertices and their triangles, unchanged.
+  {
+    const VertexIndex index(part.vertex_ids);
+    const VertexIndex have(adapted.vertex_ids);
+    const auto active_faces = faces_of(part, active, true);
+    for (std::size_t t = 0; t < part.tets.size(); ++t) {
+      if (active[t]) continue;
+      adapted.tets.push_back(part.tets[t]);
+      adapted.tet_refs.push_back(part.tet_refs[t]);
+    }
+    std::vector<GlobalId> extra;
+    for (std::size_t t = 0; t < part.tets.size(); ++t)
+      if (!active[t])
+        for (GlobalId g : part.tets[t])
+          if (have.find(g) < 0) extra.push_back(g);
+    std::sort(extra.begin(), extra.end());
+    extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+    for (GlobalId g : extra) {
+      const auto v = std::size_t(index.find(g));
+      adapted.vertex_ids.push_back(g);
+      adapted.points.push_back(part.points[v]);
+      if (!part.metrics.empty()) adapted.metrics.push_back(part.metrics[v]);
+    }
+    for (std::size_t i = 0; i < part.triangles.size(); ++i)
+      if (!holds(active_faces, face_key(part.triangles[i]))) {
+        adapted.triangles.push_back(part.triangles[i]);
+        adapted.triangle_refs.push_back(part.triangle_refs[i]);
+      }
+  }
   // The faces between parts must come out as they went in: the rank
   // across relies on them.
   comm.step([&] {

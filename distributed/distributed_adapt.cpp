@@ -49,6 +49,20 @@ std::vector<std::int32_t> predicted_tets(const Comm& comm, const Part& part, con
   return w;
 }
 
+// The volume of the part's tets.
+double part_volume(const Part& part) {
+  const VertexIndex index(part.vertex_ids);
+  double sum = 0;
+  for (const auto& t : part.tets) {
+    const Point& a = part.points[std::size_t(index.find(t[0]))];
+    const Point& b = part.points[std::size_t(index.find(t[1]))];
+    const Point& c = part.points[std::size_t(index.find(t[2]))];
+    const Point& d = part.points[std::size_t(index.find(t[3]))];
+    sum += (b - a).dot((c - a).cross(d - a)) / 6.0;
+  }
+  return sum;
+}
+
 struct Spread {
   std::int64_t total, low, high;
 };
@@ -105,7 +119,7 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   settings.exact = run.analytic ? &exact : nullptr;
   settings.default_surface_id = std::int32_t(comm.max(std::int64_t(max_ref))) + 1;
   GlobalId next_id = counts.vertices;
-  double volume_in = 0;
+  const double volume_in = comm.sum(part_volume(part));
   std::vector<GlobalId> frozen_before;
   QualityReport last;
   // --rounds 0: cut and move once, no adaptation (the parallel read and
@@ -114,25 +128,23 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
     PartitionWeights weights;
     weights.tets.assign(part.tets.size(), 1);
     part = migrate(comm, part, partition(comm, part, weights));
-    make_parts_manifold(comm, part);
   }
   for (int it = 0; it < run.iterations && run.rounds > 0; ++it)
     for (int round = 0; round < run.rounds; ++round) {
       Stopwatch round_clock;
+      // Each cut stays away from the faces the round before kept.
       PartitionWeights weights;
       weights.tets = predicted_tets(comm, part, settings.exact);
       weights.avoid = frozen_before;
-      const auto dest = partition(comm, part, weights);
-      part = migrate(comm, part, dest);
-      const int moves = make_parts_manifold(comm, part);
+      part = migrate(comm, part, partition(comm, part, weights));
       const auto result = adapt_part(comm, part, settings, next_id);
       const double before = comm.sum(result.volume_before), after = comm.sum(result.volume_after);
-      if (it == 0 && round == 0) volume_in = before;
       frozen_before.clear();
       for (const auto& f : part.shared_faces) frozen_before.insert(frozen_before.end(), f.begin(), f.end());
       std::sort(frozen_before.begin(), frozen_before.end());
       frozen_before.erase(std::unique(frozen_before.begin(), frozen_before.end()), frozen_before.end());
       const auto tets = spread(comm, std::int64_t(part.tets.size()));
+      const std::int64_t kept_out = comm.sum(result.kept_out);
       // The quality over all parts (edges on faces between parts counted on each side).
       const auto& q = result.quality;
       const double edges = double(comm.sum(std::int64_t(q.edges)));
@@ -141,14 +153,15 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       last.unit_length_share = in_range, last.quality.min = min_q, last.tets = std::size_t(tets.total);
       last.quality.mean = comm.sum(q.quality.mean * double(q.tets)) / std::max(1.0, double(tets.total));
       if (talk) {
-        fmt::print("  {}round {}: {} tets ({} .. {} per rank, {} pinch move round{}) | in range {:5.1f}% min Q {:.3f} "
-                   "| volume change {:.2g} | {:.2f} s\n",
+        fmt::print("  {}round {}: {} tets ({} .. {} per rank, {} kept out at pinches) | in range {:5.1f}% "
+                   "min Q {:.3f} | volume change {:.2g} | {:.2f} s\n",
                    run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, tets.low,
-                   tets.high, moves, moves == 1 ? "" : "s", 100.0 * in_range, min_q,
+                   tets.high, kept_out,
+                   100.0 * in_range, min_q,
                    std::abs(after - before) / before, round_clock.seconds());
         std::fflush(stdout);
       }
-      const double volume_now = after;
+      const double volume_now = comm.sum(part_volume(part));
       comm.step([&] {
         const double tolerance = adapted_volume_tolerance(it + 1, run.options.volume_budget);
         if (comm.rank() == 0 && std::abs(volume_now - volume_in) > tolerance * volume_in)

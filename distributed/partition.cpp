@@ -80,14 +80,14 @@ std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWe
             [](const Neighbour& a, const Neighbour& b) { return a.tet != b.tet ? a.tet < b.tet : a.other < b.other; });
 
   // The rank's slice of the graph in PT-Scotch's compressed rows.
-  std::vector<SCOTCH_Num> vert(std::size_t(local) + 1, 0), edges, edge_weights, vert_weights(static_cast<std::size_t>(local));
+  const std::size_t count = part.tets.size();
+  std::vector<SCOTCH_Num> vert(count + 1, 0), edges, edge_weights, vert_weights(count), parts(count, 0);
   for (const auto& e : nb) ++vert[std::size_t(e.tet - first) + 1];
-  for (std::size_t t = 0; t < std::size_t(local); ++t) vert[t + 1] += vert[t];
+  for (std::size_t t = 0; t < count; ++t) vert[t + 1] += vert[t];
   for (const auto& e : nb) edges.push_back(SCOTCH_Num(e.other)), edge_weights.push_back(e.weight);
-  for (std::size_t t = 0; t < std::size_t(local); ++t) vert_weights[t] = std::max<std::int32_t>(1, weights.tets[t]);
+  for (std::size_t t = 0; t < count; ++t) vert_weights[t] = std::max<std::int32_t>(1, weights.tets[t]);
   nb = {};
 
-  std::vector<SCOTCH_Num> parts(std::size_t(local), 0);
   // A context of its own, deterministic with a fixed seed: the same cut
   // for the same graph on the same number of ranks, run after run.
   int failed = 0;

@@ -31,7 +31,8 @@ struct PartAdaptSettings {
 struct PartAdaptResult {
   double volume_before = 0, volume_after = 0;
   double seconds = 0;
-  QualityReport quality;  // of the adapted part
+  std::int64_t kept_out = 0;  // tets around pinches, left for a later round (pinches.hpp)
+  QualityReport quality;      // of the adapted tets
 };
 
 // Adapts the part in place. `next_id` (the same on every rank) is the

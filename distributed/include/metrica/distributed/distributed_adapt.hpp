@@ -1,7 +1,7 @@
 // `metrica adapt` on several MPI ranks (docs/distributed.md): read in
 // slices, then rounds of cut (PT-Scotch) - move - adapt with the faces
-// between parts frozen, each cut avoiding the faces the round before
-// froze, then one .meshb written by all ranks together.
+// between parts kept, each cut staying away from the faces the round
+// before kept, then one .meshb written by all ranks together.
 #pragma once
 
 #include <metrica/distributed/comm.hpp>
@@ -22,7 +22,7 @@ struct DistributedAdapt {
   AdaptOptions options;
   PolicyChoice policies;
   int iterations = 1;  // --analytic only: the metric re-evaluated between them
-  int rounds = 3;      // cuts per adaptation
+  int rounds = 5;      // cuts per adaptation
   int version = 0;     // libMeshb version of the output (0: chosen by size)
   bool talk = true;    // rank 0 prints progress
 };

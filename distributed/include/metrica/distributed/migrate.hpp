@@ -15,11 +15,4 @@ namespace metrica::distributed {
 // every rank) for a triangle that is no tet's face or a face of three tets.
 Part migrate(const Comm& comm, const Part& part, const std::vector<int>& dest);
 
-// Moves tets until no part's boundary is pinched: a part whose tets
-// around a boundary vertex or edge fall into several pieces joined only
-// there (a cut rarely avoids all) gives its smaller pieces to a rank
-// across them. The adaptation of a part needs a manifold boundary.
-// Returns the rounds it took; throws after `max_rounds`.
-int make_parts_manifold(const Comm& comm, Part& part, int max_rounds = 30);
-
 }  // namespace metrica::distributed

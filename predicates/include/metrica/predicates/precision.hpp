@@ -159,10 +159,10 @@ static_assert(Precision<Exact>);
 using Precisions = PolicyList<Filtered, Exact, Fast>;
 
 // Whether a tet an operation would make counts as positive: positive
-// under the Precision and in plain doubles as well. validate() and the
-// programs that read the output measure orientation in doubles, so a
-// nearly flat tet that exact arithmetic finds positive but doubles find
-// flat or inverted is refused like an inverted one.
+// under the Precision and in plain doubles as well, in its vertex order.
+// validate() and the programs that read the output measure orientation in
+// doubles, so a nearly flat tet that exact arithmetic finds positive but
+// doubles find flat or inverted is refused like an inverted one.
 template <Precision P>
 bool positive_tet(const Point& a, const Point& b, const Point& c, const Point& d) {
   return P::orient3d(a, b, c, d) > 0 && orient3d_fast(a, b, c, d) > 0.0;
