@@ -296,6 +296,15 @@ Slices read_on_rank0(const Comm& comm, const std::string& path, const std::strin
 Part read_part(const Comm& comm, const std::string& mesh_path, const std::string& metric_path, ReadCounts& counts) {
   Slices s;
   bool binary = false;
+  // Rank 0 opens the files first: a missing or malformed file is said once.
+  comm.step([&] {
+    if (comm.rank() != 0) return;
+    const BinaryFile mesh(mesh_path);
+    if (io::format_of(mesh_path) == io::FileFormat::meshb) scan(mesh, mesh_path);
+    if (metric_path.empty()) return;
+    const BinaryFile metric(metric_path);
+    if (io::format_of(metric_path) == io::FileFormat::solb) scan(metric, metric_path);
+  });
   comm.step([&] {
     if (io::format_of(mesh_path) != io::FileFormat::meshb) return;
     const BinaryFile f(mesh_path);

@@ -1,0 +1,128 @@
+// The distributed executor's pieces that need no MPI: face keys and their
+// orientation, the rendezvous ranks, the tets a part keeps out of a round
+// where its boundary is pinched (distributed/pinches.hpp). The executor
+// itself runs under mpirun in tests/test_mpi.sh.
+#include "test_support.hpp"
+
+#include <metrica/box.hpp>
+#include <metrica/distributed/part.hpp>
+#include <metrica/distributed/pinches.hpp>
+#include <metrica/mesh_build.hpp>
+#include <metrica/validate.hpp>
+
+#include <doctest/doctest.h>
+
+#include <map>
+#include <random>
+
+using namespace metrica;
+using namespace metrica::distributed;
+
+namespace {
+
+// The part made of the box's tets whose centroid `keep` accepts: global
+// ids are the box's vertex indices; a face of one kept tet that is not on
+// the box's boundary is shared with rank 1.
+Part part_of_box(const BoxSpec& spec, const std::function<bool(const Point&)>& keep) {
+  const auto data = box_mesh_data(spec);
+  Part part;
+  for (std::size_t v = 0; v < data.vertices.size(); ++v) {
+    part.vertex_ids.push_back(GlobalId(v));
+    part.points.push_back(data.vertices[v]);
+  }
+  std::map<FaceKey, int> count;
+  for (std::size_t t = 0; t < data.tets.size(); ++t) {
+    const auto& v = data.tets[t];
+    Point c = Point::Zero();
+    for (auto i : v) c += data.vertices[i] / 4.0;
+    if (!keep(c)) continue;
+    part.tets.push_back({GlobalId(v[0]), GlobalId(v[1]), GlobalId(v[2]), GlobalId(v[3])});
+    part.tet_refs.push_back(1);
+    for (const auto& f : kTetFaces) ++count[face_key(v[f[0]], v[f[1]], v[f[2]])];
+  }
+  auto on_box = [&](const FaceKey& k) {
+    for (int c = 0; c < 3; ++c) {
+      const double x = data.vertices[std::size_t(k[0])][c];
+      if ((x == spec.lo[c] || x == spec.hi[c]) && data.vertices[std::size_t(k[1])][c] == x &&
+          data.vertices[std::size_t(k[2])][c] == x)
+        return true;
+    }
+    return false;
+  };
+  for (const auto& [k, n] : count)
+    if (n == 1 && !on_box(k)) part.shared_faces.push_back(k), part.shared_with.push_back(1);
+  return part;
+}
+
+}  // namespace
+
+TEST_SUITE("property") {
+  TEST_CASE("a face key is sorted and oriented() turns it back into its triangle up to rotation") {
+    auto r = test::rng(48);
+    std::uniform_int_distribution<GlobalId> id(0, 1'000'000'000'000LL);
+    for (int i = 0; i < 1000; ++i) {
+      std::array<GlobalId, 3> t{id(r), id(r), id(r)};
+      if (t[0] == t[1] || t[0] == t[2] || t[1] == t[2]) continue;
+      const FaceKey k = face_key(t);
+      CHECK(k[0] < k[1]);
+      CHECK(k[1] < k[2]);
+      const auto back = oriented(k, turned_over(t));
+      const bool rotation = back == t || back == std::array<GlobalId, 3>{t[1], t[2], t[0]} ||
+                            back == std::array<GlobalId, 3>{t[2], t[0], t[1]};
+      CHECK(rotation);
+    }
+  }
+
+  TEST_CASE("the rendezvous rank of a face is the same for any order of its vertices and in range") {
+    auto r = test::rng(49);
+    std::uniform_int_distribution<GlobalId> id(0, 1'000'000);
+    std::vector<int> hits(7, 0);
+    for (int i = 0; i < 7000; ++i) {
+      const GlobalId a = id(r), b = id(r), c = id(r);
+      const int o = owner_of(face_key(a, b, c), 7);
+      CHECK(o == owner_of(face_key(c, a, b), 7));
+      REQUIRE(o >= 0);
+      REQUIRE(o < 7);
+      ++hits[std::size_t(o)];
+    }
+    for (int h : hits) CHECK(h > 700);  // spread: 1000 each on average
+  }
+}
+
+TEST_SUITE("unit") {
+  TEST_CASE("a part without pinches is adapted whole") {
+    const BoxSpec spec{4, 4, 4, Point(0, 0, 0), Point(4, 4, 4)};
+    const Part part = part_of_box(spec, [](const Point& c) { return c.x() < 2; });
+    REQUIRE(!part.shared_faces.empty());
+    const auto active = adaptable_tets(part);
+    CHECK(std::count(active.begin(), active.end(), true) == std::ptrdiff_t(part.tets.size()));
+  }
+
+  TEST_CASE("two blocks of a part touching at one vertex: the tets around it wait - the rest is a valid mesh") {
+    const BoxSpec spec{4, 4, 4, Point(0, 0, 0), Point(4, 4, 4)};
+    const Part part = part_of_box(spec, [](const Point& c) {
+      return (c.x() < 2 && c.y() < 2 && c.z() < 2) || (c.x() > 2 && c.y() > 2 && c.z() > 2);
+    });
+    REQUIRE(part.tets.size() == 96);
+    const auto active = adaptable_tets(part);
+    const Point pinch(2, 2, 2);
+    std::size_t out = 0;
+    io::MeshData data;
+    data.vertices = part.points;
+    for (std::size_t t = 0; t < part.tets.size(); ++t) {
+      bool at_pinch = false;
+      for (GlobalId g : part.tets[t]) at_pinch |= part.points[std::size_t(g)] == pinch;
+      CHECK(active[t] == !at_pinch);
+      if (!active[t]) {
+        ++out;
+        continue;
+      }
+      const auto& v = part.tets[t];
+      data.tets.push_back({VertexId(v[0]), VertexId(v[1]), VertexId(v[2]), VertexId(v[3])});
+    }
+    CHECK(out == 12);  // the two cells at the pinch, 6 tets each
+    // What is left builds into a Mesh that passes every check.
+    Mesh mesh = build_mesh(data);
+    CHECK(mesh.validate().ok());
+  }
+}
