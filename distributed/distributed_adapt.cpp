@@ -12,6 +12,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -26,7 +27,24 @@ double det(const Sym6& m) {  // xx xy yy xz yz zz
 // What each tet will weigh once adapted: its metric volume (the tet's
 // volume times the mean sqrt det M of its vertices) in output tets,
 // scaled to PT-Scotch's integers.
-std::vector<std::int32_t> predicted_tets(const Comm& comm, const Part& part, const MetricFunction* exact) {
+// About 10 output tets per unit of metric volume (the command's estimate
+// of a run's size).
+constexpr double kTetsPerMetricVolume = 10;
+
+// Parts worth cutting: no more than the ranks, at least one per
+// kMaxPartTets predicted output tets, and none smaller than kMinPartTets
+// input tets. A small input cut into many parts has coarse faces between
+// them where the metric asks for far smaller tets, and the tets the
+// adaptation must leave against those kept faces are very poor: its first
+// round then runs on fewer ranks.
+constexpr double kMinPartTets = 10'000, kMaxPartTets = 10'000'000;
+int parts_for(int ranks, double tets, double predicted) {
+  const double by_input = std::floor(tets / kMinPartTets), by_output = std::ceil(predicted / kMaxPartTets);
+  return int(std::clamp(std::max(by_input, by_output), 1.0, double(ranks)));
+}
+
+std::vector<std::int32_t> predicted_tets(const Comm& comm, const Part& part, const MetricFunction* exact,
+                                         double& predicted_total) {
   const VertexIndex index(part.vertex_ids);
   std::vector<double> root(part.vertex_ids.size());
   for (std::size_t v = 0; v < root.size(); ++v)
@@ -42,6 +60,7 @@ std::vector<std::int32_t> predicted_tets(const Comm& comm, const Part& part, con
     sum += predicted[t];
   }
   const double total = comm.sum(sum), count = double(comm.sum(std::int64_t(part.tets.size())));
+  predicted_total = kTetsPerMetricVolume * total;
   const double mean = total / std::max(1.0, count);
   const double scale = mean > 0 ? std::min(100.0 / mean, double(1 << 30) / total) : 1.0;
   std::vector<std::int32_t> w(part.tets.size());
@@ -77,16 +96,6 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   Stopwatch clock;
   ReadCounts counts;
   Part part = read_part(comm, run.input, run.metric, counts);
-  comm.step([&] {
-    if (comm.rank() != 0) return;
-    if (counts.tets < kMinTetsPerRank * comm.size()) {
-      const std::int64_t most = counts.tets / kMinTetsPerRank;
-      throw InputError(fmt::format("{} has {} tets: too few for {} ranks (at least {} each); {}", run.input,
-                                   counts.tets, comm.size(), kMinTetsPerRank,
-                                   most > 1 ? fmt::format("run it on at most {}", most)
-                                            : std::string("run it without mpirun")));
-    }
-  });
   std::int32_t max_ref = 0;
   comm.step([&] {
     for (int r : part.triangle_refs) {
@@ -127,16 +136,18 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   if (run.rounds == 0) {
     PartitionWeights weights;
     weights.tets.assign(part.tets.size(), 1);
-    part = migrate(comm, part, partition(comm, part, weights));
+    part = migrate(comm, part, partition(comm, part, weights, comm.size()));
   }
   for (int it = 0; it < run.iterations && run.rounds > 0; ++it)
     for (int round = 0; round < run.rounds; ++round) {
       Stopwatch round_clock;
       // Each cut stays away from the faces the round before kept.
       PartitionWeights weights;
-      weights.tets = predicted_tets(comm, part, settings.exact);
+      double predicted = 0;
+      weights.tets = predicted_tets(comm, part, settings.exact, predicted);
       weights.avoid = frozen_before;
-      part = migrate(comm, part, partition(comm, part, weights));
+      const int parts = parts_for(comm.size(), double(comm.sum(std::int64_t(part.tets.size()))), predicted);
+      part = migrate(comm, part, partition(comm, part, weights, parts));
       const auto result = adapt_part(comm, part, settings, next_id);
       const double before = comm.sum(result.volume_before), after = comm.sum(result.volume_after);
       frozen_before.clear();
@@ -153,10 +164,10 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       last.unit_length_share = in_range, last.quality.min = min_q, last.tets = std::size_t(tets.total);
       last.quality.mean = comm.sum(q.quality.mean * double(q.tets)) / std::max(1.0, double(tets.total));
       if (talk) {
-        fmt::print("  {}round {}: {} tets ({} .. {} per rank, {} kept out at pinches) | in range {:5.1f}% "
+        fmt::print("  {}round {}: {} tets ({} part{}, {} .. {} per rank, {} kept out at pinches) | in range {:5.1f}% "
                    "min Q {:.3f} | volume change {:.2g} | {:.2f} s\n",
-                   run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, tets.low,
-                   tets.high, kept_out,
+                   run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, parts,
+                   parts == 1 ? "" : "s", tets.low, tets.high, kept_out,
                    100.0 * in_range, min_q,
                    std::abs(after - before) / before, round_clock.seconds());
         std::fflush(stdout);

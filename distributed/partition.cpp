@@ -27,8 +27,9 @@ struct Neighbour {
 
 }  // namespace
 
-std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWeights& weights) {
+std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWeights& weights, int parts_wanted) {
   const auto n = std::size_t(comm.size());
+  if (parts_wanted <= 1) return std::vector<int>(part.tets.size(), 0);
   const auto local = std::int64_t(part.tets.size());
   const std::int64_t total = comm.sum(local);
   if (total > std::numeric_limits<SCOTCH_Num>::max() / 8)
@@ -103,15 +104,17 @@ std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWe
   SCOTCH_stratInit(&strat);
   if (!failed) {
     const auto m = SCOTCH_Num(edges.size());
-    // An empty slice still passes valid pointers.
-    SCOTCH_Num dummy = 0;
+    // An empty slice passes valid pointers too, each its own: PT-Scotch
+    // takes weights at the address of the ids for no weights, and every
+    // rank must say alike whether there are weights.
+    SCOTCH_Num dummy[3] = {0, 0, 0};
     failed |= SCOTCH_dgraphBuild(&graph, 0, SCOTCH_Num(local), SCOTCH_Num(local), vert.data(), nullptr,
-                                 local ? vert_weights.data() : &dummy, nullptr, m, m,
-                                 m ? edges.data() : &dummy, nullptr, m ? edge_weights.data() : &dummy);
-    failed |= SCOTCH_stratDgraphMapBuild(&strat, SCOTCH_STRATBALANCE, SCOTCH_Num(n), SCOTCH_Num(n), 0.03);
+                                 local ? vert_weights.data() : &dummy[0], nullptr, m, m,
+                                 m ? edges.data() : &dummy[1], nullptr, m ? edge_weights.data() : &dummy[2]);
+    failed |= SCOTCH_stratDgraphMapBuild(&strat, SCOTCH_STRATBALANCE, SCOTCH_Num(n), SCOTCH_Num(parts_wanted), 0.03);
     if (!failed) failed |= SCOTCH_contextBindDgraph(&context, &graph, &bound);
     if (!failed) {
-      failed |= SCOTCH_dgraphPart(&bound, SCOTCH_Num(n), &strat, local ? parts.data() : &dummy);
+      failed |= SCOTCH_dgraphPart(&bound, SCOTCH_Num(parts_wanted), &strat, local ? parts.data() : &dummy[0]);
       SCOTCH_dgraphExit(&bound);
     }
   }

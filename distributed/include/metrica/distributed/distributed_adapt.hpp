@@ -27,9 +27,6 @@ struct DistributedAdapt {
   bool talk = true;    // rank 0 prints progress
 };
 
-// Fewer tets per rank than this at the start is refused.
-inline constexpr std::int64_t kMinTetsPerRank = 8;
-
 // Runs on every rank of comm; throws ReportedFailure (every rank) after an
 // error on any, which that rank has printed.
 void adapt_distributed(const Comm& comm, const DistributedAdapt& run);

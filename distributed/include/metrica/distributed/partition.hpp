@@ -22,8 +22,9 @@ struct PartitionWeights {
   std::int32_t heavy = 100;
 };
 
-// The rank each local tet goes to (one part per rank). Throws (on every
+// The rank each local tet goes to: `parts` parts (1 .. the ranks), on
+// ranks 0 .. parts - 1; the others wait this round. Throws (on every
 // rank) when a face has more than two tets.
-std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWeights& weights);
+std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWeights& weights, int parts);
 
 }  // namespace metrica::distributed

@@ -159,13 +159,21 @@ static_assert(Precision<Exact>);
 using Precisions = PolicyList<Filtered, Exact, Fast>;
 
 // Whether a tet an operation would make counts as positive: positive
-// under the Precision and in plain doubles as well, in its vertex order.
-// validate() and the programs that read the output measure orientation in
-// doubles, so a nearly flat tet that exact arithmetic finds positive but
-// doubles find flat or inverted is refused like an inverted one.
+// under the Precision, and in plain doubles by more than their rounding
+// error (four times Shewchuk's bound for orient3d, 7.8e-16 times the
+// permanent of the edge vectors), so that its double orientation is
+// positive in whichever vertex order it is stored or computed. validate()
+// and the programs that read the output measure orientation in doubles: a
+// nearly flat tet that exact arithmetic finds positive but doubles may
+// find flat or inverted is refused like an inverted one.
 template <Precision P>
 bool positive_tet(const Point& a, const Point& b, const Point& c, const Point& d) {
-  return P::orient3d(a, b, c, d) > 0 && orient3d_fast(a, b, c, d) > 0.0;
+  if (P::orient3d(a, b, c, d) <= 0) return false;
+  const Eigen::Vector3d u = b - a, v = c - a, w = d - a;
+  const Eigen::Vector3d au = u.cwiseAbs(), av = v.cwiseAbs(), aw = w.cwiseAbs();
+  const double permanent = au.x() * (av.y() * aw.z() + av.z() * aw.y()) + au.y() * (av.x() * aw.z() + av.z() * aw.x()) +
+                           au.z() * (av.x() * aw.y() + av.y() * aw.x());
+  return u.cross(v).dot(w) > 3.2e-15 * permanent;
 }
 
 // Whether interval arithmetic alone decides the sign (what the Filtered
