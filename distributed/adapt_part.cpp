@@ -49,7 +49,15 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   comm.step([&] {
     if (part.tets.empty()) return;
     Stopwatch clock;
-    active = adaptable_tets(part);
+    std::vector<bool> wanted(part.tets.size(), true);
+    if (!part.focus.empty())
+      for (std::size_t t = 0; t < wanted.size(); ++t) wanted[t] = part.focus[t] != 0;
+    active = adaptable_tets(part, wanted);
+    for (std::size_t t = 0; t < part.tets.size(); ++t)
+      if (wanted[t] && !active[t]) {
+        ++result.kept_out;
+        result.kept_vertices.insert(result.kept_vertices.end(), part.tets[t].begin(), part.tets[t].end());
+      }
     const auto active_faces = faces_of(part, active, true);
     const auto kept_faces = faces_of(part, active, false);
     // The faces kept as they are: those shared with another rank and those
@@ -59,6 +67,9 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       if (holds(active_faces, k)) frozen.push_back(k);
     std::sort(frozen.begin(), frozen.end());
     frozen.erase(std::unique(frozen.begin(), frozen.end()), frozen.end());
+    // The next round looks again at the faces kept between parts and at
+    // the pinches (not at the edge of the tets adapted: adapted before).
+    for (const auto& k : part.shared_faces) result.kept_vertices.insert(result.kept_vertices.end(), k.begin(), k.end());
 
     // The adapted tets' mesh, numbered locally.
     const VertexIndex index(part.vertex_ids);
@@ -75,10 +86,8 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       return VertexId(local[v]);
     };
     for (std::size_t t = 0; t < part.tets.size(); ++t) {
-      if (!active[t]) {
-        ++result.kept_out;
-        continue;
-      }
+      if (!active[t]) continue;
+      ++result.adapted;
       TetVertices l;
       for (int c = 0; c < 4; ++c) l[std::size_t(c)] = number(part.tets[t][std::size_t(c)]);
       data.tets.push_back(l);
@@ -226,6 +235,25 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   adapted.shared_with = std::move(part.shared_with);
   part = std::move(adapted);
   return result;
+}
+
+QualityReport part_quality(const Part& part, const PartAdaptSettings& settings) {
+  if (part.tets.empty()) return {};
+  const VertexIndex index(part.vertex_ids);
+  io::MeshData data;
+  data.vertices = part.points;
+  for (const auto& t : part.tets)
+    data.tets.push_back({VertexId(index.find(t[0])), VertexId(index.find(t[1])), VertexId(index.find(t[2])),
+                         VertexId(index.find(t[3]))});
+  data.tet_refs = part.tet_refs;
+  BuildOptions bo;
+  bo.default_surface_id = settings.default_surface_id;
+  Mesh mesh = build_mesh(data, bo);
+  if (settings.exact)
+    assign_metric(mesh, *settings.exact);
+  else
+    assign_metric(mesh, part.metrics);
+  return quality_report(mesh, settings.policies.space);
 }
 
 }  // namespace metrica::distributed

@@ -3,6 +3,7 @@
 #include <metrica/distributed/adapt_part.hpp>
 #include <metrica/distributed/migrate.hpp>
 #include <metrica/distributed/partition.hpp>
+#include <metrica/distributed/pinches.hpp>
 #include <metrica/distributed/read_part.hpp>
 #include <metrica/distributed/write_part.hpp>
 #include <metrica/error.hpp>
@@ -82,6 +83,9 @@ double part_volume(const Part& part) {
   return sum;
 }
 
+// How far from what a round kept the next one adapts (edge steps).
+constexpr int kFocusLayers = 4;
+
 struct Spread {
   std::int64_t total, low, high;
 };
@@ -130,7 +134,6 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   GlobalId next_id = counts.vertices;
   const double volume_in = comm.sum(part_volume(part));
   std::vector<GlobalId> frozen_before;
-  QualityReport last;
   // --rounds 0: cut and move once, no adaptation (the parallel read and
   // write round trip).
   if (run.rounds == 0) {
@@ -141,6 +144,8 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   for (int it = 0; it < run.iterations && run.rounds > 0; ++it)
     for (int round = 0; round < run.rounds; ++round) {
       Stopwatch round_clock;
+      // A new metric (the first round of an adaptation): every tet.
+      if (round == 0) part.focus.clear();
       // Each cut stays away from the faces the round before kept.
       PartitionWeights weights;
       double predicted = 0;
@@ -155,26 +160,27 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       part = migrate(comm, part, partition(comm, part, weights, parts));
       const auto result = adapt_part(comm, part, settings, next_id);
       const double before = comm.sum(result.volume_before), after = comm.sum(result.volume_after);
-      frozen_before.clear();
-      for (const auto& f : part.shared_faces) frozen_before.insert(frozen_before.end(), f.begin(), f.end());
+      // The next cut stays away from what this round kept, and the next
+      // round adapts only around it: the rest is adapted already.
+      frozen_before = result.kept_vertices;
       std::sort(frozen_before.begin(), frozen_before.end());
       frozen_before.erase(std::unique(frozen_before.begin(), frozen_before.end()), frozen_before.end());
+      const auto near = tets_near(part, frozen_before, kFocusLayers);
+      part.focus.assign(near.begin(), near.end());
       const auto tets = spread(comm, std::int64_t(part.tets.size()));
-      const std::int64_t kept_out = comm.sum(result.kept_out);
-      // The quality over all parts (edges on faces between parts counted on each side).
+      const std::int64_t kept_out = comm.sum(result.kept_out), adapted = comm.sum(result.adapted);
+      // The quality of the tets adapted this round.
       const auto& q = result.quality;
       const double edges = double(comm.sum(std::int64_t(q.edges)));
       const double in_range = comm.sum(q.unit_length_share * double(q.edges)) / std::max(1.0, edges);
       const double min_q = comm.min(q.tets ? q.quality.min : 1.0);
-      last.unit_length_share = in_range, last.quality.min = min_q, last.tets = std::size_t(tets.total);
-      last.quality.mean = comm.sum(q.quality.mean * double(q.tets)) / std::max(1.0, double(tets.total));
       if (talk) {
-        fmt::print("  {}round {}: {} tets ({} part{}, {} .. {} per rank, {} kept out at pinches) | in range {:5.1f}% "
-                   "min Q {:.3f} | volume change {:.2g} | {:.2f} s\n",
+        fmt::print("  {}round {}: {} tets ({} part{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
+                   "adapted: in range {:5.1f}% min Q {:.3f} | volume change {:.2g} | {:.2f} s\n",
                    run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, parts,
-                   parts == 1 ? "" : "s", tets.low, tets.high, kept_out,
+                   parts == 1 ? "" : "s", tets.low, tets.high, adapted, kept_out,
                    100.0 * in_range, min_q,
-                   std::abs(after - before) / before, round_clock.seconds());
+                   before > 0 ? std::abs(after - before) / before : 0.0, round_clock.seconds());
         std::fflush(stdout);
       }
       const double volume_now = comm.sum(part_volume(part));
@@ -187,6 +193,14 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
     }
   const auto written = write_part(comm, part, run.output, run.version);
   const auto tets = spread(comm, std::int64_t(part.tets.size()));
+  // The quality of the whole output (the edges between parts counted on
+  // each side).
+  QualityReport q;
+  if (run.rounds > 0) comm.step([&] { q = part_quality(part, settings); });
+  const double edges = double(comm.sum(std::int64_t(q.edges)));
+  const double in_range = comm.sum(q.unit_length_share * double(q.edges)) / std::max(1.0, edges);
+  const double min_q = comm.min(q.tets ? q.quality.min : 1.0);
+  const double mean_q = comm.sum(q.quality.mean * double(q.tets)) / std::max(1.0, double(tets.total));
   if (talk) {
     fmt::print("wrote {}: {} vertices, {} triangles, {} tets (libMeshb v{}) on {} ranks ({:.2f} s in all)\n",
                run.output, written.vertices, written.triangles, written.tets, written.version, comm.size(),
@@ -194,8 +208,8 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
     fmt::print("tets per rank {} .. {}, the most {:.3f} x the mean\n", tets.low, tets.high,
                double(tets.high) * comm.size() / double(std::max<std::int64_t>(1, tets.total)));
     if (run.rounds > 0)
-      fmt::print("edges in [1/sqrt2, sqrt2] {:.2f}%, mean ratio min {:.4f} mean {:.4f}\n",
-                 100.0 * last.unit_length_share, last.quality.min, last.quality.mean);
+      fmt::print("edges in [1/sqrt2, sqrt2] {:.2f}%, mean ratio min {:.4f} mean {:.4f}\n", 100.0 * in_range, min_q,
+                 mean_q);
   }
 }
 

@@ -13,7 +13,7 @@ namespace {
 struct TetRecord {
   std::array<GlobalId, 4> v;
   std::int32_t ref;
-  std::int32_t pad = 0;
+  std::int32_t focus;  // -1: no focus (all tets adapted)
 };
 struct VertexRecord {
   GlobalId id;
@@ -44,7 +44,7 @@ Part migrate(const Comm& comm, const Part& part, const std::vector<int>& dest) {
     std::vector<int> sent_to(part.vertex_ids.size(), -1);
     for (std::size_t q = 0; q < n; ++q)
       for (auto t : by_rank[q]) {
-        tets_out[q].push_back({part.tets[t], part.tet_refs[t]});
+        tets_out[q].push_back({part.tets[t], part.tet_refs[t], part.focus.empty() ? -1 : int(part.focus[t])});
         for (GlobalId g : part.tets[t]) {
           const auto v = std::size_t(index.find(g));
           if (sent_to[v] == int(q)) continue;
@@ -124,6 +124,8 @@ Part migrate(const Comm& comm, const Part& part, const std::vector<int>& dest) {
     if (metric) out.metrics.push_back(r.m);
   }
   for (const auto& t : tets_in) out.tets.push_back(t.v), out.tet_refs.push_back(t.ref);
+  if (comm.max(std::int64_t(part.focus.empty() ? 0 : 1)) > 0)
+    for (const auto& t : tets_in) out.focus.push_back(t.focus > 0 ? 1 : 0);
   std::sort(got.begin(), got.end(), [](const FaceReply& a, const FaceReply& b) {
     return a.key != b.key ? a.key < b.key : a.kind < b.kind;
   });

@@ -33,10 +33,10 @@ int common(const auto& a, const auto& b) {
 
 }  // namespace
 
-std::vector<bool> adaptable_tets(const Part& part) {
+std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
   const VertexIndex index(part.vertex_ids);
   const std::size_t nv = part.vertex_ids.size(), nt = part.tets.size();
-  std::vector<bool> active(nt, true);
+  std::vector<bool> active = wanted.empty() ? std::vector<bool>(nt, true) : std::move(wanted);
   std::vector<std::uint32_t> first(nv + 1, 0), around;
   for (const auto& t : part.tets)
     for (GlobalId g : t) ++first[std::size_t(index.find(g)) + 1];
@@ -52,6 +52,9 @@ std::vector<bool> adaptable_tets(const Part& part) {
   std::vector<std::uint32_t> watch;
   for (const auto& f : part.shared_faces)
     for (GlobalId g : f) watch.push_back(std::uint32_t(index.find(g)));
+  for (std::size_t t = 0; t < nt; ++t)
+    if (!active[t])
+      for (GlobalId g : part.tets[t]) watch.push_back(std::uint32_t(index.find(g)));
   std::vector<std::uint32_t> shell;
   std::vector<FaceKey> faces, boundary;
   for (int sweep = 0; !watch.empty(); ++sweep) {
@@ -116,6 +119,39 @@ std::vector<bool> adaptable_tets(const Part& part) {
     watch.swap(dropped);
   }
   return active;
+}
+
+std::vector<bool> tets_near(const Part& part, const std::vector<GlobalId>& near, int layers) {
+  const VertexIndex index(part.vertex_ids);
+  const std::size_t nv = part.vertex_ids.size(), nt = part.tets.size();
+  std::vector<std::uint32_t> first(nv + 1, 0), around;
+  for (const auto& t : part.tets)
+    for (GlobalId g : t) ++first[std::size_t(index.find(g)) + 1];
+  for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
+  around.resize(first[nv]);
+  {
+    auto fill = first;
+    for (std::size_t t = 0; t < nt; ++t)
+      for (GlobalId g : part.tets[t]) around[fill[std::size_t(index.find(g))]++] = std::uint32_t(t);
+  }
+  std::vector<int> depth(nv, -1);
+  std::vector<std::uint32_t> front, grown;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (std::binary_search(near.begin(), near.end(), part.vertex_ids[v])) depth[v] = 0, front.push_back(std::uint32_t(v));
+  for (int layer = 1; layer < layers && !front.empty(); ++layer) {
+    grown.clear();
+    for (auto v : front)
+      for (auto i = first[v]; i < first[v + 1]; ++i)
+        for (GlobalId g : part.tets[around[i]]) {
+          const auto u = std::size_t(index.find(g));
+          if (depth[u] < 0) depth[u] = layer, grown.push_back(std::uint32_t(u));
+        }
+    front.swap(grown);
+  }
+  std::vector<bool> in(nt, false);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (GlobalId g : part.tets[t]) in[t] = in[t] || depth[std::size_t(index.find(g))] >= 0;
+  return in;
 }
 
 }  // namespace metrica::distributed

@@ -32,13 +32,21 @@ struct PartAdaptResult {
   double volume_before = 0, volume_after = 0;
   double seconds = 0;
   std::int64_t kept_out = 0;  // tets around pinches, left for a later round (pinches.hpp)
+  std::int64_t adapted = 0;   // tets given to the adaptation
+  // The vertices of the faces this round kept: the next round's focus.
+  std::vector<GlobalId> kept_vertices;
   QualityReport quality;      // of the adapted tets
 };
 
-// Adapts the part in place. `next_id` (the same on every rank) is the
+// Adapts the part in place (the tets Part::focus flags, all when it is
+// empty). `next_id` (the same on every rank) is the
 // first unused global id, advanced past the new vertices of all ranks.
 // Throws (on every rank) when one part's adaptation failed or left an
 // invalid mesh.
 PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings& settings, GlobalId& next_id);
+
+// The UGAWG quality report of the whole part (all its tets) in the
+// settings' space and metric.
+QualityReport part_quality(const Part& part, const PartAdaptSettings& settings);
 
 }  // namespace metrica::distributed

@@ -65,6 +65,8 @@ struct Part {
   std::vector<Sym6> metrics;  // per local vertex; empty with an analytic metric
   std::vector<std::array<GlobalId, 4>> tets;
   std::vector<int> tet_refs;
+  // Per tet, whether the round adapts it (empty: all); travels with it.
+  std::vector<std::uint8_t> focus;
   std::vector<std::array<GlobalId, 3>> triangles;  // oriented as read or written
   std::vector<int> triangle_refs;
   // The faces this part shares with another part, and that part's rank.

@@ -12,7 +12,13 @@
 
 namespace metrica::distributed {
 
-// True for the tets adapted this round.
-std::vector<bool> adaptable_tets(const Part& part);
+// True for the tets adapted this round: those of `wanted` (all when
+// empty) less those around a pinch of what they make.
+std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted = {});
+
+// The tets within `layers` edge steps of the vertices `near` (sorted
+// global ids): a tet with a vertex at fewer steps. The later rounds of an
+// adaptation adapt only there, around what the round before kept.
+std::vector<bool> tets_near(const Part& part, const std::vector<GlobalId>& near, int layers);
 
 }  // namespace metrica::distributed
