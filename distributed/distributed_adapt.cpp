@@ -157,8 +157,13 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       // vertex formula of the metric volume overestimates it in tets
       // across a sharp layer (polar-1: parts 2x apart).
       if (predicted > 0.5 * now && predicted < 2.0 * now) weights.tets.assign(part.tets.size(), 1);
-      part = migrate(comm, part, partition(comm, part, weights, parts));
+      Stopwatch step_clock;
+      const auto dest = partition(comm, part, weights, parts);
+      const double cut_seconds = step_clock.seconds();
+      part = migrate(comm, part, dest);
+      const double move_seconds = step_clock.seconds() - cut_seconds;
       const auto result = adapt_part(comm, part, settings, next_id);
+      const double adapt_seconds = step_clock.seconds() - cut_seconds - move_seconds;
       const double before = comm.sum(result.volume_before), after = comm.sum(result.volume_after);
       // The next cut stays away from what this round kept, and the next
       // round adapts only around it: the rest is adapted already.
@@ -176,11 +181,13 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       const double min_q = comm.min(q.tets ? q.quality.min : 1.0);
       if (talk) {
         fmt::print("  {}round {}: {} tets ({} part{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
-                   "adapted: in range {:5.1f}% min Q {:.3f} | volume change {:.2g} | {:.2f} s\n",
+                   "adapted: in range {:5.1f}% min Q {:.3f} | volume change {:.2g} | cut {:.2f} s, move {:.2f} s, "
+                   "adapt {:.2f} s (rank 0), {:.2f} s in all\n",
                    run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, parts,
                    parts == 1 ? "" : "s", tets.low, tets.high, adapted, kept_out,
                    100.0 * in_range, min_q,
-                   before > 0 ? std::abs(after - before) / before : 0.0, round_clock.seconds());
+                   before > 0 ? std::abs(after - before) / before : 0.0, cut_seconds, move_seconds, adapt_seconds,
+                   round_clock.seconds());
         std::fflush(stdout);
       }
       const double volume_now = comm.sum(part_volume(part));

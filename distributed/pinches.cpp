@@ -52,9 +52,17 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
   std::vector<std::uint32_t> watch;
   for (const auto& f : part.shared_faces)
     for (GlobalId g : f) watch.push_back(std::uint32_t(index.find(g)));
-  for (std::size_t t = 0; t < nt; ++t)
-    if (!active[t])
-      for (GlobalId g : part.tets[t]) watch.push_back(std::uint32_t(index.find(g)));
+  // and those between the tets wanted and the others.
+  {
+    std::vector<bool> in_active(nv, false);
+    for (std::size_t t = 0; t < nt; ++t)
+      if (active[t])
+        for (GlobalId g : part.tets[t]) in_active[std::size_t(index.find(g))] = true;
+    for (std::size_t t = 0; t < nt; ++t)
+      if (!active[t])
+        for (GlobalId g : part.tets[t])
+          if (in_active[std::size_t(index.find(g))]) watch.push_back(std::uint32_t(index.find(g)));
+  }
   std::vector<std::uint32_t> shell;
   std::vector<FaceKey> faces, boundary;
   for (int sweep = 0; !watch.empty(); ++sweep) {
