@@ -219,8 +219,8 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
   run.input = o.get<std::string>("input");
   run.output = o.get<std::string>("output");
   if (io::format_of(run.output) != io::FileFormat::meshb)
-    throw UsageError(fmt::format("adapt: under mpirun the output is one binary .meshb written by all ranks (got {})",
-                                 run.output));
+    throw UsageError(
+        fmt::format("adapt: under mpirun the output is one binary .meshb written by all ranks (got {})", run.output));
   if (o.has("metric")) {
     run.metric = o.get<std::string>("metric");
     if (io::format_of(run.metric) != io::FileFormat::solb && io::format_of(run.metric) != io::FileFormat::sol)
@@ -233,13 +233,12 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
   run.iterations = iterations;
   run.rounds = o.in_range("rounds", 0, 100);
   run.version = o.format_version();
-  if (run.version == 1)
-    throw UsageError("adapt: under mpirun the output is libMeshb version 2, 3 or 4 (64-bit reals)");
+  if (run.version == 1) throw UsageError("adapt: under mpirun the output is libMeshb version 2, 3 or 4 (64-bit reals)");
   run.talk = log::level() >= log::Level::normal;
   // The node's cores shared among its ranks unless --threads or
   // OMP_NUM_THREADS chooses.
   if (!o.has("threads") && std::getenv("OMP_NUM_THREADS") == nullptr)
-    set_thread_count(std::max(1, core_count() / distributed::MpiSession::local_size()));
+    set_thread_count(std::max(1, core_count() / distributed::MpiRuntime::local_size()));
   distributed::adapt_distributed(distributed::Comm{}, run);
   return kOk;
 }
@@ -291,7 +290,7 @@ int run_adapt(const std::vector<std::string>& args) {
   const MetricBounds bounds = o.size_bounds();
   const auto analytic = o.named("analytic", analytic_metric_from_name);
 #ifdef METRICA_HAS_MPI
-  if (distributed::MpiSession::size() > 1) return run_distributed(o, ao, policies, analytic, bounds, iterations);
+  if (distributed::MpiRuntime::size() > 1) return run_distributed(o, ao, policies, analytic, bounds, iterations);
 #endif
 
   Stopwatch clock;

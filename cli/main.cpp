@@ -42,8 +42,8 @@ int main(int argc, char** argv) {
   passive_openmp_wait(argv);
   metrica::keep_freed_memory();  // allocator.hpp: pages reused from pass to pass
 #ifdef METRICA_HAS_MPI
-  const metrica::distributed::MpiSession mpi(&argc, &argv);
-  metrica::cli::set_process_rank(metrica::distributed::MpiSession::rank());
+  const metrica::distributed::MpiRuntime mpi(&argc, &argv);
+  metrica::cli::set_process_rank(metrica::distributed::MpiRuntime::rank());
 #endif
   return metrica::cli::run_command_line(std::vector<std::string>(argv + 1, argv + argc));
 }

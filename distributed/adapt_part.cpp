@@ -1,5 +1,4 @@
 #include <metrica/distributed/adapt_part.hpp>
-
 #include <metrica/distributed/pinches.hpp>
 #include <metrica/error.hpp>
 #include <metrica/mesh_build.hpp>
@@ -28,7 +27,8 @@ std::vector<FaceKey> faces_of(const Part& part, const std::vector<bool>& active,
   for (std::size_t t = 0; t < part.tets.size(); ++t) {
     if (active[t] != which) continue;
     const auto& v = part.tets[t];
-    for (const auto& f : kTetFaces) faces.push_back(face_key(v[std::size_t(f[0])], v[std::size_t(f[1])], v[std::size_t(f[2])]));
+    for (const auto& f : kTetFaces)
+      faces.push_back(face_key(v[std::size_t(f[0])], v[std::size_t(f[1])], v[std::size_t(f[2])]));
   }
   std::sort(faces.begin(), faces.end());
   return faces;
@@ -223,7 +223,8 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   comm.step([&] {
     std::vector<FaceKey> faces;
     for (const auto& t : adapted.tets)
-      for (const auto& f : kTetFaces) faces.push_back(face_key(t[std::size_t(f[0])], t[std::size_t(f[1])], t[std::size_t(f[2])]));
+      for (const auto& f : kTetFaces)
+        faces.push_back(face_key(t[std::size_t(f[0])], t[std::size_t(f[1])], t[std::size_t(f[2])]));
     std::sort(faces.begin(), faces.end());
     std::size_t lost = 0;
     for (const auto& k : part.shared_faces) lost += !std::binary_search(faces.begin(), faces.end(), k);

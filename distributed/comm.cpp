@@ -22,45 +22,32 @@ void Comm::exchange_raw(const std::vector<const char*>& parts, const std::vector
   for (int r = 0; r < size_; ++r) {
     for (std::int64_t off = 0; off < recv_bytes[r]; off += kPiece) {
       requests.emplace_back();
-      MPI_Irecv(in + at + off, int(std::min(kPiece, recv_bytes[r] - off)), MPI_BYTE, r, 7, comm_,
-                &requests.back());
+      MPI_Irecv(in + at + off, int(std::min(kPiece, recv_bytes[r] - off)), MPI_BYTE, r, 7, comm_, &requests.back());
     }
     at += recv_bytes[r];
   }
   for (int r = 0; r < size_; ++r)
     for (std::int64_t off = 0; off < send_bytes[r]; off += kPiece) {
       requests.emplace_back();
-      MPI_Isend(parts[r] + off, int(std::min(kPiece, send_bytes[r] - off)), MPI_BYTE, r, 7, comm_,
-                &requests.back());
+      MPI_Isend(parts[r] + off, int(std::min(kPiece, send_bytes[r] - off)), MPI_BYTE, r, 7, comm_, &requests.back());
     }
   MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
 }
 
-std::int64_t Comm::sum(std::int64_t v) const {
-  std::int64_t s = 0;
-  MPI_Allreduce(&v, &s, 1, MPI_INT64_T, MPI_SUM, comm_);
+namespace {
+template <class T>
+T all_reduce(T v, MPI_Datatype type, MPI_Op op, MPI_Comm comm) {
+  T s{};
+  MPI_Allreduce(&v, &s, 1, type, op, comm);
   return s;
 }
-double Comm::sum(double v) const {
-  double s = 0;
-  MPI_Allreduce(&v, &s, 1, MPI_DOUBLE, MPI_SUM, comm_);
-  return s;
-}
-std::int64_t Comm::max(std::int64_t v) const {
-  std::int64_t s = 0;
-  MPI_Allreduce(&v, &s, 1, MPI_INT64_T, MPI_MAX, comm_);
-  return s;
-}
-double Comm::min(double v) const {
-  double s = 0;
-  MPI_Allreduce(&v, &s, 1, MPI_DOUBLE, MPI_MIN, comm_);
-  return s;
-}
-double Comm::max(double v) const {
-  double s = 0;
-  MPI_Allreduce(&v, &s, 1, MPI_DOUBLE, MPI_MAX, comm_);
-  return s;
-}
+}  // namespace
+
+std::int64_t Comm::sum(std::int64_t v) const { return all_reduce(v, MPI_INT64_T, MPI_SUM, comm_); }
+double Comm::sum(double v) const { return all_reduce(v, MPI_DOUBLE, MPI_SUM, comm_); }
+std::int64_t Comm::max(std::int64_t v) const { return all_reduce(v, MPI_INT64_T, MPI_MAX, comm_); }
+double Comm::min(double v) const { return all_reduce(v, MPI_DOUBLE, MPI_MIN, comm_); }
+double Comm::max(double v) const { return all_reduce(v, MPI_DOUBLE, MPI_MAX, comm_); }
 std::int64_t Comm::exclusive_scan(std::int64_t v) const {
   std::int64_t s = 0;
   MPI_Exscan(&v, &s, 1, MPI_INT64_T, MPI_SUM, comm_);

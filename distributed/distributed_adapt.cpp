@@ -1,6 +1,5 @@
-#include <metrica/distributed/distributed_adapt.hpp>
-
 #include <metrica/distributed/adapt_part.hpp>
+#include <metrica/distributed/distributed_adapt.hpp>
 #include <metrica/distributed/migrate.hpp>
 #include <metrica/distributed/partition.hpp>
 #include <metrica/distributed/pinches.hpp>
@@ -89,9 +88,7 @@ constexpr int kFocusLayers = 4;
 struct Spread {
   std::int64_t total, low, high;
 };
-Spread spread(const Comm& comm, std::int64_t local) {
-  return {comm.sum(local), -comm.max(-local), comm.max(local)};
-}
+Spread spread(const Comm& comm, std::int64_t local) { return {comm.sum(local), -comm.max(-local), comm.max(local)}; }
 
 }  // namespace
 
@@ -104,8 +101,8 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   comm.step([&] {
     for (int r : part.triangle_refs) {
       if (r >= kPartFaceId)
-        throw InputError(fmt::format("{}: surface id {} is reserved under mpirun (ids up to {})", run.input, r,
-                                     kPartFaceId - 1));
+        throw InputError(
+            fmt::format("{}: surface id {} is reserved under mpirun (ids up to {})", run.input, r, kPartFaceId - 1));
       max_ref = std::max(max_ref, r);
     }
     if (!run.metric.empty()) {
@@ -124,7 +121,8 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
     std::fflush(stdout);
   }
   MetricFunction exact;
-  if (run.analytic) exact = [kind = *run.analytic, b = run.bounds](const Point& p) { return clamp_metric(evaluate(kind, p), b); };
+  if (run.analytic)
+    exact = [kind = *run.analytic, b = run.bounds](const Point& p) { return clamp_metric(evaluate(kind, p), b); };
 
   PartAdaptSettings settings;
   settings.options = run.options;
@@ -180,14 +178,14 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       const double in_range = comm.sum(q.unit_length_share * double(q.edges)) / std::max(1.0, edges);
       const double min_q = comm.min(q.tets ? q.quality.min : 1.0);
       if (talk) {
-        fmt::print("  {}round {}: {} tets ({} part{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
-                   "adapted: in range {:5.1f}% min Q {:.3f} | volume change {:.2g} | cut {:.2f} s, move {:.2f} s, "
-                   "adapt {:.2f} s (rank 0), {:.2f} s in all\n",
-                   run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, parts,
-                   parts == 1 ? "" : "s", tets.low, tets.high, adapted, kept_out,
-                   100.0 * in_range, min_q,
-                   before > 0 ? std::abs(after - before) / before : 0.0, cut_seconds, move_seconds, adapt_seconds,
-                   round_clock.seconds());
+        fmt::print(
+            "  {}round {}: {} tets ({} part{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
+            "adapted: in range {:5.1f}% min Q {:.3f} | volume change {:.2g} | cut {:.2f} s, move {:.2f} s, "
+            "adapt {:.2f} s (rank 0), {:.2f} s in all\n",
+            run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, parts,
+            parts == 1 ? "" : "s", tets.low, tets.high, adapted, kept_out, 100.0 * in_range, min_q,
+            before > 0 ? std::abs(after - before) / before : 0.0, cut_seconds, move_seconds, adapt_seconds,
+            round_clock.seconds());
         std::fflush(stdout);
       }
       const double volume_now = comm.sum(part_volume(part));

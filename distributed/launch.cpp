@@ -1,8 +1,7 @@
 #include <metrica/distributed/launch.hpp>
 
-#include <mpi.h>
-
 #include <cstdlib>
+#include <mpi.h>
 
 namespace metrica::distributed {
 
@@ -17,7 +16,7 @@ bool under_launcher() {
 }
 }  // namespace
 
-MpiSession::MpiSession(int* argc, char*** argv) {
+MpiRuntime::MpiRuntime(int* argc, char*** argv) {
   if (!under_launcher()) return;
   int provided = 0;
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
@@ -26,13 +25,13 @@ MpiSession::MpiSession(int* argc, char*** argv) {
   MPI_Comm_rank(MPI_COMM_WORLD, &g_rank);
 }
 
-MpiSession::~MpiSession() {
+MpiRuntime::~MpiRuntime() {
   if (g_active) MPI_Finalize();
 }
 
-int MpiSession::size() { return g_size; }
-int MpiSession::rank() { return g_rank; }
-int MpiSession::local_size() {
+int MpiRuntime::size() { return g_size; }
+int MpiRuntime::rank() { return g_rank; }
+int MpiRuntime::local_size() {
   if (const char* s = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE")) return std::max(1, std::atoi(s));
   return 1;
 }

@@ -1,5 +1,4 @@
 #include <metrica/distributed/migrate.hpp>
-
 #include <metrica/error.hpp>
 
 #include <fmt/core.h>
@@ -60,8 +59,7 @@ Part migrate(const Comm& comm, const Part& part, const std::vector<int>& dest) {
       const auto key = face_key(v[f[0]], v[f[1]], v[f[2]]);
       faces_out[std::size_t(owner_of(key, comm.size()))].push_back({key, 0, dest[t]});
     }
-  for (std::size_t i = 0; i < part.triangles.size(); ++i)
-  {
+  for (std::size_t i = 0; i < part.triangles.size(); ++i) {
     const auto key = face_key(part.triangles[i]);
     faces_out[std::size_t(owner_of(key, comm.size()))].push_back(
         {key, turned_over(part.triangles[i]) ? 3 : 1, part.triangle_refs[i]});
@@ -89,7 +87,8 @@ Part migrate(const Comm& comm, const Part& part, const std::vector<int>& dest) {
       const bool triangle = j < faces_in.size() && faces_in[j].key == faces_in[i].key;
       const auto& k = faces_in[i].key;
       if (tets > 2)
-        throw InputError(fmt::format("the face ({} {} {}) has {} tets (at most 2)", k[0] + 1, k[1] + 1, k[2] + 1, tets));
+        throw InputError(
+            fmt::format("the face ({} {} {}) has {} tets (at most 2)", k[0] + 1, k[1] + 1, k[2] + 1, tets));
       if (triangle && tets == 0)
         throw InputError(fmt::format("the triangle ({} {} {}) is not a face of any tet", k[0] + 1, k[1] + 1, k[2] + 1));
       if (triangle) {
@@ -115,7 +114,9 @@ Part migrate(const Comm& comm, const Part& part, const std::vector<int>& dest) {
   std::vector<std::uint32_t> order(verts_in.size());
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return verts_in[a].id < verts_in[b].id; });
-  const bool metric = !part.metrics.empty() || comm.max(std::int64_t(part.metrics.size())) > 0;
+  // Every rank takes part in the reduction (an empty part has no metrics
+  // to say whether the others carry them).
+  const bool metric = comm.max(std::int64_t(part.metrics.size())) > 0;
   for (std::size_t i = 0; i < order.size(); ++i) {
     const auto& r = verts_in[order[i]];
     if (i > 0 && verts_in[order[i - 1]].id == r.id) continue;
@@ -126,11 +127,11 @@ Part migrate(const Comm& comm, const Part& part, const std::vector<int>& dest) {
   for (const auto& t : tets_in) out.tets.push_back(t.v), out.tet_refs.push_back(t.ref);
   if (comm.max(std::int64_t(part.focus.empty() ? 0 : 1)) > 0)
     for (const auto& t : tets_in) out.focus.push_back(t.focus > 0 ? 1 : 0);
-  std::sort(got.begin(), got.end(), [](const FaceReply& a, const FaceReply& b) {
-    return a.key != b.key ? a.key < b.key : a.kind < b.kind;
-  });
+  std::sort(got.begin(), got.end(),
+            [](const FaceReply& a, const FaceReply& b) { return a.key != b.key ? a.key < b.key : a.kind < b.kind; });
   for (const auto& r : got) {
-    if (r.kind == 1 || r.kind == 3) out.triangles.push_back(oriented(r.key, r.kind == 3)), out.triangle_refs.push_back(r.value);
+    if (r.kind == 1 || r.kind == 3)
+      out.triangles.push_back(oriented(r.key, r.kind == 3)), out.triangle_refs.push_back(r.value);
     if (r.kind == 2) out.shared_faces.push_back(r.key), out.shared_with.push_back(r.value);
   }
   return out;

@@ -1,5 +1,4 @@
 #include <metrica/distributed/partition.hpp>
-
 #include <metrica/error.hpp>
 
 #include <fmt/core.h>
@@ -109,8 +108,8 @@ std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWe
     // rank must say alike whether there are weights.
     SCOTCH_Num dummy[3] = {0, 0, 0};
     failed |= SCOTCH_dgraphBuild(&graph, 0, SCOTCH_Num(local), SCOTCH_Num(local), vert.data(), nullptr,
-                                 local ? vert_weights.data() : &dummy[0], nullptr, m, m,
-                                 m ? edges.data() : &dummy[1], nullptr, m ? edge_weights.data() : &dummy[2]);
+                                 local ? vert_weights.data() : &dummy[0], nullptr, m, m, m ? edges.data() : &dummy[1],
+                                 nullptr, m ? edge_weights.data() : &dummy[2]);
     failed |= SCOTCH_stratDgraphMapBuild(&strat, SCOTCH_STRATBALANCE, SCOTCH_Num(n), SCOTCH_Num(parts_wanted), 0.03);
     if (!failed) failed |= SCOTCH_contextBindDgraph(&context, &graph, &bound);
     if (!failed) {

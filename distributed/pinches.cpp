@@ -31,22 +31,30 @@ int common(const auto& a, const auto& b) {
   return s;
 }
 
+// The tets around each local vertex, in compressed rows: those of vertex
+// v are around[first[v] .. first[v + 1]).
+struct TetsAround {
+  std::vector<std::uint32_t> first, around;
+  TetsAround(const Part& part, const VertexIndex& index) : first(part.vertex_ids.size() + 1, 0) {
+    for (const auto& t : part.tets)
+      for (GlobalId g : t) ++first[std::size_t(index.find(g)) + 1];
+    for (std::size_t v = 0; v + 1 < first.size(); ++v) first[v + 1] += first[v];
+    around.resize(first.back());
+    auto fill = first;
+    for (std::size_t t = 0; t < part.tets.size(); ++t)
+      for (GlobalId g : part.tets[t]) around[fill[std::size_t(index.find(g))]++] = std::uint32_t(t);
+  }
+};
+
 }  // namespace
 
 std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
   const VertexIndex index(part.vertex_ids);
   const std::size_t nv = part.vertex_ids.size(), nt = part.tets.size();
   std::vector<bool> active = wanted.empty() ? std::vector<bool>(nt, true) : std::move(wanted);
-  std::vector<std::uint32_t> first(nv + 1, 0), around;
-  for (const auto& t : part.tets)
-    for (GlobalId g : t) ++first[std::size_t(index.find(g)) + 1];
-  for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
-  around.resize(first[nv]);
-  {
-    auto fill = first;
-    for (std::size_t t = 0; t < nt; ++t)
-      for (GlobalId g : part.tets[t]) around[fill[std::size_t(index.find(g))]++] = std::uint32_t(t);
-  }
+  const TetsAround tets_around(part, index);
+  const auto& first = tets_around.first;
+  const auto& around = tets_around.around;
   // The vertices to look at: those of faces not between two active tets
   // other than the outer boundary (the input's boundary is a manifold).
   std::vector<std::uint32_t> watch;
@@ -132,20 +140,14 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
 std::vector<bool> tets_near(const Part& part, const std::vector<GlobalId>& near, int layers) {
   const VertexIndex index(part.vertex_ids);
   const std::size_t nv = part.vertex_ids.size(), nt = part.tets.size();
-  std::vector<std::uint32_t> first(nv + 1, 0), around;
-  for (const auto& t : part.tets)
-    for (GlobalId g : t) ++first[std::size_t(index.find(g)) + 1];
-  for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
-  around.resize(first[nv]);
-  {
-    auto fill = first;
-    for (std::size_t t = 0; t < nt; ++t)
-      for (GlobalId g : part.tets[t]) around[fill[std::size_t(index.find(g))]++] = std::uint32_t(t);
-  }
+  const TetsAround tets_around(part, index);
+  const auto& first = tets_around.first;
+  const auto& around = tets_around.around;
   std::vector<int> depth(nv, -1);
   std::vector<std::uint32_t> front, grown;
   for (std::size_t v = 0; v < nv; ++v)
-    if (std::binary_search(near.begin(), near.end(), part.vertex_ids[v])) depth[v] = 0, front.push_back(std::uint32_t(v));
+    if (std::binary_search(near.begin(), near.end(), part.vertex_ids[v]))
+      depth[v] = 0, front.push_back(std::uint32_t(v));
   for (int layer = 1; layer < layers && !front.empty(); ++layer) {
     grown.clear();
     for (auto v : front)

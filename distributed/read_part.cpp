@@ -1,5 +1,4 @@
 #include <metrica/distributed/read_part.hpp>
-
 #include <metrica/error.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
@@ -76,8 +75,8 @@ Layout scan(const BinaryFile& f, const std::string& path) {
   std::uint64_t at = 8;
   for (int guard = 0; guard < 10000; ++guard) {
     const int code = f.get<std::int32_t>(at);
-    const std::uint64_t next =
-        l.offset() == 4 ? std::uint64_t(std::uint32_t(f.get<std::int32_t>(at + 4))) : std::uint64_t(f.get<std::int64_t>(at + 4));
+    const std::uint64_t next = l.offset() == 4 ? std::uint64_t(std::uint32_t(f.get<std::int32_t>(at + 4)))
+                                               : std::uint64_t(f.get<std::int64_t>(at + 4));
     std::uint64_t body = at + 4 + std::uint64_t(l.offset());
     if (code == kVerticesCode || code == kTrianglesCode || code == kTetrahedraCode || code == kSolCode) {
       Keyword k;
@@ -140,8 +139,7 @@ struct Slices {
 };
 
 void check_vertex(GlobalId v, std::int64_t n, const std::string& path, const char* what) {
-  if (v < 0 || v >= n)
-    throw IoError(fmt::format("{}: a {} names vertex {} (the mesh has {})", path, what, v + 1, n));
+  if (v < 0 || v >= n) throw IoError(fmt::format("{}: a {} names vertex {} (the mesh has {})", path, what, v + 1, n));
 }
 
 Slices read_binary_slices(const Comm& comm, const std::string& path, const Layout& l, const BinaryFile& f,
@@ -205,13 +203,14 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
   if (!metric_path.empty()) {
     const BinaryFile mf(metric_path);
     const Layout ml = scan(mf, metric_path);
-    if (!ml.native) throw IoError(fmt::format("{}: a metric in the other byte order is not read under mpirun", metric_path));
+    if (!ml.native)
+      throw IoError(fmt::format("{}: a metric in the other byte order is not read under mpirun", metric_path));
     auto it = ml.keywords.find(kSolCode);
     if (it == ml.keywords.end()) throw IoError(fmt::format("{}: no SolAtVertices keyword", metric_path));
     const Keyword& ks = it->second;
     if (ks.count != kv.count)
-      throw InputError(fmt::format("{}: the metric has {} entries but the mesh has {} vertices", metric_path,
-                                   ks.count, kv.count));
+      throw InputError(
+          fmt::format("{}: the metric has {} entries but the mesh has {} vertices", metric_path, ks.count, kv.count));
     io::SolData sol;
     sol.count = v1 - v0;
     for (int t : ks.types) {
@@ -255,7 +254,8 @@ Slices read_on_rank0(const Comm& comm, const std::string& path, const std::strin
         metric = metric_field_from_sol(io::read_sol(metric_path), d.vertices.size(), metric_path);
       for (std::size_t q = 0; q < n; ++q) {
         auto [a, b] = part_slice(d.vertices.size(), n, q);
-        for (std::size_t i = a; i < b; ++i) rows_out[q].push_back({coords(d.vertices[i]), metric.empty() ? Sym6{} : metric[i]});
+        for (std::size_t i = a; i < b; ++i)
+          rows_out[q].push_back({coords(d.vertices[i]), metric.empty() ? Sym6{} : metric[i]});
         auto [ta, tb] = part_slice(d.tets.size(), n, q);
         for (std::size_t i = ta; i < tb; ++i)
           tets_out[q].push_back({{d.tets[i][0], d.tets[i][1], d.tets[i][2], d.tets[i][3]}, d.tet_refs[i]});
@@ -325,8 +325,8 @@ Part read_part(const Comm& comm, const std::string& mesh_path, const std::string
   wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
   std::vector<std::vector<GlobalId>> ask(n);
   for (GlobalId v : wanted) {
-    const auto q = std::size_t(std::upper_bound(s.vertex_starts.begin(), s.vertex_starts.end(), v) -
-                               s.vertex_starts.begin() - 1);
+    const auto q =
+        std::size_t(std::upper_bound(s.vertex_starts.begin(), s.vertex_starts.end(), v) - s.vertex_starts.begin() - 1);
     ask[std::min(q, n - 1)].push_back(v);
   }
   std::vector<std::int64_t> from;

@@ -1,5 +1,4 @@
 #include <metrica/distributed/write_part.hpp>
-
 #include <metrica/error.hpp>
 
 #include <fmt/core.h>
@@ -111,7 +110,8 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
     std::vector<std::vector<std::int64_t>> answer(n);
     std::size_t k = 0;
     for (std::size_t q = 0; q < n; ++q)
-      for (std::int64_t i = 0; i < asked_from[q]; ++i, ++k) answer[q].push_back(number[std::size_t(index.find(asked[k]))]);
+      for (std::int64_t i = 0; i < asked_from[q]; ++i, ++k)
+        answer[q].push_back(number[std::size_t(index.find(asked[k]))]);
     const auto got = comm.exchange(answer);
     k = 0;
     for (std::size_t q = 0; q < n; ++q)
@@ -119,7 +119,8 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
   }
   // A triangle on a face between parts is written by the lower rank.
   std::vector<std::pair<FaceKey, int>> across;
-  for (std::size_t i = 0; i < part.shared_faces.size(); ++i) across.emplace_back(part.shared_faces[i], part.shared_with[i]);
+  for (std::size_t i = 0; i < part.shared_faces.size(); ++i)
+    across.emplace_back(part.shared_faces[i], part.shared_with[i]);
   std::sort(across.begin(), across.end());
   std::vector<std::uint32_t> triangles;
   for (std::size_t i = 0; i < part.triangles.size(); ++i) {
@@ -148,7 +149,8 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
   const std::uint64_t vertex_row = 24 + std::uint64_t(I), triangle_row = 4 * std::uint64_t(I),
                       tet_row = 5 * std::uint64_t(I);
   const std::uint64_t triangles_at = vertices_at + head + std::uint64_t(total.vertices) * vertex_row;
-  const std::uint64_t tets_at = triangles_at + (total.triangles ? head + std::uint64_t(total.triangles) * triangle_row : 0);
+  const std::uint64_t tets_at =
+      triangles_at + (total.triangles ? head + std::uint64_t(total.triangles) * triangle_row : 0);
   const std::uint64_t end_at = tets_at + head + std::uint64_t(total.tets) * tet_row;
 
   std::string temporary;

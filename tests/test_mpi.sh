@@ -45,6 +45,16 @@ if [ "$only" = all ] || [ "$only" = adapt ]; then
   done
 fi
 
+# A metric file, and ranks left without tets by a first round on one part:
+# every rank still takes part in every exchange.
+if [ "$only" = all ] || [ "$only" = adapt ]; then
+  "$metrica" metric "$dir/cube.meshb" --analytic linear -o "$dir/m.solb" -q
+  run 3 adapt "$dir/cube.meshb" -m "$dir/m.solb" -o "$dir/m3.meshb" >"$dir/m3.txt" 2>&1 ||
+    { cat "$dir/m3.txt"; fail "a metric file on 3 ranks failed"; }
+  grep -q "round 1: .* (1 part," "$dir/m3.txt" || { cat "$dir/m3.txt"; fail "a metric file on 3 ranks: not one part first"; }
+  "$metrica" check "$dir/m3.meshb" -q || fail "a metric file on 3 ranks: invalid output"
+fi
+
 # The same output to the bit for a given N (serial concurrency).
 if [ "$only" = all ] || [ "$only" = repeat ]; then
   run 2 adapt "$dir/cube.meshb" --analytic polar-1 -o "$dir/r1.meshb" --concurrency serial -q

@@ -35,7 +35,7 @@ struct PartAdaptResult {
   std::int64_t adapted = 0;   // tets given to the adaptation
   // The vertices of the faces this round kept: the next round's focus.
   std::vector<GlobalId> kept_vertices;
-  QualityReport quality;      // of the adapted tets
+  QualityReport quality;  // of the adapted tets
 };
 
 // Adapts the part in place (the tets Part::focus flags, all when it is

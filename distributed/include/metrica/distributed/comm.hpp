@@ -6,11 +6,10 @@
 
 #include <metrica/error.hpp>
 
-#include <mpi.h>
-
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <mpi.h>
 #include <string>
 #include <type_traits>
 #include <vector>

@@ -5,14 +5,14 @@
 
 namespace metrica::distributed {
 
-class MpiSession {
+class MpiRuntime {
  public:
   // Initialises MPI (threads funnelled: OpenMP inside a rank, MPI on its
   // main thread) when launched by mpirun or srun.
-  MpiSession(int* argc, char*** argv);
-  ~MpiSession();
-  MpiSession(const MpiSession&) = delete;
-  MpiSession& operator=(const MpiSession&) = delete;
+  MpiRuntime(int* argc, char*** argv);
+  ~MpiRuntime();
+  MpiRuntime(const MpiRuntime&) = delete;
+  MpiRuntime& operator=(const MpiRuntime&) = delete;
 
   // Ranks in the job (1 alone) and this one's.
   static int size();

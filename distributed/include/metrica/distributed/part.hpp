@@ -54,9 +54,9 @@ inline int owner_of(std::uint64_t h, int ranks) {
   return int(h % std::uint64_t(ranks));
 }
 inline int owner_of(const FaceKey& k, int ranks) {
-  return owner_of(std::uint64_t(k[0]) * 0x9e3779b97f4a7c15ULL ^ std::uint64_t(k[1]) * 0xbf58476d1ce4e5b9ULL ^
-                      std::uint64_t(k[2]),
-                  ranks);
+  return owner_of(
+      std::uint64_t(k[0]) * 0x9e3779b97f4a7c15ULL ^ std::uint64_t(k[1]) * 0xbf58476d1ce4e5b9ULL ^ std::uint64_t(k[2]),
+      ranks);
 }
 
 struct Part {
