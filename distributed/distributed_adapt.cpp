@@ -139,6 +139,7 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
     weights.tets.assign(part.tets.size(), 1);
     part = migrate(comm, part, partition(comm, part, weights, comm.size()));
   }
+  int last_parts = comm.size();
   for (int it = 0; it < run.iterations && run.rounds > 0; ++it)
     for (int round = 0; round < run.rounds; ++round) {
       Stopwatch round_clock;
@@ -195,7 +196,16 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
           throw InputError(fmt::format("adapt: the volume moved by {:.3g} relative (at most {:.3g}); nothing written",
                                        std::abs(volume_now - volume_in) / volume_in, tolerance));
       });
+      // One part kept no face: this adaptation is done.
+      last_parts = parts;
+      if (parts == 1) break;
     }
+  // The output spread over every rank when the last round ran on fewer.
+  if (run.rounds > 0 && last_parts < comm.size() && comm.sum(std::int64_t(part.tets.size())) >= comm.size()) {
+    PartitionWeights weights;
+    weights.tets.assign(part.tets.size(), 1);
+    part = migrate(comm, part, partition(comm, part, weights, comm.size()));
+  }
   const auto written = write_part(comm, part, run.output, run.version);
   const auto tets = spread(comm, std::int64_t(part.tets.size()));
   // The quality of the whole output (the edges between parts counted on
