@@ -206,16 +206,17 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
     weights.tets.assign(part.tets.size(), 1);
     part = migrate(comm, part, partition(comm, part, weights, comm.size()));
   }
-  const auto written = write_part(comm, part, run.output, run.version);
-  const auto tets = spread(comm, std::int64_t(part.tets.size()));
   // The quality of the whole output (the edges between parts counted on
-  // each side).
+  // each side), measured before the file is written: a failure here
+  // leaves no output.
+  const auto tets = spread(comm, std::int64_t(part.tets.size()));
   QualityReport q;
   if (run.rounds > 0) comm.step([&] { q = part_quality(part, settings); });
   const double edges = double(comm.sum(std::int64_t(q.edges)));
   const double in_range = comm.sum(q.unit_length_share * double(q.edges)) / std::max(1.0, edges);
   const double min_q = comm.min(q.tets ? q.quality.min : 1.0);
   const double mean_q = comm.sum(q.quality.mean * double(q.tets)) / std::max(1.0, double(tets.total));
+  const auto written = write_part(comm, part, run.output, run.version);
   if (talk) {
     fmt::print("wrote {}: {} vertices, {} triangles, {} tets (libMeshb v{}) on {} ranks ({:.2f} s in all)\n",
                run.output, written.vertices, written.triangles, written.tets, written.version, comm.size(),
