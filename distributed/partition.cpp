@@ -24,6 +24,10 @@ struct Neighbour {
   std::int32_t pad = 0;
 };
 
+// Faces per rank in one batch of the rendezvous (40 bytes each, sent and
+// received).
+constexpr std::int64_t kFacesPerBatch = 1 << 20;
+
 }  // namespace
 
 std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWeights& weights, int parts_wanted) {
@@ -39,43 +43,54 @@ std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWe
   MPI_Allgather(&first, 1, MPI_INT64_T, starts.data(), 1, MPI_INT64_T, comm.get());
   starts[n] = total;
 
-  // Each face to the rank that pairs its tets.
-  std::vector<std::vector<FaceOfTet>> out(n);
-  for (std::size_t t = 0; t < part.tets.size(); ++t) {
-    const auto& v = part.tets[t];
-    std::int32_t heavy = 0;
-    for (GlobalId g : v) heavy |= std::binary_search(weights.avoid.begin(), weights.avoid.end(), g) ? 1 : 0;
-    for (const auto& f : kTetFaces) {
-      FaceOfTet r{face_key(v[f[0]], v[f[1]], v[f[2]]), first + GlobalId(t), heavy};
-      out[std::size_t(owner_of(r.key, comm.size()))].push_back(r);
-    }
-  }
-  auto faces = comm.exchange(out);
-  out = {};
-  std::vector<std::vector<Neighbour>> pairs(n);
-  comm.step([&] {
-    std::sort(faces.begin(), faces.end(),
-              [](const FaceOfTet& a, const FaceOfTet& b) { return a.key != b.key ? a.key < b.key : a.tet < b.tet; });
-    const auto rank_of = [&](GlobalId t) {
-      return std::size_t(std::upper_bound(starts.begin(), starts.end(), t) - starts.begin() - 1);
-    };
-    for (std::size_t i = 0; i < faces.size();) {
-      std::size_t j = i + 1;
-      while (j < faces.size() && faces[j].key == faces[i].key) ++j;
-      if (j - i > 2)
-        throw InputError(fmt::format("the face ({} {} {}) has {} tets (at most 2)", faces[i].key[0] + 1,
-                                     faces[i].key[1] + 1, faces[i].key[2] + 1, j - i));
-      if (j - i == 2) {
-        const std::int32_t w = (faces[i].heavy || faces[i + 1].heavy) ? weights.heavy : 1;
-        pairs[rank_of(faces[i].tet)].push_back({faces[i].tet, faces[i + 1].tet, w});
-        pairs[rank_of(faces[i + 1].tet)].push_back({faces[i + 1].tet, faces[i].tet, w});
+  // Each face to the rank that pairs its tets, in batches of faces (by
+  // their hash, so that a face's two tets meet in the same batch): the
+  // records sent and received were the peak of a rank's memory in the
+  // rounds after the first, and batches bound them.
+  std::vector<bool> heavy(part.tets.size(), false);
+  for (std::size_t t = 0; t < part.tets.size(); ++t)
+    for (GlobalId g : part.tets[t])
+      heavy[t] = heavy[t] || std::binary_search(weights.avoid.begin(), weights.avoid.end(), g);
+  const std::int64_t batches = std::max<std::int64_t>(1, (4 * comm.max(local) + kFacesPerBatch - 1) / kFacesPerBatch);
+  const auto rank_of = [&](GlobalId t) {
+    return std::size_t(std::upper_bound(starts.begin(), starts.end(), t) - starts.begin() - 1);
+  };
+  std::vector<Neighbour> nb;
+  for (std::int64_t batch = 0; batch < batches; ++batch) {
+    std::vector<std::vector<FaceOfTet>> out(n);
+    for (std::size_t t = 0; t < part.tets.size(); ++t) {
+      const auto& v = part.tets[t];
+      for (const auto& f : kTetFaces) {
+        const FaceKey key = face_key(v[f[0]], v[f[1]], v[f[2]]);
+        const std::uint64_t h = face_hash(key);
+        if (std::int64_t((h / n) % std::uint64_t(batches)) != batch) continue;
+        out[h % n].push_back({key, first + GlobalId(t), heavy[t] ? 1 : 0});
       }
-      i = j;
     }
-  });
-  faces = {};
-  auto nb = comm.exchange(pairs);
-  pairs = {};
+    auto faces = comm.exchange(out);
+    out = {};
+    std::vector<std::vector<Neighbour>> pairs(n);
+    comm.step([&] {
+      std::sort(faces.begin(), faces.end(),
+                [](const FaceOfTet& a, const FaceOfTet& b) { return a.key != b.key ? a.key < b.key : a.tet < b.tet; });
+      for (std::size_t i = 0; i < faces.size();) {
+        std::size_t j = i + 1;
+        while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+        if (j - i > 2)
+          throw InputError(fmt::format("the face ({} {} {}) has {} tets (at most 2)", faces[i].key[0] + 1,
+                                       faces[i].key[1] + 1, faces[i].key[2] + 1, j - i));
+        if (j - i == 2) {
+          const std::int32_t w = (faces[i].heavy || faces[i + 1].heavy) ? weights.heavy : 1;
+          pairs[rank_of(faces[i].tet)].push_back({faces[i].tet, faces[i + 1].tet, w});
+          pairs[rank_of(faces[i + 1].tet)].push_back({faces[i + 1].tet, faces[i].tet, w});
+        }
+        i = j;
+      }
+    });
+    faces = {};
+    const auto got = comm.exchange(pairs);
+    nb.insert(nb.end(), got.begin(), got.end());
+  }
   std::sort(nb.begin(), nb.end(),
             [](const Neighbour& a, const Neighbour& b) { return a.tet != b.tet ? a.tet < b.tet : a.other < b.other; });
 

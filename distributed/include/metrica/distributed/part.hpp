@@ -45,19 +45,20 @@ inline Point point(const Coords& c) { return {c[0], c[1], c[2]}; }
 
 // The rank that pairs the tets of a face, or holds a vertex's rendezvous:
 // a mix of the ids, so that faces spread evenly over the ranks.
-inline int owner_of(std::uint64_t h, int ranks) {
+inline std::uint64_t mix(std::uint64_t h) {
   h ^= h >> 33;
   h *= 0xff51afd7ed558ccdULL;
   h ^= h >> 33;
   h *= 0xc4ceb9fe1a85ec53ULL;
   h ^= h >> 33;
-  return int(h % std::uint64_t(ranks));
+  return h;
 }
-inline int owner_of(const FaceKey& k, int ranks) {
-  return owner_of(
-      std::uint64_t(k[0]) * 0x9e3779b97f4a7c15ULL ^ std::uint64_t(k[1]) * 0xbf58476d1ce4e5b9ULL ^ std::uint64_t(k[2]),
-      ranks);
+inline int owner_of(std::uint64_t id, int ranks) { return int(mix(id) % std::uint64_t(ranks)); }
+inline std::uint64_t face_hash(const FaceKey& k) {
+  return mix(std::uint64_t(k[0]) * 0x9e3779b97f4a7c15ULL ^ std::uint64_t(k[1]) * 0xbf58476d1ce4e5b9ULL ^
+             std::uint64_t(k[2]));
 }
+inline int owner_of(const FaceKey& k, int ranks) { return int(face_hash(k) % std::uint64_t(ranks)); }
 
 struct Part {
   std::vector<GlobalId> vertex_ids;  // global id of each local vertex
