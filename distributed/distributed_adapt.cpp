@@ -83,7 +83,7 @@ double part_volume(const Part& part) {
 }
 
 // How far from what a round kept the next one adapts (edge steps).
-constexpr int kFocusLayers = 4;
+constexpr int kFocusLayers = 8;
 
 struct Spread {
   std::int64_t total, low, high;
