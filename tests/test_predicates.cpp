@@ -3,7 +3,8 @@
 // invariance under even ones, on random and near-degenerate input
 // (exactly coplanar / cospherical / cocircular integer points, and the same
 // perturbed by 2^-45); Filtered agrees with Exact everywhere; how often
-// Fast disagrees is reported, not asserted.
+// Fast disagrees is reported, not asserted; positive_tet accepts only tets
+// positive exactly and in doubles in any vertex order.
 #include "test_support.hpp"
 
 #include <metrica/predicates/precision.hpp>
@@ -73,6 +74,29 @@ std::array<Point, 5> draw(std::mt19937_64& r, Input kind, bool perturb) {
 }  // namespace
 
 TEST_SUITE("property") {
+  TEST_CASE("a tet positive_tet accepts is positive exactly and in doubles in every even order of its vertices") {
+    auto r = test::rng(51);
+    int accepted = 0, near_flat = 0;
+    for (int i = 0; i < 5000; ++i)
+      for (Input kind : {Input::random, Input::coplanar})
+        for (bool perturb : {false, true}) {
+          const auto x = draw(r, kind, perturb);
+          if (kind == Input::coplanar && perturb) ++near_flat;
+          if (!positive_tet<Filtered>(x[0], x[1], x[2], x[3])) continue;
+          ++accepted;
+          CHECK(positive_tet<Exact>(x[0], x[1], x[2], x[3]));
+          CHECK(Exact::orient3d(x[0], x[1], x[2], x[3]) > 0);
+          std::array<int, 4> p{0, 1, 2, 3};
+          do {
+            const int inversions =
+                (p[0] > p[1]) + (p[0] > p[2]) + (p[0] > p[3]) + (p[1] > p[2]) + (p[1] > p[3]) + (p[2] > p[3]);
+            if (inversions % 2 == 0) CHECK(orient3d_fast(x[p[0]], x[p[1]], x[p[2]], x[p[3]]) > 0.0);
+          } while (std::next_permutation(p.begin(), p.end()));
+        }
+    CHECK(accepted > 2000);
+    CHECK(near_flat == 5000);
+  }
+
   TEST_CASE_TEMPLATE("orient3d and insphere change sign under odd permutations only", P, Fast, Filtered, Exact) {
     auto r = test::rng(100);
     for (Input kind : {Input::random, Input::coplanar, Input::cospherical}) {

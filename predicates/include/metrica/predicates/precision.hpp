@@ -158,17 +158,16 @@ static_assert(Precision<Exact>);
 // The precisions offered by name (--precision), the default first.
 using Precisions = PolicyList<Filtered, Exact, Fast>;
 
-// Whether a tet an operation would make counts as positive: positive
-// under the Precision, and in plain doubles by more than their rounding
-// error (four times Shewchuk's bound for orient3d, 7.8e-16 times the
-// permanent of the edge vectors), so that its double orientation is
-// positive in whichever vertex order it is stored or computed. validate()
-// and the programs that read the output measure orientation in doubles: a
-// nearly flat tet that exact arithmetic finds positive but doubles may
-// find flat or inverted is refused like an inverted one.
+// Whether a tet an operation would make counts as positive: its double
+// orientation above four times its rounding error bound (Shewchuk's for
+// orient3d, 7.8e-16 times the permanent of the edge vectors). Above it
+// the sign is certain, so every Precision agrees and no exact stage is
+// needed; at or below it the tet is refused whatever its exact sign:
+// validate() and the programs that read the output measure orientation in
+// doubles, in whichever vertex order the tet is stored, and a nearly flat
+// tet that exact arithmetic finds positive may be flat or inverted there.
 template <Precision P>
 bool positive_tet(const Point& a, const Point& b, const Point& c, const Point& d) {
-  if (P::orient3d(a, b, c, d) <= 0) return false;
   const Eigen::Vector3d u = b - a, v = c - a, w = d - a;
   const Eigen::Vector3d au = u.cwiseAbs(), av = v.cwiseAbs(), aw = w.cwiseAbs();
   const double permanent = au.x() * (av.y() * aw.z() + av.z() * aw.y()) + au.y() * (av.x() * aw.z() + av.z() * aw.x()) +
