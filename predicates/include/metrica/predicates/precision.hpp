@@ -23,6 +23,7 @@
 #include <metrica/geometry.hpp>
 #include <metrica/policy_list.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <string_view>
@@ -159,20 +160,21 @@ static_assert(Precision<Exact>);
 using Precisions = PolicyList<Filtered, Exact, Fast>;
 
 // Whether a tet an operation would make counts as positive: its double
-// orientation above four times its rounding error bound (Shewchuk's for
-// orient3d, 7.8e-16 times the permanent of the edge vectors). Above it
-// the sign is certain, so every Precision agrees and no exact stage is
-// needed; at or below it the tet is refused whatever its exact sign:
-// validate() and the programs that read the output measure orientation in
-// doubles, in whichever vertex order the tet is stored, and a nearly flat
-// tet that exact arithmetic finds positive may be flat or inverted there.
+// orientation above four times the rounding error bound of any vertex
+// order (Shewchuk's for orient3d, 7.8e-16 times the permanent of the edge
+// vectors, which is at most 6 L^3 whatever the order, L the largest
+// coordinate difference along an edge). Above it the sign is certain and
+// every order computes it positive, so every Precision agrees and no exact
+// stage is needed; at or below it the tet is refused whatever its exact
+// sign: validate() and the programs that read the output measure
+// orientation in doubles, in whichever order the tet is stored.
 template <Precision P>
 bool positive_tet(const Point& a, const Point& b, const Point& c, const Point& d) {
   const Eigen::Vector3d u = b - a, v = c - a, w = d - a;
-  const Eigen::Vector3d au = u.cwiseAbs(), av = v.cwiseAbs(), aw = w.cwiseAbs();
-  const double permanent = au.x() * (av.y() * aw.z() + av.z() * aw.y()) + au.y() * (av.x() * aw.z() + av.z() * aw.x()) +
-                           au.z() * (av.x() * aw.y() + av.y() * aw.x());
-  return u.cross(v).dot(w) > 3.2e-15 * permanent;
+  const double l =
+      std::max({u.cwiseAbs().maxCoeff(), v.cwiseAbs().maxCoeff(), w.cwiseAbs().maxCoeff(),
+                (c - b).cwiseAbs().maxCoeff(), (d - b).cwiseAbs().maxCoeff(), (d - c).cwiseAbs().maxCoeff()});
+  return u.cross(v).dot(w) > 1.9e-14 * l * l * l;
 }
 
 // Whether interval arithmetic alone decides the sign (what the Filtered
