@@ -253,7 +253,9 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
     bool positive = true;
     for (std::size_t c = 0; c < s.candidate.size() && positive; ++c) {
       const auto& t = s.candidate[c];
-      auto orient = [&] { return positive_tet<P>(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])) ? 1 : -1; };
+      auto orient = [&] {
+        return positive_tet<P>(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])) ? 1 : -1;
+      };
       if (memo) {
         auto& o8 = s.memo_orientation[slot(c)];
         if (o8 == 0) o8 = orient() > 0 ? 1 : -1;
