@@ -8,7 +8,9 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
 #include <cstring>
+#include <optional>
 
 namespace metrica::distributed {
 
@@ -21,11 +23,11 @@ Bits bits_of(const Point& p) {
   return b;
 }
 
-// Faces of the tets flagged in `which`, sorted, each once per tet.
-std::vector<FaceKey> faces_of(const Part& part, const std::vector<bool>& active, bool which) {
+// The faces of the active tets, sorted, each once per tet.
+std::vector<FaceKey> active_faces(const Part& part, const std::vector<bool>& active) {
   std::vector<FaceKey> faces;
   for (std::size_t t = 0; t < part.tets.size(); ++t) {
-    if (active[t] != which) continue;
+    if (!active[t]) continue;
     const auto& v = part.tets[t];
     for (const auto& f : kTetFaces)
       faces.push_back(face_key(v[std::size_t(f[0])], v[std::size_t(f[1])], v[std::size_t(f[2])]));
@@ -38,14 +40,58 @@ bool holds(const std::vector<FaceKey>& sorted, const FaceKey& k) {
   return std::binary_search(sorted.begin(), sorted.end(), k);
 }
 
+// Where the adapted tets meet what stays as it is.
+struct ActiveBounds {
+  std::vector<FaceKey> frozen;         // faces of active tets kept as they are (sorted): shared or against a kept tet
+  std::vector<FaceKey> shared_active;  // the shared faces of active tets (sorted)
+  std::vector<bool> triangle_active;   // per triangle of the part: a face of an active tet
+};
+
+ActiveBounds active_bounds(const Part& part, const std::vector<bool>& active) {
+  ActiveBounds b;
+  const auto faces = active_faces(part, active);
+  // A face of a kept tet with its three vertices on active tets may be
+  // one of theirs.
+  const VertexIndex index(part.vertex_ids);
+  std::vector<bool> on_active(part.vertex_ids.size(), false);
+  for (std::size_t t = 0; t < part.tets.size(); ++t)
+    if (active[t])
+      for (GlobalId g : part.tets[t]) on_active[std::size_t(index.find(g))] = true;
+  for (std::size_t t = 0; t < part.tets.size(); ++t) {
+    if (active[t]) continue;
+    const auto& v = part.tets[t];
+    for (const auto& f : kTetFaces) {
+      const GlobalId a = v[std::size_t(f[0])], c = v[std::size_t(f[1])], d = v[std::size_t(f[2])];
+      if (!on_active[std::size_t(index.find(a))] || !on_active[std::size_t(index.find(c))] ||
+          !on_active[std::size_t(index.find(d))])
+        continue;
+      const auto key = face_key(a, c, d);
+      if (holds(faces, key)) b.frozen.push_back(key);
+    }
+  }
+  for (const auto& k : part.shared_faces)
+    if (holds(faces, k)) b.shared_active.push_back(k);
+  b.frozen.insert(b.frozen.end(), b.shared_active.begin(), b.shared_active.end());
+  std::sort(b.frozen.begin(), b.frozen.end());
+  b.frozen.erase(std::unique(b.frozen.begin(), b.frozen.end()), b.frozen.end());
+  std::sort(b.shared_active.begin(), b.shared_active.end());
+  b.triangle_active.resize(part.triangles.size());
+  for (std::size_t i = 0; i < part.triangles.size(); ++i)
+    b.triangle_active[i] = holds(faces, face_key(part.triangles[i]));
+  return b;
+}
+
 }  // namespace
 
 PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings& settings, GlobalId& next_id) {
   PartAdaptResult result;
   std::int64_t fresh = 0;
   Part adapted;
+  std::vector<std::uint32_t> fresh_unfinished;  // new vertices of poor tets (local numbers)
   std::vector<bool> active;
-  bool changed = false;  // this rank adapted some tets
+  ActiveBounds bounds;
+  std::vector<FaceKey> faces_kept;  // faces of the adapted mesh whose vertices were all kept
+  bool changed = false;             // this rank adapted some tets
   comm.step([&] {
     if (part.tets.empty()) return;
     Stopwatch clock;
@@ -58,18 +104,8 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
         ++result.kept_out;
         result.kept_vertices.insert(result.kept_vertices.end(), part.tets[t].begin(), part.tets[t].end());
       }
-    const auto active_faces = faces_of(part, active, true);
-    const auto kept_faces = faces_of(part, active, false);
-    // The faces kept as they are: those shared with another rank and those
-    // between an adapted tet and one kept out.
-    std::vector<FaceKey> frozen = part.shared_faces;
-    for (const auto& k : kept_faces)
-      if (holds(active_faces, k)) frozen.push_back(k);
-    std::sort(frozen.begin(), frozen.end());
-    frozen.erase(std::unique(frozen.begin(), frozen.end()), frozen.end());
-    // The next round looks again at the faces kept between parts and at
-    // the pinches (not at the edge of the tets adapted: adapted before).
-    for (const auto& k : part.shared_faces) result.kept_vertices.insert(result.kept_vertices.end(), k.begin(), k.end());
+    bounds = active_bounds(part, active);
+    const auto& frozen = bounds.frozen;
 
     // The adapted tets' mesh, numbered locally.
     const VertexIndex index(part.vertex_ids);
@@ -97,13 +133,9 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       return TriangleVertices{number(k[0]), number(k[1]), number(k[2])};
     };
     std::vector<FaceKey> listed;
-    std::vector<std::uint32_t> untouched_triangles;
     for (std::size_t i = 0; i < part.triangles.size(); ++i) {
+      if (!bounds.triangle_active[i]) continue;
       const auto key = face_key(part.triangles[i]);
-      if (!holds(active_faces, key)) {
-        untouched_triangles.push_back(std::uint32_t(i));
-        continue;
-      }
       listed.push_back(key);
       if (holds(frozen, key)) data.required_triangles.push_back(std::uint32_t(data.triangles.size()));
       data.triangles.push_back(local_face(part.triangles[i]));
@@ -111,7 +143,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     }
     std::sort(listed.begin(), listed.end());
     for (const auto& k : frozen) {
-      if (!holds(active_faces, k) || holds(listed, k)) continue;
+      if (holds(listed, k)) continue;
       data.required_triangles.push_back(std::uint32_t(data.triangles.size()));
       data.triangles.push_back(local_face(k));
       data.triangle_refs.push_back(kPartFaceId);
@@ -121,7 +153,8 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     BuildOptions bo;
     bo.default_surface_id = settings.default_surface_id;
     bo.source = fmt::format("part {}", comm.rank());
-    Mesh mesh = build_mesh(data, bo);
+    std::optional<Mesh> built(build_mesh(data, bo));
+    Mesh& mesh = *built;
     data = io::MeshData{};
     result.volume_before = mesh.volume();
     if (settings.exact) {
@@ -137,7 +170,29 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     // Valid, with the volume checked over all parts by the caller.
     require_adapted(mesh, nullptr, result.volume_before, 1e300);
     result.volume_after = mesh.volume();
-    result.quality = quality_report(mesh, settings.policies.space, {.cached_quality = true});
+    // The round's figures, and the vertices near what it could not finish.
+    // 1: an edge out of [kShortEdge, kLongEdge] (counts on a kept face);
+    // 2: a tet below kPoorTet (counts anywhere).
+    std::vector<std::uint8_t> unfinished(std::size_t(mesh.vertex_capacity()), 0);
+    {
+      const auto measures = quality_measures(mesh, settings.policies.space);
+      for (std::size_t e = 0; e < measures.edges.size(); ++e) {
+        const double l = measures.lengths[e];
+        result.edges_in_range += l >= std::sqrt(0.5) && l <= std::sqrt(2.0);
+        if (l < kShortEdge || l > kLongEdge)
+          for (VertexId v : measures.edges[e]) unfinished[std::size_t(v)] |= 1;
+      }
+      result.edges = std::int64_t(measures.edges.size());
+      std::size_t k = 0;
+      for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+        if (!mesh.tet_alive(t)) continue;
+        const double q = measures.mean_ratios[k++];
+        result.min_quality = std::min(result.min_quality, q);
+        if (q < kPoorTet)
+          for (VertexId v : mesh.tet(t)) unfinished[std::size_t(v)] |= 2;
+      }
+      result.tets = std::int64_t(k);
+    }
 
     // Back to global ids: the kept faces' vertices by their coordinates.
     std::vector<std::pair<Bits, GlobalId>> kept;
@@ -145,29 +200,41 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       for (GlobalId g : k) kept.emplace_back(bits_of(part.points[std::size_t(index.find(g))]), g);
     std::sort(kept.begin(), kept.end());
     kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
-    const io::MeshData out = extract_mesh_data(mesh);
-    std::vector<GlobalId> ids(out.vertices.size(), -1);
-    for (std::size_t v = 0; v < out.vertices.size(); ++v) {
-      const auto b = bits_of(out.vertices[v]);
-      auto it = std::lower_bound(kept.begin(), kept.end(), std::pair<Bits, GlobalId>{b, -1});
-      if (it != kept.end() && it->first == b)
-        ids[v] = it->second;
-      else
-        ++fresh;
-    }
-    adapted.vertex_ids = std::move(ids);
-    adapted.points = out.vertices;
+    io::MeshData out = extract_mesh_data(mesh);
     if (!settings.exact) {
       for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
         if (mesh.vertex_alive(v)) adapted.metrics.push_back(mesh.metric(v));
     }
+    std::vector<bool> alive(std::size_t(mesh.vertex_capacity()));
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) alive[std::size_t(v)] = mesh.vertex_alive(v);
+    built.reset();  // the file content is all that is needed now
+    std::vector<GlobalId> ids(out.vertices.size(), -1);
+    VertexId live = 0;  // the mesh's vertex written as out.vertices[v] (live ones in id order)
+    for (std::size_t v = 0; v < out.vertices.size(); ++v, ++live) {
+      while (!alive[std::size_t(live)]) ++live;
+      const auto b = bits_of(out.vertices[v]);
+      auto it = std::lower_bound(kept.begin(), kept.end(), std::pair<Bits, GlobalId>{b, -1});
+      if (it != kept.end() && it->first == b) {
+        ids[v] = it->second;
+        if (unfinished[std::size_t(live)]) result.kept_vertices.push_back(it->second);
+      } else {
+        ++fresh;
+        if (unfinished[std::size_t(live)] & 2) fresh_unfinished.push_back(std::uint32_t(v));
+      }
+    }
+    // The faces kept (their vertices all kept), to check them below.
+    for (const auto& l : out.triangles)
+      if (ids[l[0]] >= 0 && ids[l[1]] >= 0 && ids[l[2]] >= 0)
+        faces_kept.push_back(face_key(ids[l[0]], ids[l[1]], ids[l[2]]));
+    adapted.vertex_ids = std::move(ids);
+    adapted.points = std::move(out.vertices);
     // Local numbers for now (turned into global ids below), then the
     // tets kept out with their global ids and the vertices only they hold.
-    for (std::size_t t = 0; t < out.tets.size(); ++t) {
-      const auto& l = out.tets[t];
+    adapted.tets.reserve(out.tets.size());
+    for (const auto& l : out.tets)
       adapted.tets.push_back({GlobalId(l[0]), GlobalId(l[1]), GlobalId(l[2]), GlobalId(l[3])});
-      adapted.tet_refs.push_back(out.tet_refs[t]);
-    }
+    out.tets = {};
+    adapted.tet_refs = std::move(out.tet_refs);
     for (std::size_t f = 0; f < out.triangles.size(); ++f) {
       if (out.triangle_refs[f] == kPartFaceId) continue;
       const auto& l = out.triangles[f];
@@ -185,6 +252,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   GlobalId at = base;
   for (auto& g : adapted.vertex_ids)
     if (g < 0) g = at++;
+  for (auto v : fresh_unfinished) result.kept_vertices.push_back(adapted.vertex_ids[v]);
   for (auto& t : adapted.tets)
     for (auto& v : t) v = adapted.vertex_ids[std::size_t(v)];
   for (auto& f : adapted.triangles)
@@ -193,7 +261,6 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   {
     const VertexIndex index(part.vertex_ids);
     const VertexIndex have(adapted.vertex_ids);
-    const auto active_faces = faces_of(part, active, true);
     for (std::size_t t = 0; t < part.tets.size(); ++t) {
       if (active[t]) continue;
       adapted.tets.push_back(part.tets[t]);
@@ -213,7 +280,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       if (!part.metrics.empty()) adapted.metrics.push_back(part.metrics[v]);
     }
     for (std::size_t i = 0; i < part.triangles.size(); ++i)
-      if (!holds(active_faces, face_key(part.triangles[i]))) {
+      if (!bounds.triangle_active[i]) {
         adapted.triangles.push_back(part.triangles[i]);
         adapted.triangle_refs.push_back(part.triangle_refs[i]);
       }
@@ -221,19 +288,16 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   // The faces between parts must come out as they went in: the rank
   // across relies on them.
   comm.step([&] {
-    std::vector<FaceKey> faces;
-    for (const auto& t : adapted.tets)
-      for (const auto& f : kTetFaces)
-        faces.push_back(face_key(t[std::size_t(f[0])], t[std::size_t(f[1])], t[std::size_t(f[2])]));
-    std::sort(faces.begin(), faces.end());
+    std::sort(faces_kept.begin(), faces_kept.end());
     std::size_t lost = 0;
-    for (const auto& k : part.shared_faces) lost += !std::binary_search(faces.begin(), faces.end(), k);
+    for (const auto& k : bounds.shared_active) lost += !holds(faces_kept, k);
     if (lost > 0)
       throw std::runtime_error(fmt::format("{} of the {} faces kept between parts changed in the adaptation", lost,
-                                           part.shared_faces.size()));
+                                           bounds.shared_active.size()));
   });
   adapted.shared_faces = std::move(part.shared_faces);
   adapted.shared_with = std::move(part.shared_with);
+  adapted.faces_known = part.faces_known;
   part = std::move(adapted);
   return result;
 }

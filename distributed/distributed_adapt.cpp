@@ -82,8 +82,36 @@ double part_volume(const Part& part) {
   return sum;
 }
 
-// How far from what a round kept the next one adapts (edge steps).
+// How far from what a round left unfinished the next one adapts (edge steps).
 constexpr int kFocusLayers = 8;
+
+// The unfinished vertices (sorted, once each) with those a rank across
+// found on the faces this part shares with it: the tets on both sides of
+// such a face are in the next round's focus.
+std::vector<GlobalId> unfinished_on_both_sides(const Comm& comm, const Part& part, std::vector<GlobalId> mine) {
+  std::sort(mine.begin(), mine.end());
+  mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+  std::vector<std::vector<GlobalId>> out(std::size_t(comm.size()));
+  for (std::size_t f = 0; f < part.shared_faces.size(); ++f)
+    for (GlobalId g : part.shared_faces[f])
+      if (std::binary_search(mine.begin(), mine.end(), g)) out[std::size_t(part.shared_with[f])].push_back(g);
+  for (auto& o : out) {
+    std::sort(o.begin(), o.end());
+    o.erase(std::unique(o.begin(), o.end()), o.end());
+  }
+  const auto got = comm.exchange(out);
+  mine.insert(mine.end(), got.begin(), got.end());
+  std::sort(mine.begin(), mine.end());
+  mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+  return mine;
+}
+
+// Cuts the mesh into `parts` and moves the tets there.
+void move_to_parts(const Comm& comm, Part& part, const PartitionWeights& weights, int parts) {
+  const TetNeighbours nb = neighbours(comm, part, VertexIndex(part.vertex_ids));
+  const auto dest = partition(comm, part, nb, weights, parts);
+  part = migrate(comm, part, nb, dest);
+}
 
 struct Spread {
   std::int64_t total, low, high;
@@ -137,7 +165,7 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   if (run.rounds == 0) {
     PartitionWeights weights;
     weights.tets.assign(part.tets.size(), 1);
-    part = migrate(comm, part, partition(comm, part, weights, comm.size()));
+    move_to_parts(comm, part, weights, comm.size());
   }
   int last_parts = comm.size();
   for (int it = 0; it < run.iterations && run.rounds > 0; ++it)
@@ -157,34 +185,36 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       // across a sharp layer (polar-1: parts 2x apart).
       if (predicted > 0.5 * now && predicted < 2.0 * now) weights.tets.assign(part.tets.size(), 1);
       Stopwatch step_clock;
-      const auto dest = partition(comm, part, weights, parts);
-      const double cut_seconds = step_clock.seconds();
-      part = migrate(comm, part, dest);
+      double cut_seconds = 0;
+      {
+        const TetNeighbours nb = neighbours(comm, part, VertexIndex(part.vertex_ids));
+        const auto dest = partition(comm, part, nb, weights, parts);
+        cut_seconds = step_clock.seconds();
+        part = migrate(comm, part, nb, dest);
+      }
       const double move_seconds = step_clock.seconds() - cut_seconds;
       const auto result = adapt_part(comm, part, settings, next_id);
       const double adapt_seconds = step_clock.seconds() - cut_seconds - move_seconds;
       const double before = comm.sum(result.volume_before), after = comm.sum(result.volume_after);
-      // The next cut stays away from what this round kept, and the next
-      // round adapts only around it: the rest is adapted already.
-      frozen_before = result.kept_vertices;
-      std::sort(frozen_before.begin(), frozen_before.end());
-      frozen_before.erase(std::unique(frozen_before.begin(), frozen_before.end()), frozen_before.end());
+      // The next cut stays away from what this round left unfinished, and
+      // the next round adapts only around it: the rest is adapted already.
+      frozen_before = unfinished_on_both_sides(comm, part, result.kept_vertices);
+      const std::int64_t unfinished = comm.sum(std::int64_t(frozen_before.size()));
       const auto near = tets_near(part, frozen_before, kFocusLayers);
       part.focus.assign(near.begin(), near.end());
       const auto tets = spread(comm, std::int64_t(part.tets.size()));
       const std::int64_t kept_out = comm.sum(result.kept_out), adapted = comm.sum(result.adapted);
       // The quality of the tets adapted this round.
-      const auto& q = result.quality;
-      const double edges = double(comm.sum(std::int64_t(q.edges)));
-      const double in_range = comm.sum(q.unit_length_share * double(q.edges)) / std::max(1.0, edges);
-      const double min_q = comm.min(q.tets ? q.quality.min : 1.0);
+      const double edges = double(comm.sum(result.edges));
+      const double in_range = double(comm.sum(result.edges_in_range)) / std::max(1.0, edges);
+      const double min_q = comm.min(result.min_quality);
       if (talk) {
         fmt::print(
             "  {}round {}: {} tets ({} part{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
-            "adapted: in range {:5.1f}% min Q {:.3f} | volume change {:.2g} | cut {:.2f} s, move {:.2f} s, "
-            "adapt {:.2f} s (rank 0), {:.2f} s in all\n",
+            "adapted: in range {:5.1f}% min Q {:.3f} | {} vertices unfinished | volume change {:.2g} | "
+            "cut {:.2f} s, move {:.2f} s, adapt {:.2f} s (rank 0), {:.2f} s in all\n",
             run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, parts,
-            parts == 1 ? "" : "s", tets.low, tets.high, adapted, kept_out, 100.0 * in_range, min_q,
+            parts == 1 ? "" : "s", tets.low, tets.high, adapted, kept_out, 100.0 * in_range, min_q, unfinished,
             before > 0 ? std::abs(after - before) / before : 0.0, cut_seconds, move_seconds, adapt_seconds,
             round_clock.seconds());
         std::fflush(stdout);
@@ -196,15 +226,16 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
           throw InputError(fmt::format("adapt: the volume moved by {:.3g} relative (at most {:.3g}); nothing written",
                                        std::abs(volume_now - volume_in) / volume_in, tolerance));
       });
-      // One part kept no face: this adaptation is done.
+      // Nothing left unfinished (one part kept no face): this adaptation
+      // is done.
       last_parts = parts;
-      if (parts == 1) break;
+      if (parts == 1 || unfinished == 0) break;
     }
   // The output spread over every rank when the last round ran on fewer.
   if (run.rounds > 0 && last_parts < comm.size() && comm.sum(std::int64_t(part.tets.size())) >= comm.size()) {
     PartitionWeights weights;
     weights.tets.assign(part.tets.size(), 1);
-    part = migrate(comm, part, partition(comm, part, weights, comm.size()));
+    move_to_parts(comm, part, weights, comm.size());
   }
   // The quality of the whole output (the edges between parts counted on
   // each side), measured before the file is written: a failure here

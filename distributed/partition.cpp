@@ -10,27 +10,8 @@
 
 namespace metrica::distributed {
 
-namespace {
-
-struct FaceOfTet {
-  FaceKey key;
-  GlobalId tet;
-  std::int32_t heavy;
-  std::int32_t pad = 0;
-};
-struct Neighbour {
-  GlobalId tet, other;
-  std::int32_t weight;
-  std::int32_t pad = 0;
-};
-
-// Faces per rank in one batch of the rendezvous (40 bytes each, sent and
-// received).
-constexpr std::int64_t kFacesPerBatch = 1 << 20;
-
-}  // namespace
-
-std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWeights& weights, int parts_wanted) {
+std::vector<int> partition(const Comm& comm, const Part& part, const TetNeighbours& nb, const PartitionWeights& weights,
+                           int parts_wanted) {
   const auto n = std::size_t(comm.size());
   if (parts_wanted <= 1) return std::vector<int>(part.tets.size(), 0);
   const auto local = std::int64_t(part.tets.size());
@@ -38,70 +19,37 @@ std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWe
   if (total > std::numeric_limits<SCOTCH_Num>::max() / 8)
     throw InputError(fmt::format("{} tets: the partitioner's {}-bit graph ids cannot number their faces", total,
                                  8 * sizeof(SCOTCH_Num)));
-  const std::int64_t first = comm.exclusive_scan(local);
-  std::vector<std::int64_t> starts(n + 1);
-  MPI_Allgather(&first, 1, MPI_INT64_T, starts.data(), 1, MPI_INT64_T, comm.get());
-  starts[n] = total;
 
-  // Each face to the rank that pairs its tets, in batches of faces (by
-  // their hash, so that a face's two tets meet in the same batch): the
-  // records sent and received were the peak of a rank's memory in the
-  // rounds after the first, and batches bound them.
-  std::vector<bool> heavy(part.tets.size(), false);
+  // The rank's slice of the dual graph in PT-Scotch's compressed rows: the
+  // faces of the tets touching a vertex to avoid weigh `heavy`, on both
+  // sides of a face between ranks alike.
+  std::vector<std::int32_t> heavy(part.tets.size(), 0);
   for (std::size_t t = 0; t < part.tets.size(); ++t)
     for (GlobalId g : part.tets[t])
-      heavy[t] = heavy[t] || std::binary_search(weights.avoid.begin(), weights.avoid.end(), g);
-  const std::int64_t batches = std::max<std::int64_t>(1, (4 * comm.max(local) + kFacesPerBatch - 1) / kFacesPerBatch);
-  const auto rank_of = [&](GlobalId t) {
-    return std::size_t(std::upper_bound(starts.begin(), starts.end(), t) - starts.begin() - 1);
-  };
-  std::vector<Neighbour> nb;
-  for (std::int64_t batch = 0; batch < batches; ++batch) {
-    std::vector<std::vector<FaceOfTet>> out(n);
-    for (std::size_t t = 0; t < part.tets.size(); ++t) {
-      const auto& v = part.tets[t];
-      for (const auto& f : kTetFaces) {
-        const FaceKey key = face_key(v[f[0]], v[f[1]], v[f[2]]);
-        const std::uint64_t h = face_hash(key);
-        if (std::int64_t((h / n) % std::uint64_t(batches)) != batch) continue;
-        out[h % n].push_back({key, first + GlobalId(t), heavy[t] ? 1 : 0});
-      }
-    }
-    auto faces = comm.exchange(out);
-    out = {};
-    std::vector<std::vector<Neighbour>> pairs(n);
-    comm.step([&] {
-      std::sort(faces.begin(), faces.end(),
-                [](const FaceOfTet& a, const FaceOfTet& b) { return a.key != b.key ? a.key < b.key : a.tet < b.tet; });
-      for (std::size_t i = 0; i < faces.size();) {
-        std::size_t j = i + 1;
-        while (j < faces.size() && faces[j].key == faces[i].key) ++j;
-        if (j - i > 2)
-          throw InputError(fmt::format("the face ({} {} {}) has {} tets (at most 2)", faces[i].key[0] + 1,
-                                       faces[i].key[1] + 1, faces[i].key[2] + 1, j - i));
-        if (j - i == 2) {
-          const std::int32_t w = (faces[i].heavy || faces[i + 1].heavy) ? weights.heavy : 1;
-          pairs[rank_of(faces[i].tet)].push_back({faces[i].tet, faces[i + 1].tet, w});
-          pairs[rank_of(faces[i + 1].tet)].push_back({faces[i + 1].tet, faces[i].tet, w});
-        }
-        i = j;
-      }
-    });
-    faces = {};
-    const auto got = comm.exchange(pairs);
-    nb.insert(nb.end(), got.begin(), got.end());
-  }
-  std::sort(nb.begin(), nb.end(),
-            [](const Neighbour& a, const Neighbour& b) { return a.tet != b.tet ? a.tet < b.tet : a.other < b.other; });
-
-  // The rank's slice of the graph in PT-Scotch's compressed rows.
+      heavy[t] |= std::binary_search(weights.avoid.begin(), weights.avoid.end(), g) ? 1 : 0;
+  const auto heavy_across = values_across(comm, nb, heavy);
   const std::size_t count = part.tets.size();
   std::vector<SCOTCH_Num> vert(count + 1, 0), edges, edge_weights, vert_weights(count), parts(count, 0);
-  for (const auto& e : nb) ++vert[std::size_t(e.tet - first) + 1];
+  for (std::size_t t = 0; t < count; ++t)
+    for (auto u : nb.local[t]) vert[t + 1] += u >= 0;
+  for (const auto& r : nb.remote) ++vert[r.tet + 1];
   for (std::size_t t = 0; t < count; ++t) vert[t + 1] += vert[t];
-  for (const auto& e : nb) edges.push_back(SCOTCH_Num(e.other)), edge_weights.push_back(e.weight);
+  edges.resize(std::size_t(vert[count]));
+  edge_weights.resize(edges.size());
+  {
+    std::vector<SCOTCH_Num> at(vert.begin(), vert.end() - 1);
+    const auto add = [&](std::size_t t, GlobalId other, bool heavy_edge) {
+      const auto e = std::size_t(at[t]++);
+      edges[e] = SCOTCH_Num(other);
+      edge_weights[e] = heavy_edge ? weights.heavy : 1;
+    };
+    for (std::size_t t = 0; t < count; ++t)
+      for (auto u : nb.local[t])
+        if (u >= 0) add(t, nb.first + u, heavy[t] || heavy[std::size_t(u)]);
+    for (std::size_t i = 0; i < nb.remote.size(); ++i)
+      add(nb.remote[i].tet, nb.remote[i].other, heavy[nb.remote[i].tet] || heavy_across[i]);
+  }
   for (std::size_t t = 0; t < count; ++t) vert_weights[t] = std::max<std::int32_t>(1, weights.tets[t]);
-  nb = {};
 
   // A context of its own, deterministic with a fixed seed: the same cut
   // for the same graph on the same number of ranks, run after run.

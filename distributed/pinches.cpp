@@ -1,3 +1,4 @@
+#include <metrica/distributed/neighbours.hpp>
 #include <metrica/distributed/pinches.hpp>
 
 #include <numeric>
@@ -30,21 +31,6 @@ int common(const auto& a, const auto& b) {
     for (auto y : b) s += x == y;
   return s;
 }
-
-// The tets around each local vertex, in compressed rows: those of vertex
-// v are around[first[v] .. first[v + 1]).
-struct TetsAround {
-  std::vector<std::uint32_t> first, around;
-  TetsAround(const Part& part, const VertexIndex& index) : first(part.vertex_ids.size() + 1, 0) {
-    for (const auto& t : part.tets)
-      for (GlobalId g : t) ++first[std::size_t(index.find(g)) + 1];
-    for (std::size_t v = 0; v + 1 < first.size(); ++v) first[v + 1] += first[v];
-    around.resize(first.back());
-    auto fill = first;
-    for (std::size_t t = 0; t < part.tets.size(); ++t)
-      for (GlobalId g : part.tets[t]) around[fill[std::size_t(index.find(g))]++] = std::uint32_t(t);
-  }
-};
 
 }  // namespace
 

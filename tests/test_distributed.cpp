@@ -1,12 +1,15 @@
 // The distributed executor's pieces that need no MPI: face keys and their
-// orientation, the rendezvous ranks, the tets a part keeps out of a round
+// orientation, the rendezvous ranks, the tets across each face within a
+// part (distributed/neighbours.hpp), the tets a part keeps out of a round
 // where its boundary is pinched (distributed/pinches.hpp). The executor
 // itself runs under mpirun in tests/test_mpi.sh.
 #include "test_support.hpp"
 
 #include <metrica/box.hpp>
+#include <metrica/distributed/neighbours.hpp>
 #include <metrica/distributed/part.hpp>
 #include <metrica/distributed/pinches.hpp>
+#include <metrica/error.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/validate.hpp>
 
@@ -90,6 +93,49 @@ TEST_SUITE("property") {
 }
 
 TEST_SUITE("unit") {
+  TEST_CASE("within a part, the tets across each face pair up both ways; the faces without one are its surface") {
+    const BoxSpec spec{4, 3, 3, Point(0, 0, 0), Point(4, 3, 3)};
+    const Part part = part_of_box(spec, [](const Point& c) { return c.x() + 0.5 * c.y() < 2.6; });
+    const auto nb = local_neighbours(part, VertexIndex(part.vertex_ids));
+    REQUIRE(nb.across.size() == part.tets.size());
+    auto key = [&](std::size_t t, int f) {
+      const auto& v = part.tets[t];
+      return face_key(v[std::size_t(kTetFaces[f][0])], v[std::size_t(kTetFaces[f][1])],
+                      v[std::size_t(kTetFaces[f][2])]);
+    };
+    std::map<FaceKey, int> count;
+    for (std::size_t t = 0; t < part.tets.size(); ++t)
+      for (int f = 0; f < 4; ++f) ++count[key(t, f)];
+    std::size_t paired = 0;
+    for (std::size_t t = 0; t < part.tets.size(); ++t)
+      for (int f = 0; f < 4; ++f) {
+        const auto u = nb.across[t][std::size_t(f)];
+        if (u < 0) continue;
+        ++paired;
+        CHECK(count[key(t, f)] == 2);
+        int back = 0;
+        for (int g = 0; g < 4; ++g)
+          back += nb.across[std::size_t(u)][std::size_t(g)] == std::int32_t(t) && key(std::size_t(u), g) == key(t, f);
+        CHECK(back == 1);
+      }
+    std::size_t single = 0;
+    for (const auto& [k, n] : count) single += n == 1;
+    CHECK(nb.open.size() == single);
+    CHECK(paired + nb.open.size() == 4 * part.tets.size());
+    CHECK(single > part.shared_faces.size());  // the box's faces and those shared
+  }
+
+  TEST_CASE("a face of three tets in one part is an input error") {
+    Part part;
+    for (int v = 0; v < 6; ++v) {
+      part.vertex_ids.push_back(10 * v);
+      part.points.emplace_back(v, v * v, 1.0);
+    }
+    part.tets = {{0, 10, 20, 30}, {0, 10, 20, 40}, {0, 10, 20, 50}};
+    part.tet_refs = {1, 1, 1};
+    CHECK_THROWS_AS(local_neighbours(part, VertexIndex(part.vertex_ids)), InputError);
+  }
+
   TEST_CASE("a part without pinches is adapted whole") {
     const BoxSpec spec{4, 4, 4, Point(0, 0, 0), Point(4, 4, 4)};
     const Part part = part_of_box(spec, [](const Point& c) { return c.x() < 2; });

@@ -33,10 +33,19 @@ struct PartAdaptResult {
   double seconds = 0;
   std::int64_t kept_out = 0;  // tets around pinches, left for a later round (pinches.hpp)
   std::int64_t adapted = 0;   // tets given to the adaptation
-  // The vertices of the faces this round kept: the next round's focus.
+  // The vertices the round left unfinished (the next round's focus):
+  // those of the tets kept out at pinches, of the tets of mean ratio below
+  // kPoorTet, and those of the kept faces that touch an edge of length
+  // outside [kShortEdge, kLongEdge]. A kept face in a part adapted already
+  // (a later cut through finished mesh) leaves nothing to do; a coarse one
+  // leaves long edges and poor tets.
   std::vector<GlobalId> kept_vertices;
-  QualityReport quality;  // of the adapted tets
+  // The adapted tets: edges, those in [1/sqrt 2, sqrt 2], tets, worst mean ratio.
+  std::int64_t edges = 0, edges_in_range = 0, tets = 0;
+  double min_quality = 1;
 };
+
+inline constexpr double kShortEdge = 0.5, kLongEdge = 2.0, kPoorTet = 0.3;
 
 // Adapts the part in place (the tets Part::focus flags, all when it is
 // empty). `next_id` (the same on every rank) is the

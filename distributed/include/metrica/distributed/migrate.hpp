@@ -5,6 +5,7 @@
 #pragma once
 
 #include <metrica/distributed/comm.hpp>
+#include <metrica/distributed/neighbours.hpp>
 #include <metrica/distributed/part.hpp>
 
 #include <vector>
@@ -13,6 +14,6 @@ namespace metrica::distributed {
 
 // The new part of this rank; dest[t] is local tet t's rank. Throws (on
 // every rank) for a triangle that is no tet's face or a face of three tets.
-Part migrate(const Comm& comm, const Part& part, const std::vector<int>& dest);
+Part migrate(const Comm& comm, const Part& part, const TetNeighbours& nb, const std::vector<int>& dest);
 
 }  // namespace metrica::distributed

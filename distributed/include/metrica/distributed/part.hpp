@@ -71,8 +71,12 @@ struct Part {
   std::vector<std::array<GlobalId, 3>> triangles;  // oriented as read or written
   std::vector<int> triangle_refs;
   // The faces this part shares with another part, and that part's rank.
-  std::vector<FaceKey> shared_faces;
+  std::vector<FaceKey> shared_faces;  // sorted
   std::vector<int> shared_with;
+  // Whether each triangle lies on a face of this part's tets (an internal
+  // surface's on both sides' parts) and shared_faces lists every face
+  // between ranks: so after a move, not as read in slices.
+  bool faces_known = false;
 };
 
 // The local index of each global id of `part` (a sorted lookup).

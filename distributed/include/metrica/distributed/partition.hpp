@@ -1,9 +1,10 @@
 // The cut of a distributed mesh into parts: the dual graph (a node per
-// tet, an edge per inner face) built by pairing each face's tets at the
-// rank its key hashes to, then cut by PT-Scotch (SCOTCH_dgraphPart).
+// tet, an edge per inner face, from neighbours.hpp) cut by PT-Scotch
+// (SCOTCH_dgraphPart).
 #pragma once
 
 #include <metrica/distributed/comm.hpp>
+#include <metrica/distributed/neighbours.hpp>
 #include <metrica/distributed/part.hpp>
 
 #include <cstdint>
@@ -16,8 +17,7 @@ struct PartitionWeights {
   std::vector<std::int32_t> tets;
   // Vertices the cut should stay away from (sorted global ids): the graph
   // edges of the tets touching them weigh `heavy`, so that the cut passes
-  // at least a layer of tets away (the faces the last round kept, with
-  // the poor tets the adaptation had to leave against them).
+  // at least a layer of tets away (what the last round left unfinished).
   std::vector<GlobalId> avoid;
   std::int32_t heavy = 100;
 };
@@ -25,6 +25,7 @@ struct PartitionWeights {
 // The rank each local tet goes to: `parts` parts (1 .. the ranks), on
 // ranks 0 .. parts - 1; the others wait this round. Throws (on every
 // rank) when a face has more than two tets.
-std::vector<int> partition(const Comm& comm, const Part& part, const PartitionWeights& weights, int parts);
+std::vector<int> partition(const Comm& comm, const Part& part, const TetNeighbours& nb, const PartitionWeights& weights,
+                           int parts);
 
 }  // namespace metrica::distributed
