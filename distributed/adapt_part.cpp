@@ -23,6 +23,32 @@ Bits bits_of(const Point& p) {
   return b;
 }
 
+// The quality of a mesh's tets and edges; with `unfinished`, each vertex
+// gets 1 when on an edge out of [kShortEdge, kLongEdge] and 2 when on a
+// tet below kPoorTet.
+QualityTally tally(const Mesh& mesh, std::string_view space, std::vector<std::uint8_t>* unfinished) {
+  QualityTally q;
+  const auto measures = quality_measures(mesh, space);
+  for (std::size_t e = 0; e < measures.edges.size(); ++e) {
+    const double l = measures.lengths[e];
+    q.edges_in_range += l >= std::sqrt(0.5) && l <= std::sqrt(2.0);
+    if (unfinished && (l < kShortEdge || l > kLongEdge))
+      for (VertexId v : measures.edges[e]) (*unfinished)[std::size_t(v)] |= 1;
+  }
+  q.edges = std::int64_t(measures.edges.size());
+  std::size_t k = 0;
+  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const double r = measures.mean_ratios[k++];
+    q.min_quality = std::min(q.min_quality, r);
+    q.sum_quality += r;
+    if (unfinished && r < kPoorTet)
+      for (VertexId v : mesh.tet(t)) (*unfinished)[std::size_t(v)] |= 2;
+  }
+  q.tets = std::int64_t(k);
+  return q;
+}
+
 // The faces of the active tets, sorted, each once per tet.
 std::vector<FaceKey> active_faces(const Part& part, const std::vector<bool>& active) {
   std::vector<FaceKey> faces;
@@ -174,26 +200,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     // 1: an edge out of [kShortEdge, kLongEdge] (counts on a kept face);
     // 2: a tet below kPoorTet (counts anywhere).
     std::vector<std::uint8_t> unfinished(std::size_t(mesh.vertex_capacity()), 0);
-    {
-      const auto measures = quality_measures(mesh, settings.policies.space);
-      for (std::size_t e = 0; e < measures.edges.size(); ++e) {
-        const double l = measures.lengths[e];
-        result.edges_in_range += l >= std::sqrt(0.5) && l <= std::sqrt(2.0);
-        if (l < kShortEdge || l > kLongEdge)
-          for (VertexId v : measures.edges[e]) unfinished[std::size_t(v)] |= 1;
-      }
-      result.edges = std::int64_t(measures.edges.size());
-      std::size_t k = 0;
-      for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
-        if (!mesh.tet_alive(t)) continue;
-        const double q = measures.mean_ratios[k++];
-        result.min_quality = std::min(result.min_quality, q);
-        if (q < kPoorTet)
-          for (VertexId v : mesh.tet(t)) unfinished[std::size_t(v)] |= 2;
-      }
-      result.tets = std::int64_t(k);
-    }
-
+    result.quality = tally(mesh, settings.policies.space, &unfinished);
     // Back to global ids: the kept faces' vertices by their coordinates.
     std::vector<std::pair<Bits, GlobalId>> kept;
     for (const auto& k : frozen)
@@ -257,34 +264,58 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     for (auto& v : t) v = adapted.vertex_ids[std::size_t(v)];
   for (auto& f : adapted.triangles)
     for (auto& v : f) v = adapted.vertex_ids[std::size_t(v)];
-  // The tets kept out, their vertices and their triangles, unchanged.
+  // The tets kept out, the vertices only they hold and their triangles
+  // stay in the part (compacted in place), the adapted ones join them.
   {
-    const VertexIndex index(part.vertex_ids);
-    const VertexIndex have(adapted.vertex_ids);
+    std::size_t k = 0;
     for (std::size_t t = 0; t < part.tets.size(); ++t) {
       if (active[t]) continue;
-      adapted.tets.push_back(part.tets[t]);
-      adapted.tet_refs.push_back(part.tet_refs[t]);
+      part.tets[k] = part.tets[t];
+      part.tet_refs[k] = part.tet_refs[t];
+      ++k;
     }
-    std::vector<GlobalId> extra;
-    for (std::size_t t = 0; t < part.tets.size(); ++t)
-      if (!active[t])
-        for (GlobalId g : part.tets[t])
-          if (have.find(g) < 0) extra.push_back(g);
-    std::sort(extra.begin(), extra.end());
-    extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
-    for (GlobalId g : extra) {
-      const auto v = std::size_t(index.find(g));
-      adapted.vertex_ids.push_back(g);
-      adapted.points.push_back(part.points[v]);
-      if (!part.metrics.empty()) adapted.metrics.push_back(part.metrics[v]);
+    part.tets.resize(k);
+    part.tet_refs.resize(k);
+    part.focus.clear();
+    const VertexIndex index(part.vertex_ids);
+    const VertexIndex have(adapted.vertex_ids);
+    std::vector<bool> used(part.vertex_ids.size(), false);
+    for (const auto& t : part.tets)
+      for (GlobalId g : t)
+        if (have.find(g) < 0) used[std::size_t(index.find(g))] = true;
+    std::size_t w = 0;
+    for (std::size_t v = 0; v < used.size(); ++v) {
+      if (!used[v]) continue;
+      part.vertex_ids[w] = part.vertex_ids[v];
+      part.points[w] = part.points[v];
+      if (!part.metrics.empty()) part.metrics[w] = part.metrics[v];
+      ++w;
     }
-    for (std::size_t i = 0; i < part.triangles.size(); ++i)
-      if (!bounds.triangle_active[i]) {
-        adapted.triangles.push_back(part.triangles[i]);
-        adapted.triangle_refs.push_back(part.triangle_refs[i]);
-      }
+    part.vertex_ids.resize(w);
+    part.points.resize(w);
+    if (!part.metrics.empty()) part.metrics.resize(w);
+    std::size_t f = 0;
+    for (std::size_t i = 0; i < part.triangles.size(); ++i) {
+      if (bounds.triangle_active[i]) continue;
+      part.triangles[f] = part.triangles[i];
+      part.triangle_refs[f] = part.triangle_refs[i];
+      ++f;
+    }
+    part.triangles.resize(f);
+    part.triangle_refs.resize(f);
   }
+  const auto append = [](auto& to, auto& from) {
+    to.reserve(to.size() + from.size());  // once, to the size (a doubling would hold both copies)
+    to.insert(to.end(), from.begin(), from.end());
+    from = {};
+  };
+  append(part.vertex_ids, adapted.vertex_ids);
+  append(part.points, adapted.points);
+  append(part.metrics, adapted.metrics);
+  append(part.tets, adapted.tets);
+  append(part.tet_refs, adapted.tet_refs);
+  append(part.triangles, adapted.triangles);
+  append(part.triangle_refs, adapted.triangle_refs);
   // The faces between parts must come out as they went in: the rank
   // across relies on them.
   comm.step([&] {
@@ -295,30 +326,51 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       throw std::runtime_error(fmt::format("{} of the {} faces kept between parts changed in the adaptation", lost,
                                            bounds.shared_active.size()));
   });
-  adapted.shared_faces = std::move(part.shared_faces);
-  adapted.shared_with = std::move(part.shared_with);
-  adapted.faces_known = part.faces_known;
-  part = std::move(adapted);
   return result;
 }
 
-QualityReport part_quality(const Part& part, const PartAdaptSettings& settings) {
-  if (part.tets.empty()) return {};
+QualityTally part_quality(const Part& part, const PartAdaptSettings& settings) {
+  QualityTally all;
   const VertexIndex index(part.vertex_ids);
-  io::MeshData data;
-  data.vertices = part.points;
-  for (const auto& t : part.tets)
-    data.tets.push_back({VertexId(index.find(t[0])), VertexId(index.find(t[1])), VertexId(index.find(t[2])),
-                         VertexId(index.find(t[3]))});
-  data.tet_refs = part.tet_refs;
-  BuildOptions bo;
-  bo.default_surface_id = settings.default_surface_id;
-  Mesh mesh = build_mesh(data, bo);
-  if (settings.exact)
-    assign_metric(mesh, *settings.exact);
-  else
-    assign_metric(mesh, part.metrics);
-  return quality_report(mesh, settings.policies.space);
+  std::vector<std::int64_t> local(part.vertex_ids.size(), -1);
+  for (std::size_t begin = 0; begin < part.tets.size(); begin += kQualityPieceTets) {
+    const std::size_t end = std::min(part.tets.size(), begin + kQualityPieceTets);
+    io::MeshData data;
+    std::vector<Sym6> metrics;
+    std::vector<std::size_t> numbered;
+    const auto number = [&](GlobalId g) {
+      const auto v = std::size_t(index.find(g));
+      if (local[v] < 0) {
+        local[v] = std::int64_t(data.vertices.size());
+        numbered.push_back(v);
+        data.vertices.push_back(part.points[v]);
+        if (!part.metrics.empty()) metrics.push_back(part.metrics[v]);
+      }
+      return VertexId(local[v]);
+    };
+    for (std::size_t t = begin; t < end; ++t) {
+      const auto& g = part.tets[t];
+      data.tets.push_back({number(g[0]), number(g[1]), number(g[2]), number(g[3])});
+      data.tet_refs.push_back(part.tet_refs[t]);
+    }
+    for (auto v : numbered) local[v] = -1;
+    BuildOptions bo;
+    bo.default_surface_id = settings.default_surface_id;
+    bo.untagged_expected = true;
+    Mesh mesh = build_mesh(data, bo);
+    data = io::MeshData{};
+    if (settings.exact)
+      assign_metric(mesh, *settings.exact);
+    else
+      assign_metric(mesh, metrics);
+    const auto piece = tally(mesh, settings.policies.space, nullptr);
+    all.edges += piece.edges;
+    all.edges_in_range += piece.edges_in_range;
+    all.tets += piece.tets;
+    all.min_quality = std::min(all.min_quality, piece.min_quality);
+    all.sum_quality += piece.sum_quality;
+  }
+  return all;
 }
 
 }  // namespace metrica::distributed

@@ -108,9 +108,9 @@ std::vector<GlobalId> unfinished_on_both_sides(const Comm& comm, const Part& par
 
 // Cuts the mesh into `parts` and moves the tets there.
 void move_to_parts(const Comm& comm, Part& part, const PartitionWeights& weights, int parts) {
-  const TetNeighbours nb = neighbours(comm, part, VertexIndex(part.vertex_ids));
+  TetNeighbours nb = neighbours(comm, part, VertexIndex(part.vertex_ids));
   const auto dest = partition(comm, part, nb, weights, parts);
-  part = migrate(comm, part, nb, dest);
+  part = migrate(comm, std::move(part), std::move(nb), dest);
 }
 
 struct Spread {
@@ -187,10 +187,10 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       Stopwatch step_clock;
       double cut_seconds = 0;
       {
-        const TetNeighbours nb = neighbours(comm, part, VertexIndex(part.vertex_ids));
+        TetNeighbours nb = neighbours(comm, part, VertexIndex(part.vertex_ids));
         const auto dest = partition(comm, part, nb, weights, parts);
         cut_seconds = step_clock.seconds();
-        part = migrate(comm, part, nb, dest);
+        part = migrate(comm, std::move(part), std::move(nb), dest);
       }
       const double move_seconds = step_clock.seconds() - cut_seconds;
       const auto result = adapt_part(comm, part, settings, next_id);
@@ -205,9 +205,9 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       const auto tets = spread(comm, std::int64_t(part.tets.size()));
       const std::int64_t kept_out = comm.sum(result.kept_out), adapted = comm.sum(result.adapted);
       // The quality of the tets adapted this round.
-      const double edges = double(comm.sum(result.edges));
-      const double in_range = double(comm.sum(result.edges_in_range)) / std::max(1.0, edges);
-      const double min_q = comm.min(result.min_quality);
+      const double edges = double(comm.sum(result.quality.edges));
+      const double in_range = double(comm.sum(result.quality.edges_in_range)) / std::max(1.0, edges);
+      const double min_q = comm.min(result.quality.min_quality);
       if (talk) {
         fmt::print(
             "  {}round {}: {} tets ({} part{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
@@ -241,12 +241,12 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   // each side), measured before the file is written: a failure here
   // leaves no output.
   const auto tets = spread(comm, std::int64_t(part.tets.size()));
-  QualityReport q;
+  QualityTally q;
   if (run.rounds > 0) comm.step([&] { q = part_quality(part, settings); });
-  const double edges = double(comm.sum(std::int64_t(q.edges)));
-  const double in_range = comm.sum(q.unit_length_share * double(q.edges)) / std::max(1.0, edges);
-  const double min_q = comm.min(q.tets ? q.quality.min : 1.0);
-  const double mean_q = comm.sum(q.quality.mean * double(q.tets)) / std::max(1.0, double(tets.total));
+  const double edges = double(comm.sum(q.edges));
+  const double in_range = double(comm.sum(q.edges_in_range)) / std::max(1.0, edges);
+  const double min_q = comm.min(q.min_quality);
+  const double mean_q = comm.sum(q.sum_quality) / std::max(1.0, double(tets.total));
   const auto written = write_part(comm, part, run.output, run.version);
   if (talk) {
     fmt::print("wrote {}: {} vertices, {} triangles, {} tets (libMeshb v{}) on {} ranks ({:.2f} s in all)\n",

@@ -3,7 +3,6 @@
 
 #include <fmt/core.h>
 
-#include <functional>
 #include <numeric>
 
 namespace metrica::distributed {
@@ -13,8 +12,12 @@ namespace {
 struct TetRecord {
   std::array<GlobalId, 4> v;
   std::int32_t ref;
-  std::int32_t focus;                  // -1: no focus (all tets adapted)
-  std::array<std::int32_t, 4> across;  // per face, the rank across when it is another one; else -1
+  std::int32_t focus;  // -1: no focus (all tets adapted)
+};
+// A face of a tet sent, shared at its new rank with the rank across.
+struct SharedRecord {
+  FaceKey key;
+  std::int32_t rank, pad = 0;
 };
 struct VertexRecord {
   GlobalId id;
@@ -37,17 +40,18 @@ struct TriangleRecord {
   std::int32_t ref, pad = 0;
 };
 
-// The vertices, sent once to each rank, with the tets.
-void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int>& dest,
-               const std::function<std::array<std::int32_t, 4>(std::size_t)>& across,
+// The tets leaving for other ranks (all but those for rank `stay`), each
+// rank's vertices sent once with them.
+void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int>& dest, int stay,
                std::vector<std::vector<TetRecord>>& tets_out, std::vector<std::vector<VertexRecord>>& verts_out) {
   const auto n = tets_out.size();
   std::vector<std::vector<std::uint32_t>> by_rank(n);
-  for (std::size_t t = 0; t < part.tets.size(); ++t) by_rank[std::size_t(dest[t])].push_back(std::uint32_t(t));
+  for (std::size_t t = 0; t < part.tets.size(); ++t)
+    if (dest[t] != stay) by_rank[std::size_t(dest[t])].push_back(std::uint32_t(t));
   std::vector<int> sent_to(part.vertex_ids.size(), -1);
   for (std::size_t q = 0; q < n; ++q)
     for (auto t : by_rank[q]) {
-      tets_out[q].push_back({part.tets[t], part.tet_refs[t], part.focus.empty() ? -1 : int(part.focus[t]), across(t)});
+      tets_out[q].push_back({part.tets[t], part.tet_refs[t], part.focus.empty() ? -1 : int(part.focus[t])});
       for (GlobalId g : part.tets[t]) {
         const auto v = std::size_t(index.find(g));
         if (sent_to[v] == int(q)) continue;
@@ -84,12 +88,7 @@ Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex
   const auto n = std::size_t(comm.size());
   std::vector<std::vector<TetRecord>> tets_out(n);
   std::vector<std::vector<VertexRecord>> verts_out(n);
-  pack_tets(
-      part, index, dest,
-      [](std::size_t) {
-        return std::array<std::int32_t, 4>{-1, -1, -1, -1};
-      },
-      tets_out, verts_out);
+  pack_tets(part, index, dest, -1, tets_out, verts_out);
   std::vector<std::vector<FaceRecord>> faces_out(n);
   for (std::size_t t = 0; t < part.tets.size(); ++t)
     for (const auto& f : kTetFaces) {
@@ -162,30 +161,53 @@ Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex
 
 }  // namespace
 
-Part migrate(const Comm& comm, const Part& part, const TetNeighbours& nb, const std::vector<int>& dest) {
-  const VertexIndex index(part.vertex_ids);
-  if (comm.max(std::int64_t(part.faces_known ? 0 : 1)) > 0) return migrate_by_rendezvous(comm, part, index, dest);
+Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<int>& dest) {
+  const int me = comm.rank();
   const auto n = std::size_t(comm.size());
-  // The new ranks of the tets across the faces between ranks.
-  const auto remote_dest = values_across(comm, nb, std::vector<std::int32_t>(dest.begin(), dest.end()));
   std::vector<std::vector<TetRecord>> tets_out(n);
   std::vector<std::vector<VertexRecord>> verts_out(n);
-  std::vector<std::array<std::int32_t, 4>> across(part.tets.size(), {-1, -1, -1, -1});
-  for (std::size_t t = 0; t < part.tets.size(); ++t)
-    for (int f = 0; f < 4; ++f) {
-      const auto u = nb.local[t][std::size_t(f)];
-      if (u >= 0 && dest[std::size_t(u)] != dest[t]) across[t][std::size_t(f)] = dest[std::size_t(u)];
+  std::vector<std::vector<TriangleRecord>> tris_out(n);
+  std::vector<std::vector<SharedRecord>> shared_out(n);
+  std::vector<std::pair<FaceKey, std::int32_t>> shared;  // the faces between ranks of the tets that stay
+  std::vector<bool> triangle_stays(part.triangles.size(), false);
+  {
+    const VertexIndex index(part.vertex_ids);
+    if (comm.max(std::int64_t(part.faces_known ? 0 : 1)) > 0) return migrate_by_rendezvous(comm, part, index, dest);
+    // The new ranks of the tets across the faces between ranks.
+    const auto remote_dest = values_across(comm, nb, dest);
+    // Per face of tet t, the new rank across it when that is not t's.
+    const auto across = [&](std::size_t t) {
+      std::array<std::int32_t, 4> a{-1, -1, -1, -1};
+      for (int f = 0; f < 4; ++f) {
+        const auto u = nb.local[t][std::size_t(f)];
+        if (u >= 0 && dest[std::size_t(u)] != dest[t]) a[std::size_t(f)] = dest[std::size_t(u)];
+      }
+      auto r = std::lower_bound(nb.remote.begin(), nb.remote.end(), std::uint32_t(t),
+                                [](const RemoteFace& x, std::uint32_t y) { return x.tet < y; });
+      for (; r != nb.remote.end() && r->tet == t; ++r) {
+        const auto d = remote_dest[std::size_t(r - nb.remote.begin())];
+        if (d != dest[t]) a[std::size_t(r->face)] = d;
+      }
+      return a;
+    };
+    pack_tets(part, index, dest, me, tets_out, verts_out);
+    for (std::size_t t = 0; t < part.tets.size(); ++t) {
+      const auto a = across(t);
+      const auto& v = part.tets[t];
+      for (int f = 0; f < 4; ++f)
+        if (a[std::size_t(f)] >= 0) {
+          const auto& c = kTetFaces[f];
+          const auto key = face_key(v[std::size_t(c[0])], v[std::size_t(c[1])], v[std::size_t(c[2])]);
+          if (dest[t] == me)
+            shared.emplace_back(key, a[std::size_t(f)]);
+          else
+            shared_out[std::size_t(dest[t])].push_back({key, a[std::size_t(f)]});
+        }
     }
-  for (std::size_t i = 0; i < nb.remote.size(); ++i) {
-    const auto& r = nb.remote[i];
-    if (remote_dest[i] != dest[r.tet]) across[r.tet][std::size_t(r.face)] = remote_dest[i];
   }
-  pack_tets(
-      part, index, dest, [&](std::size_t t) { return across[t]; }, tets_out, verts_out);
-  across = {};
+  nb = TetNeighbours{};  // all it told is in `shared` and `shared_out` now
   // Each triangle with the tets whose face it is (both of an internal
   // surface's; the receiver keeps one of each).
-  std::vector<std::vector<TriangleRecord>> tris_out(n);
   comm.step([&] {
     std::vector<std::pair<FaceKey, std::uint32_t>> keys;
     for (std::size_t i = 0; i < part.triangles.size(); ++i) keys.emplace_back(face_key(part.triangles[i]), i);
@@ -199,7 +221,10 @@ Part migrate(const Comm& comm, const Part& part, const TetNeighbours& nb, const 
         for (; it != keys.end() && it->first == key; ++it) {
           const auto i = it->second;
           placed[std::size_t(it - keys.begin())] = true;
-          tris_out[std::size_t(dest[t])].push_back({part.triangles[i], part.triangle_refs[i]});
+          if (dest[t] == me)
+            triangle_stays[i] = true;
+          else
+            tris_out[std::size_t(dest[t])].push_back({part.triangles[i], part.triangle_refs[i]});
         }
       }
     }
@@ -207,38 +232,102 @@ Part migrate(const Comm& comm, const Part& part, const TetNeighbours& nb, const 
       throw std::runtime_error("migrate: a triangle of the part is no face of its tets");
   });
 
+  const bool metric = comm.max(std::int64_t(part.metrics.size())) > 0;
+  const bool focus = comm.max(std::int64_t(part.focus.empty() ? 0 : 1)) > 0;
+  // What stays, compacted in place: the tets, the vertices they use, the triangles.
+  {
+    std::size_t k = 0;
+    for (std::size_t t = 0; t < part.tets.size(); ++t) {
+      if (dest[t] != me) continue;
+      part.tets[k] = part.tets[t];
+      part.tet_refs[k] = part.tet_refs[t];
+      if (!part.focus.empty()) part.focus[k] = part.focus[t];
+      ++k;
+    }
+    part.tets.resize(k);
+    part.tet_refs.resize(k);
+    if (focus) part.focus.resize(k, 0);
+    const VertexIndex index(part.vertex_ids);
+    std::vector<bool> used(part.vertex_ids.size(), false);
+    for (const auto& t : part.tets)
+      for (GlobalId g : t) used[std::size_t(index.find(g))] = true;
+    std::size_t w = 0;
+    for (std::size_t v = 0; v < used.size(); ++v) {
+      if (!used[v]) continue;
+      part.vertex_ids[w] = part.vertex_ids[v];
+      part.points[w] = part.points[v];
+      if (!part.metrics.empty()) part.metrics[w] = part.metrics[v];
+      ++w;
+    }
+    part.vertex_ids.resize(w);
+    part.points.resize(w);
+    if (!part.metrics.empty()) part.metrics.resize(w);
+    std::size_t f = 0;
+    for (std::size_t i = 0; i < part.triangles.size(); ++i) {
+      if (!triangle_stays[i]) continue;
+      part.triangles[f] = part.triangles[i];
+      part.triangle_refs[f] = part.triangle_refs[i];
+      ++f;
+    }
+    part.triangles.resize(f);
+    part.triangle_refs.resize(f);
+  }
+
   auto tets_in = comm.exchange(tets_out);
   tets_out = {};
   auto verts_in = comm.exchange(verts_out);
   verts_out = {};
   auto tris_in = comm.exchange(tris_out);
   tris_out = {};
+  for (const auto& r : comm.exchange(shared_out)) shared.emplace_back(r.key, r.rank);
+  shared_out = {};
 
-  Part out;
-  unpack_tets(comm, part, verts_in, tets_in, out);
+  // What arrives: new vertices once each (several ranks may send the same,
+  // and this part may hold it already), the tets, their shared faces. The
+  // arrays grow once, to their size (a doubling would hold both copies).
+  part.vertex_ids.reserve(part.vertex_ids.size() + verts_in.size());
+  part.points.reserve(part.points.size() + verts_in.size());
+  if (metric) part.metrics.reserve(part.metrics.size() + verts_in.size());
+  part.tets.reserve(part.tets.size() + tets_in.size());
+  part.tet_refs.reserve(part.tet_refs.size() + tets_in.size());
+  if (focus) part.focus.reserve(part.focus.size() + tets_in.size());
+  {
+    const VertexIndex held(part.vertex_ids);
+    std::sort(verts_in.begin(), verts_in.end(),
+              [](const VertexRecord& a, const VertexRecord& b) { return a.id < b.id; });
+    for (std::size_t i = 0; i < verts_in.size(); ++i) {
+      const auto& r = verts_in[i];
+      if ((i > 0 && verts_in[i - 1].id == r.id) || held.find(r.id) >= 0) continue;
+      part.vertex_ids.push_back(r.id);
+      part.points.push_back(point(r.p));
+      if (metric) part.metrics.push_back(r.m);
+    }
+  }
   verts_in = {};
-  std::vector<std::pair<FaceKey, std::int32_t>> shared;
-  for (const auto& t : tets_in)
-    for (int f = 0; f < 4; ++f)
-      if (t.across[std::size_t(f)] >= 0) {
-        const auto& c = kTetFaces[f];
-        shared.emplace_back(face_key(t.v[std::size_t(c[0])], t.v[std::size_t(c[1])], t.v[std::size_t(c[2])]),
-                            t.across[std::size_t(f)]);
-      }
+  for (const auto& t : tets_in) {
+    part.tets.push_back(t.v);
+    part.tet_refs.push_back(t.ref);
+    if (focus) part.focus.push_back(t.focus > 0 ? 1 : 0);
+  }
   tets_in = {};
   std::sort(shared.begin(), shared.end());
-  for (const auto& [k, r] : shared) out.shared_faces.push_back(k), out.shared_with.push_back(r);
+  part.shared_faces.clear();
+  part.shared_with.clear();
+  for (const auto& [k, r] : shared) part.shared_faces.push_back(k), part.shared_with.push_back(r);
   // One of each triangle (the smallest id when a face was listed twice).
+  for (std::size_t i = 0; i < part.triangles.size(); ++i) tris_in.push_back({part.triangles[i], part.triangle_refs[i]});
   std::sort(tris_in.begin(), tris_in.end(), [](const TriangleRecord& a, const TriangleRecord& b) {
     const auto ka = face_key(a.v), kb = face_key(b.v);
     return ka != kb ? ka < kb : a.ref < b.ref;
   });
+  part.triangles.clear();
+  part.triangle_refs.clear();
   for (std::size_t i = 0; i < tris_in.size(); ++i) {
     if (i > 0 && face_key(tris_in[i].v) == face_key(tris_in[i - 1].v)) continue;
-    out.triangles.push_back(tris_in[i].v), out.triangle_refs.push_back(tris_in[i].ref);
+    part.triangles.push_back(tris_in[i].v), part.triangle_refs.push_back(tris_in[i].ref);
   }
-  out.faces_known = true;
-  return out;
+  part.faces_known = true;
+  return part;
 }
 
 }  // namespace metrica::distributed

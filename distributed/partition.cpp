@@ -3,53 +3,107 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
+#include <numeric>
 // ptscotch.h needs <mpi.h>, <stdio.h> and <stdint.h> first.
 #include <ptscotch.h>
 
 namespace metrica::distributed {
 
+namespace {
+
+// Tets per graph node: one node per tet up to this many tets per rank,
+// then clusters of up to kMaxClusterSize tets.
+constexpr std::int64_t kTetsPerNode = 50'000, kMaxClusterSize = 32;
+
+}  // namespace
+
 std::vector<int> partition(const Comm& comm, const Part& part, const TetNeighbours& nb, const PartitionWeights& weights,
                            int parts_wanted) {
   const auto n = std::size_t(comm.size());
   if (parts_wanted <= 1) return std::vector<int>(part.tets.size(), 0);
-  const auto local = std::int64_t(part.tets.size());
-  const std::int64_t total = comm.sum(local);
-  if (total > std::numeric_limits<SCOTCH_Num>::max() / 8)
-    throw InputError(fmt::format("{} tets: the partitioner's {}-bit graph ids cannot number their faces", total,
+  const std::int64_t total = comm.sum(std::int64_t(part.tets.size()));
+  // Clusters of about `size` face-neighbours (grown breadth first within
+  // the part) are the graph's nodes: a graph a few times smaller than the
+  // mesh costs PT-Scotch that much less memory and time, and parts of
+  // millions of tets do not need a finer cut.
+  const auto size = std::size_t(std::clamp<std::int64_t>(total / (std::int64_t(n) * kTetsPerNode), 1, kMaxClusterSize));
+  const std::size_t count = part.tets.size();
+  std::vector<std::int32_t> cluster(count, -1);
+  std::vector<std::uint32_t> order, starts;  // tets by cluster; cluster c is order[starts[c] .. starts[c + 1])
+  order.reserve(count);
+  for (std::size_t seed = 0; seed < count; ++seed) {
+    if (cluster[seed] >= 0) continue;
+    const auto c = std::int32_t(starts.size());
+    starts.push_back(std::uint32_t(order.size()));
+    cluster[seed] = c;
+    order.push_back(std::uint32_t(seed));
+    for (std::size_t head = starts.back(); head < order.size() && order.size() - starts.back() < size; ++head)
+      for (auto u : nb.local[order[head]])
+        if (u >= 0 && cluster[std::size_t(u)] < 0 && order.size() - starts.back() < size) {
+          cluster[std::size_t(u)] = c;
+          order.push_back(std::uint32_t(u));
+        }
+  }
+  const auto local = std::int64_t(starts.size());
+  starts.push_back(std::uint32_t(order.size()));
+  const std::int64_t nodes = comm.sum(local), first = comm.exclusive_scan(local);
+  if (nodes > std::numeric_limits<SCOTCH_Num>::max() / 8)
+    throw InputError(fmt::format("{} graph nodes: more than the partitioner's {}-bit ids can number", nodes,
                                  8 * sizeof(SCOTCH_Num)));
 
-  // The rank's slice of the dual graph in PT-Scotch's compressed rows: the
-  // faces of the tets touching a vertex to avoid weigh `heavy`, on both
-  // sides of a face between ranks alike.
-  std::vector<std::int32_t> heavy(part.tets.size(), 0);
-  for (std::size_t t = 0; t < part.tets.size(); ++t)
+  // The rank's slice of the graph in PT-Scotch's compressed rows: a face
+  // between clusters adds 1 to their edge, `heavy` when one of its tets
+  // touches a vertex to avoid (the same on both sides of a face between
+  // ranks).
+  std::vector<std::int32_t> heavy(count, 0), global_cluster(count);
+  for (std::size_t t = 0; t < count; ++t) {
+    global_cluster[t] = std::int32_t(first + cluster[t]);
     for (GlobalId g : part.tets[t])
       heavy[t] |= std::binary_search(weights.avoid.begin(), weights.avoid.end(), g) ? 1 : 0;
-  const auto heavy_across = values_across(comm, nb, heavy);
-  const std::size_t count = part.tets.size();
-  std::vector<SCOTCH_Num> vert(count + 1, 0), edges, edge_weights, vert_weights(count), parts(count, 0);
-  for (std::size_t t = 0; t < count; ++t)
-    for (auto u : nb.local[t]) vert[t + 1] += u >= 0;
-  for (const auto& r : nb.remote) ++vert[r.tet + 1];
-  for (std::size_t t = 0; t < count; ++t) vert[t + 1] += vert[t];
-  edges.resize(std::size_t(vert[count]));
-  edge_weights.resize(edges.size());
-  {
-    std::vector<SCOTCH_Num> at(vert.begin(), vert.end() - 1);
-    const auto add = [&](std::size_t t, GlobalId other, bool heavy_edge) {
-      const auto e = std::size_t(at[t]++);
-      edges[e] = SCOTCH_Num(other);
-      edge_weights[e] = heavy_edge ? weights.heavy : 1;
-    };
-    for (std::size_t t = 0; t < count; ++t)
-      for (auto u : nb.local[t])
-        if (u >= 0) add(t, nb.first + u, heavy[t] || heavy[std::size_t(u)]);
-    for (std::size_t i = 0; i < nb.remote.size(); ++i)
-      add(nb.remote[i].tet, nb.remote[i].other, heavy[nb.remote[i].tet] || heavy_across[i]);
   }
-  for (std::size_t t = 0; t < count; ++t) vert_weights[t] = std::max<std::int32_t>(1, weights.tets[t]);
+  const auto heavy_across = values_across(comm, nb, heavy);
+  const auto cluster_across = values_across(comm, nb, global_cluster);
+  std::vector<SCOTCH_Num> vert(std::size_t(local) + 1, 0), edges, edge_weights, vert_weights(std::size_t(local), 0),
+      parts(std::size_t(local), 0);
+  {
+    std::vector<std::pair<SCOTCH_Num, SCOTCH_Num>> row;  // (node across, weight) in the order met
+    const auto add = [&](SCOTCH_Num other, bool heavy_edge) {
+      const SCOTCH_Num w = heavy_edge ? weights.heavy : 1;
+      for (auto& [o, ow] : row)
+        if (o == other) {
+          ow += w;
+          return;
+        }
+      row.emplace_back(other, w);
+    };
+    for (std::size_t c = 0; c < std::size_t(local); ++c) {
+      row.clear();
+      for (auto k = starts[c]; k < starts[c + 1]; ++k) {
+        const auto t = order[k];
+        vert_weights[c] += std::max<std::int32_t>(1, weights.tets[t]);
+        for (auto u : nb.local[t])
+          if (u >= 0 && cluster[std::size_t(u)] != std::int32_t(c))
+            add(global_cluster[std::size_t(u)], heavy[t] || heavy[std::size_t(u)]);
+        auto r = std::lower_bound(nb.remote.begin(), nb.remote.end(), t,
+                                  [](const RemoteFace& x, std::uint32_t y) { return x.tet < y; });
+        for (; r != nb.remote.end() && r->tet == t; ++r) {
+          const auto i = std::size_t(r - nb.remote.begin());
+          add(cluster_across[i], heavy[t] || heavy_across[i]);
+        }
+      }
+      for (const auto& [o, w] : row) edges.push_back(o), edge_weights.push_back(w);
+      vert[c + 1] = SCOTCH_Num(edges.size());
+    }
+  }
+
+  std::int64_t weight = 0;
+  for (auto w : vert_weights) weight += w;
+  if (comm.sum(weight) > std::numeric_limits<SCOTCH_Num>::max() / 2)
+    throw InputError(fmt::format("tets weighing {} in all: more than the partitioner's {}-bit weights can sum",
+                                 comm.sum(weight), 8 * sizeof(SCOTCH_Num)));
 
   // A context of its own, deterministic with a fixed seed: the same cut
   // for the same graph on the same number of ranks, run after run.
@@ -90,7 +144,28 @@ std::vector<int> partition(const Comm& comm, const Part& part, const TetNeighbou
       if (failed) throw std::runtime_error("PT-Scotch could not partition the dual graph");
     });
   }
-  return {parts.begin(), parts.end()};
+  std::vector<int> dest(count);
+  for (std::size_t t = 0; t < count; ++t) dest[t] = int(parts[std::size_t(cluster[t])]);
+  // PT-Scotch numbers its parts freely: each part goes to the rank that
+  // holds most of its tets already, so that a later round moves few.
+  if (std::size_t(parts_wanted) == n) {
+    std::vector<std::int64_t> here(n, 0), all(n * n);
+    for (int d : dest) ++here[std::size_t(d)];
+    MPI_Allgather(here.data(), int(n), MPI_INT64_T, all.data(), int(n), MPI_INT64_T, comm.get());
+    std::vector<std::size_t> pairs(n * n);  // (rank, part) pairs, most tets first
+    std::iota(pairs.begin(), pairs.end(), std::size_t{0});
+    std::stable_sort(pairs.begin(), pairs.end(), [&](std::size_t a, std::size_t b) { return all[a] > all[b]; });
+    std::vector<int> rank_of(n, -1);
+    std::vector<bool> taken(n, false);
+    for (auto i : pairs) {
+      const auto r = i / n, p = i % n;
+      if (taken[r] || rank_of[p] >= 0) continue;
+      taken[r] = true;
+      rank_of[p] = int(r);
+    }
+    for (auto& d : dest) d = rank_of[std::size_t(d)];
+  }
+  return dest;
 }
 
 }  // namespace metrica::distributed

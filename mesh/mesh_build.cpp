@@ -145,7 +145,7 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
         fmt::format("{}: {} boundary faces have no input triangle: give the whole boundary as Triangles "
                     "with surface ids (their edges between ids become ridges)",
                     src, untagged));
-  if (untagged > 0)
+  if (untagged > 0 && !opt.untagged_expected)
     log::warn("{}: {} boundary faces have no input triangle; they get surface id {}", src, untagged, default_id);
   if (nonpositive > 0)
     log::warn("{}: {} boundary triangles have a reference <= 0; they get surface id {}", src, nonpositive, default_id);

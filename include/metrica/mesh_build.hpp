@@ -16,6 +16,9 @@ struct BuildOptions {
   // InputError: the adaptation takes its surfaces and ridges from the
   // triangles' ids, and a boundary without them would lose its corners.
   bool require_boundary_triangles = false;
+  // A piece of a larger mesh measured alone: its boundary faces have no
+  // triangles by design, so no warning says so.
+  bool untagged_expected = false;
   // Name used in messages (usually the file).
   std::string source = "mesh";
 };

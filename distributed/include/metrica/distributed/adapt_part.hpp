@@ -28,6 +28,14 @@ struct PartAdaptSettings {
   SurfaceId default_surface_id = 1;
 };
 
+// The quality of some tets in their metric: edges (once per piece they
+// are measured in), those in [1/sqrt 2, sqrt 2], tets, worst and summed
+// mean ratios.
+struct QualityTally {
+  std::int64_t edges = 0, edges_in_range = 0, tets = 0;
+  double min_quality = 1, sum_quality = 0;
+};
+
 struct PartAdaptResult {
   double volume_before = 0, volume_after = 0;
   double seconds = 0;
@@ -40,9 +48,7 @@ struct PartAdaptResult {
   // (a later cut through finished mesh) leaves nothing to do; a coarse one
   // leaves long edges and poor tets.
   std::vector<GlobalId> kept_vertices;
-  // The adapted tets: edges, those in [1/sqrt 2, sqrt 2], tets, worst mean ratio.
-  std::int64_t edges = 0, edges_in_range = 0, tets = 0;
-  double min_quality = 1;
+  QualityTally quality;  // of the adapted tets
 };
 
 inline constexpr double kShortEdge = 0.5, kLongEdge = 2.0, kPoorTet = 0.3;
@@ -54,8 +60,11 @@ inline constexpr double kShortEdge = 0.5, kLongEdge = 2.0, kPoorTet = 0.3;
 // invalid mesh.
 PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings& settings, GlobalId& next_id);
 
-// The UGAWG quality report of the whole part (all its tets) in the
-// settings' space and metric.
-QualityReport part_quality(const Part& part, const PartAdaptSettings& settings);
+// The quality of the whole part in the settings' space and metric,
+// measured on pieces of at most kQualityPieceTets tets at a time (a
+// Mesh of the whole part would double a rank's memory at the end); an
+// edge on two pieces counts twice, as one between two parts does.
+inline constexpr std::size_t kQualityPieceTets = 250'000;
+QualityTally part_quality(const Part& part, const PartAdaptSettings& settings);
 
 }  // namespace metrica::distributed

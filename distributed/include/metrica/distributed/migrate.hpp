@@ -12,8 +12,10 @@
 
 namespace metrica::distributed {
 
-// The new part of this rank; dest[t] is local tet t's rank. Throws (on
-// every rank) for a triangle that is no tet's face or a face of three tets.
-Part migrate(const Comm& comm, const Part& part, const TetNeighbours& nb, const std::vector<int>& dest);
+// The new part of this rank, made from `part` in place (what stays stays
+// where it is, what leaves goes as records); dest[t] is local tet t's
+// rank, nb the part's neighbours (freed once read). Throws (on every rank) for a triangle
+// that is no tet's face or a face of three tets.
+Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<int>& dest);
 
 }  // namespace metrica::distributed
