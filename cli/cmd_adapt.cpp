@@ -122,10 +122,12 @@ void declare_options(Options& o) {
       "keep-surface",
       "keep the boundary and the internal surfaces exactly as they are (no vertex moved, added or removed on "
       "them, no face flipped) and adapt the volume only");
-  o.add()("rounds", po::value<int>()->default_value(3)->value_name("N"),
-          "under mpirun: cuts of the mesh per adaptation; each rank adapts its part with the faces between "
-          "parts kept; each later cut stays away from what the one before kept, and its round adapts only "
-          "around it (docs/distributed.md); 0: cut, move and write without adapting");
+  o.add()("rounds", po::value<int>()->default_value(5)->value_name("N"),
+          "under mpirun: at most N cuts of the mesh per adaptation; each rank adapts its part with the faces "
+          "between parts kept; each later cut stays away from what the round before left unfinished (poor "
+          "tets, off-size edges at kept faces) and its round adapts only around it; the rounds end when "
+          "nothing is left or, from the third on, no tet adapted has mean ratio below 0.5 "
+          "(docs/distributed.md); 0: cut, move and write without adapting");
   o.output_option("metric-out", "also write the metric at the output's vertices (.sol, .solb)",
                   {io::FileFormat::sol, io::FileFormat::solb});
   o.output_option("vtu", "also write the adapted mesh for ParaView (.vtu)", {io::FileFormat::vtu});

@@ -24,8 +24,8 @@ Bits bits_of(const Point& p) {
 }
 
 // The quality of a mesh's tets and edges; with `unfinished`, each vertex
-// gets 1 when on an edge out of [kShortEdge, kLongEdge] and 2 when on a
-// tet below kPoorTet.
+// gets 1 when on an edge out of [kShortEdge, kLongEdge], 2 when on a tet
+// below kPoorTet, 4 when on a tet below kPoorAtKeptFace.
 QualityTally tally(const Mesh& mesh, std::string_view space, std::vector<std::uint8_t>* unfinished) {
   QualityTally q;
   const auto measures = quality_measures(mesh, space);
@@ -42,8 +42,8 @@ QualityTally tally(const Mesh& mesh, std::string_view space, std::vector<std::ui
     const double r = measures.mean_ratios[k++];
     q.min_quality = std::min(q.min_quality, r);
     q.sum_quality += r;
-    if (unfinished && r < kPoorTet)
-      for (VertexId v : mesh.tet(t)) (*unfinished)[std::size_t(v)] |= 2;
+    if (unfinished && r < kPoorAtKeptFace)
+      for (VertexId v : mesh.tet(t)) (*unfinished)[std::size_t(v)] |= r < kPoorTet ? 6 : 4;
   }
   q.tets = std::int64_t(k);
   return q;

@@ -84,6 +84,10 @@ double part_volume(const Part& part) {
 
 // How far from what a round left unfinished the next one adapts (edge steps).
 constexpr int kFocusLayers = 8;
+// Rounds before the worst adapted tet may end an adaptation: the first
+// keeps the input's faces between parts, the second cut must cross them
+// somewhere (two cuts of one domain meet), the third adapts there.
+constexpr int kFewestRounds = 3;
 
 // The unfinished vertices (sorted, once each) with those a rank across
 // found on the faces this part shares with it: the tets on both sides of
@@ -226,10 +230,12 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
           throw InputError(fmt::format("adapt: the volume moved by {:.3g} relative (at most {:.3g}); nothing written",
                                        std::abs(volume_now - volume_in) / volume_in, tolerance));
       });
-      // Nothing left unfinished (one part kept no face): this adaptation
-      // is done.
+      // Nothing left unfinished (one part kept no face), or from the
+      // third round on no tet adapted below kPoorAtKeptFace: this
+      // adaptation is done. The tets a round adapts against the faces it
+      // keeps are its poorest; the next round has them inside a part.
       last_parts = parts;
-      if (parts == 1 || unfinished == 0) break;
+      if (parts == 1 || unfinished == 0 || (round + 1 >= kFewestRounds && min_q >= kPoorAtKeptFace)) break;
     }
   // The output spread over every rank when the last round ran on fewer.
   if (run.rounds > 0 && last_parts < comm.size() && comm.sum(std::int64_t(part.tets.size())) >= comm.size()) {

@@ -18,6 +18,41 @@ namespace {
 // then clusters of up to kMaxClusterSize tets.
 constexpr std::int64_t kTetsPerNode = 50'000, kMaxClusterSize = 32;
 
+// A cut between clusters is ragged: tets with most of their faces on
+// another part (a cluster's tip, a lone small cluster) go there, in
+// kSmoothingPasses passes that each decide from the last one's parts.
+// A ragged cut touches itself at vertices and edges, whose tets the next
+// round keeps out (pinches.hpp): 4.3M tets on 4 ranks kept 18.7k and
+// 39.6k tets out in rounds 2 and 3 before.
+constexpr int kSmoothingPasses = 2;
+void smooth_cut(const Comm& comm, const TetNeighbours& nb, std::vector<int>& dest) {
+  for (int pass = 0; pass < kSmoothingPasses; ++pass) {
+    const auto across = values_across(comm, nb, dest);
+    std::vector<int> next = dest;
+    for (std::size_t t = 0; t < dest.size(); ++t) {
+      int part[4], faces = 0;
+      for (auto u : nb.local[t])
+        if (u >= 0) part[faces++] = dest[std::size_t(u)];
+      auto r = std::lower_bound(nb.remote.begin(), nb.remote.end(), std::uint32_t(t),
+                                [](const RemoteFace& x, std::uint32_t y) { return x.tet < y; });
+      for (; r != nb.remote.end() && r->tet == t && faces < 4; ++r)
+        part[faces++] = across[std::size_t(r - nb.remote.begin())];
+      int own = 0;
+      for (int i = 0; i < faces; ++i) own += part[i] == dest[t];
+      if (own > 1) continue;
+      for (int i = 0; i < faces; ++i) {
+        int same = 0;
+        for (int j = 0; j < faces; ++j) same += part[j] == part[i];
+        if (part[i] != dest[t] && same > own + 1) {
+          next[t] = part[i];
+          break;
+        }
+      }
+    }
+    dest.swap(next);
+  }
+}
+
 }  // namespace
 
 std::vector<int> partition(const Comm& comm, const Part& part, const TetNeighbours& nb, const PartitionWeights& weights,
@@ -146,6 +181,7 @@ std::vector<int> partition(const Comm& comm, const Part& part, const TetNeighbou
   }
   std::vector<int> dest(count);
   for (std::size_t t = 0; t < count; ++t) dest[t] = int(parts[std::size_t(cluster[t])]);
+  if (size > 1) smooth_cut(comm, nb, dest);
   // PT-Scotch numbers its parts freely: each part goes to the rank that
   // holds most of its tets already, so that a later round moves few.
   if (std::size_t(parts_wanted) == n) {

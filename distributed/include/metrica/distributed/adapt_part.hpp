@@ -44,14 +44,16 @@ struct PartAdaptResult {
   // The vertices the round left unfinished (the next round's focus):
   // those of the tets kept out at pinches, of the tets of mean ratio below
   // kPoorTet, and those of the kept faces that touch an edge of length
-  // outside [kShortEdge, kLongEdge]. A kept face in a part adapted already
-  // (a later cut through finished mesh) leaves nothing to do; a coarse one
-  // leaves long edges and poor tets.
+  // outside [kShortEdge, kLongEdge] or a tet below kPoorAtKeptFace (the
+  // adaptation cannot flip or move a kept face: what it leaves there the
+  // next round, with the face inside a part, does better). A kept face in
+  // a part adapted already (a later cut through finished mesh) leaves
+  // little to do; a coarse one leaves long edges and poor tets.
   std::vector<GlobalId> kept_vertices;
   QualityTally quality;  // of the adapted tets
 };
 
-inline constexpr double kShortEdge = 0.5, kLongEdge = 2.0, kPoorTet = 0.3;
+inline constexpr double kShortEdge = 0.5, kLongEdge = 2.0, kPoorTet = 0.3, kPoorAtKeptFace = 0.5;
 
 // Adapts the part in place (the tets Part::focus flags, all when it is
 // empty). `next_id` (the same on every rank) is the

@@ -22,7 +22,7 @@ struct DistributedAdapt {
   AdaptOptions options;
   PolicyChoice policies;
   int iterations = 1;  // --analytic only: the metric re-evaluated between them
-  int rounds = 3;      // cuts per adaptation
+  int rounds = 5;      // at most this many cuts per adaptation
   int version = 0;     // libMeshb version of the output (0: chosen by size)
   bool talk = true;    // rank 0 prints progress
 };
