@@ -2,6 +2,7 @@
 #include <metrica/error.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
+#include <metrica/io/meshb_keywords.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/part_runner.hpp>
 
@@ -199,7 +200,8 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
   }
   for (const auto& [code, k] : l.keywords)
     if (code != kVerticesCode && code != kTetrahedraCode && code != kTrianglesCode)
-      counts.dropped.push_back(fmt::format("keyword {}", code));
+      counts.dropped.push_back(io::meshb::keyword_name(code).empty() ? fmt::format("keyword {}", code)
+                                                                     : std::string(io::meshb::keyword_name(code)));
   if (!metric_path.empty()) {
     const BinaryFile mf(metric_path);
     const Layout ml = scan(mf, metric_path);
