@@ -1,3 +1,4 @@
+
 #include <metrica/distributed/adapt_part.hpp>
 #include <metrica/distributed/pinches.hpp>
 #include <metrica/error.hpp>
@@ -49,19 +50,6 @@ QualityTally tally(const Mesh& mesh, std::string_view space, std::vector<std::ui
   return q;
 }
 
-// The faces of the active tets, sorted, each once per tet.
-std::vector<FaceKey> active_faces(const Part& part, const std::vector<bool>& active) {
-  std::vector<FaceKey> faces;
-  for (std::size_t t = 0; t < part.tets.size(); ++t) {
-    if (!active[t]) continue;
-    const auto& v = part.tets[t];
-    for (const auto& f : kTetFaces)
-      faces.push_back(face_key(v[std::size_t(f[0])], v[std::size_t(f[1])], v[std::size_t(f[2])]));
-  }
-  std::sort(faces.begin(), faces.end());
-  return faces;
-}
-
 bool holds(const std::vector<FaceKey>& sorted, const FaceKey& k) {
   return std::binary_search(sorted.begin(), sorted.end(), k);
 }
@@ -75,22 +63,36 @@ struct ActiveBounds {
 
 ActiveBounds active_bounds(const Part& part, const std::vector<bool>& active) {
   ActiveBounds b;
-  const auto faces = active_faces(part, active);
+  // Every face asked about below has its three vertices on a kept tet, a
+  // shared face or a triangle: the active tets' faces among those, sorted
+  // (a band along the active region's boundary, not all its faces).
+  const VertexIndex index(part.vertex_ids);
+  const auto local = [&](GlobalId g) { return std::size_t(index.find(g)); };
+  std::vector<bool> special(part.vertex_ids.size(), false), on_active(part.vertex_ids.size(), false);
+  for (std::size_t t = 0; t < part.tets.size(); ++t)
+    for (GlobalId g : part.tets[t]) (active[t] ? on_active : special)[local(g)] = true;
+  for (const auto& k : part.shared_faces)
+    for (GlobalId g : k) special[local(g)] = true;
+  for (const auto& k : part.triangles)
+    for (GlobalId g : k) special[local(g)] = true;
+  std::vector<FaceKey> faces;
+  for (std::size_t t = 0; t < part.tets.size(); ++t) {
+    if (!active[t]) continue;
+    const auto& v = part.tets[t];
+    for (const auto& f : kTetFaces) {
+      const GlobalId a = v[std::size_t(f[0])], c = v[std::size_t(f[1])], d = v[std::size_t(f[2])];
+      if (special[local(a)] && special[local(c)] && special[local(d)]) faces.push_back(face_key(a, c, d));
+    }
+  }
+  std::sort(faces.begin(), faces.end());
   // A face of a kept tet with its three vertices on active tets may be
   // one of theirs.
-  const VertexIndex index(part.vertex_ids);
-  std::vector<bool> on_active(part.vertex_ids.size(), false);
-  for (std::size_t t = 0; t < part.tets.size(); ++t)
-    if (active[t])
-      for (GlobalId g : part.tets[t]) on_active[std::size_t(index.find(g))] = true;
   for (std::size_t t = 0; t < part.tets.size(); ++t) {
     if (active[t]) continue;
     const auto& v = part.tets[t];
     for (const auto& f : kTetFaces) {
       const GlobalId a = v[std::size_t(f[0])], c = v[std::size_t(f[1])], d = v[std::size_t(f[2])];
-      if (!on_active[std::size_t(index.find(a))] || !on_active[std::size_t(index.find(c))] ||
-          !on_active[std::size_t(index.find(d))])
-        continue;
+      if (!on_active[local(a)] || !on_active[local(c)] || !on_active[local(d)]) continue;
       const auto key = face_key(a, c, d);
       if (holds(faces, key)) b.frozen.push_back(key);
     }
