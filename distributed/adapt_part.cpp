@@ -269,15 +269,9 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   // The tets kept out, the vertices only they hold and their triangles
   // stay in the part (compacted in place), the adapted ones join them.
   {
-    std::size_t k = 0;
-    for (std::size_t t = 0; t < part.tets.size(); ++t) {
-      if (active[t]) continue;
-      part.tets[k] = part.tets[t];
-      part.tet_refs[k] = part.tet_refs[t];
-      ++k;
-    }
-    part.tets.resize(k);
-    part.tet_refs.resize(k);
+    std::vector<bool> kept(part.tets.size());
+    for (std::size_t t = 0; t < kept.size(); ++t) kept[t] = !active[t];
+    keep_tets(part, kept);
     part.focus.clear();
     const VertexIndex index(part.vertex_ids);
     const VertexIndex have(adapted.vertex_ids);
@@ -285,26 +279,10 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     for (const auto& t : part.tets)
       for (GlobalId g : t)
         if (have.find(g) < 0) used[std::size_t(index.find(g))] = true;
-    std::size_t w = 0;
-    for (std::size_t v = 0; v < used.size(); ++v) {
-      if (!used[v]) continue;
-      part.vertex_ids[w] = part.vertex_ids[v];
-      part.points[w] = part.points[v];
-      if (!part.metrics.empty()) part.metrics[w] = part.metrics[v];
-      ++w;
-    }
-    part.vertex_ids.resize(w);
-    part.points.resize(w);
-    if (!part.metrics.empty()) part.metrics.resize(w);
-    std::size_t f = 0;
-    for (std::size_t i = 0; i < part.triangles.size(); ++i) {
-      if (bounds.triangle_active[i]) continue;
-      part.triangles[f] = part.triangles[i];
-      part.triangle_refs[f] = part.triangle_refs[i];
-      ++f;
-    }
-    part.triangles.resize(f);
-    part.triangle_refs.resize(f);
+    keep_vertices(part, used);
+    std::vector<bool> untouched(part.triangles.size());
+    for (std::size_t i = 0; i < untouched.size(); ++i) untouched[i] = !bounds.triangle_active[i];
+    keep_triangles(part, untouched);
   }
   const auto append = [](auto& to, auto& from) {
     to.reserve(to.size() + from.size());  // once, to the size (a doubling would hold both copies)

@@ -236,41 +236,16 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
   const bool focus = comm.max(std::int64_t(part.focus.empty() ? 0 : 1)) > 0;
   // What stays, compacted in place: the tets, the vertices they use, the triangles.
   {
-    std::size_t k = 0;
-    for (std::size_t t = 0; t < part.tets.size(); ++t) {
-      if (dest[t] != me) continue;
-      part.tets[k] = part.tets[t];
-      part.tet_refs[k] = part.tet_refs[t];
-      if (!part.focus.empty()) part.focus[k] = part.focus[t];
-      ++k;
-    }
-    part.tets.resize(k);
-    part.tet_refs.resize(k);
-    if (focus) part.focus.resize(k, 0);
+    std::vector<bool> stays(part.tets.size());
+    for (std::size_t t = 0; t < stays.size(); ++t) stays[t] = dest[t] == me;
+    keep_tets(part, stays);
+    if (focus) part.focus.resize(part.tets.size(), 0);
     const VertexIndex index(part.vertex_ids);
     std::vector<bool> used(part.vertex_ids.size(), false);
     for (const auto& t : part.tets)
       for (GlobalId g : t) used[std::size_t(index.find(g))] = true;
-    std::size_t w = 0;
-    for (std::size_t v = 0; v < used.size(); ++v) {
-      if (!used[v]) continue;
-      part.vertex_ids[w] = part.vertex_ids[v];
-      part.points[w] = part.points[v];
-      if (!part.metrics.empty()) part.metrics[w] = part.metrics[v];
-      ++w;
-    }
-    part.vertex_ids.resize(w);
-    part.points.resize(w);
-    if (!part.metrics.empty()) part.metrics.resize(w);
-    std::size_t f = 0;
-    for (std::size_t i = 0; i < part.triangles.size(); ++i) {
-      if (!triangle_stays[i]) continue;
-      part.triangles[f] = part.triangles[i];
-      part.triangle_refs[f] = part.triangle_refs[i];
-      ++f;
-    }
-    part.triangles.resize(f);
-    part.triangle_refs.resize(f);
+    keep_vertices(part, used);
+    keep_triangles(part, triangle_stays);
   }
 
   auto tets_in = comm.exchange(tets_out);

@@ -79,6 +79,33 @@ struct Part {
   bool faces_known = false;
 };
 
+// The entries i of v with keep[i], in order, in place (an empty v stays
+// empty: a part without metrics or focus).
+template <class T>
+void keep_only(std::vector<T>& v, const std::vector<bool>& keep) {
+  if (v.empty()) return;
+  std::size_t w = 0;
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    if (keep[i]) v[w++] = v[i];
+  v.resize(w);
+}
+// The part's tets (with refs and focus), vertices (with points and
+// metrics) or triangles (with refs) flagged in `keep`, in place.
+inline void keep_tets(Part& part, const std::vector<bool>& keep) {
+  keep_only(part.tets, keep);
+  keep_only(part.tet_refs, keep);
+  keep_only(part.focus, keep);
+}
+inline void keep_vertices(Part& part, const std::vector<bool>& keep) {
+  keep_only(part.vertex_ids, keep);
+  keep_only(part.points, keep);
+  keep_only(part.metrics, keep);
+}
+inline void keep_triangles(Part& part, const std::vector<bool>& keep) {
+  keep_only(part.triangles, keep);
+  keep_only(part.triangle_refs, keep);
+}
+
 // The local index of each global id of `part` (a sorted lookup).
 class VertexIndex {
  public:
