@@ -55,6 +55,22 @@ if [ "$only" = all ] || [ "$only" = adapt ]; then
   "$metrica" check "$dir/m3.meshb" -q || fail "a metric file on 3 ranks: invalid output"
 fi
 
+# Past 50k tets per rank the cut works on clusters of tets, smoothed:
+# from the 2 ranks' output above (about 50k tets: cut in 2 from the first
+# round) to some 400k tets, valid, in range, balanced.
+if [ "$only" = all ] || [ "$only" = adapt ]; then
+  "$metrica" metric "$dir/a2.meshb" --analytic linear --complexity 40000 -o "$dir/big.solb" -q
+  run 2 adapt "$dir/a2.meshb" -m "$dir/big.solb" --threads 1 -o "$dir/big.meshb" >"$dir/big.txt" 2>&1 ||
+    { cat "$dir/big.txt"; fail "400k tets on 2 ranks failed"; }
+  "$metrica" check "$dir/big.meshb" -q || fail "400k tets on 2 ranks: invalid output"
+  tets=$(sed -n 's/^wrote .* \([0-9]*\) tets (libMeshb.*/\1/p' "$dir/big.txt")
+  share=$(sed -n 's/.*edges in \[1\/sqrt2, sqrt2\] *\([0-9.]*\)%.*/\1/p' "$dir/big.txt")
+  balance=$(sed -n 's/.*the most \([0-9.]*\) x the mean.*/\1/p' "$dir/big.txt")
+  grep -q "round 2: .* (2 parts," "$dir/big.txt" || { cat "$dir/big.txt"; fail "400k tets on 2 ranks: no second round on 2 parts"; }
+  awk -v t="$tets" -v s="$share" -v b="$balance" 'BEGIN { exit !(t > 200000 && s >= 95 && b <= 1.10) }' ||
+    { cat "$dir/big.txt"; fail "400k tets on 2 ranks: $tets tets, $share% in range, balance $balance"; }
+fi
+
 # The same output to the bit for a given N (serial concurrency).
 if [ "$only" = all ] || [ "$only" = repeat ]; then
   run 2 adapt "$dir/cube.meshb" --analytic polar-1 -o "$dir/r1.meshb" --concurrency serial -q
