@@ -1,4 +1,3 @@
-
 #include <metrica/distributed/adapt_part.hpp>
 #include <metrica/distributed/pinches.hpp>
 #include <metrica/error.hpp>
