@@ -1,3 +1,4 @@
+#include <metrica/allocator.hpp>
 #include <metrica/distributed/adapt_part.hpp>
 #include <metrica/distributed/pinches.hpp>
 #include <metrica/error.hpp>
@@ -194,6 +195,10 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     AdaptInputs inputs;
     inputs.metric = settings.exact;
     adapt_by_name(mesh, settings.options, settings.policies, inputs);
+    // The passes' freed blocks back to the kernel before the file content
+    // is made beside the mesh: kept, they set a rank's peak (4.3M tets on
+    // 2 ranks: 277 MiB, 270 without).
+    release_freed_memory();
     // Valid, with the volume checked over all parts by the caller.
     require_adapted(mesh, nullptr, result.volume_before, 1e300);
     result.volume_after = mesh.volume();

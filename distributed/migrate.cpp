@@ -9,8 +9,10 @@ namespace metrica::distributed {
 
 namespace {
 
+// A tet whose vertices are numbered in the list of vertices its sender
+// sent the same rank (24 bytes, not 40 with global ids).
 struct TetRecord {
-  std::array<GlobalId, 4> v;
+  std::array<std::uint32_t, 4> v;
   std::int32_t ref;
   std::int32_t focus;  // -1: no focus (all tets adapted)
 };
@@ -49,21 +51,44 @@ void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int
   for (std::size_t t = 0; t < part.tets.size(); ++t)
     if (dest[t] != stay) by_rank[std::size_t(dest[t])].push_back(std::uint32_t(t));
   std::vector<int> sent_to(part.vertex_ids.size(), -1);
+  std::vector<std::uint32_t> slot(part.vertex_ids.size());  // in verts_out[q], once sent to q
   for (std::size_t q = 0; q < n; ++q)
     for (auto t : by_rank[q]) {
-      tets_out[q].push_back({part.tets[t], part.tet_refs[t], part.focus.empty() ? -1 : int(part.focus[t])});
-      for (GlobalId g : part.tets[t]) {
+      TetRecord r{{}, part.tet_refs[t], part.focus.empty() ? -1 : int(part.focus[t])};
+      for (int c = 0; c < 4; ++c) {
+        const GlobalId g = part.tets[t][std::size_t(c)];
         const auto v = std::size_t(index.find(g));
-        if (sent_to[v] == int(q)) continue;
-        sent_to[v] = int(q);
-        verts_out[q].push_back({g, coords(part.points[v]), part.metrics.empty() ? Sym6{} : part.metrics[v]});
+        if (sent_to[v] != int(q)) {
+          sent_to[v] = int(q);
+          slot[v] = std::uint32_t(verts_out[q].size());
+          verts_out[q].push_back({g, coords(part.points[v]), part.metrics.empty() ? Sym6{} : part.metrics[v]});
+        }
+        r.v[std::size_t(c)] = slot[v];
       }
+      tets_out[q].push_back(r);
     }
+}
+
+// f(record, its vertices' global ids) for each tet received, in order:
+// a record names its vertices in the list the same rank sent.
+template <class F>
+void for_each_received(const std::vector<TetRecord>& tets_in, const std::vector<std::int64_t>& tets_from,
+                       const std::vector<VertexRecord>& verts_in, const std::vector<std::int64_t>& verts_from, F&& f) {
+  std::size_t t = 0, base = 0;
+  for (std::size_t s = 0; s < tets_from.size(); ++s) {
+    for (std::int64_t i = 0; i < tets_from[s]; ++i, ++t) {
+      const auto& r = tets_in[t];
+      f(r, std::array<GlobalId, 4>{verts_in[base + r.v[0]].id, verts_in[base + r.v[1]].id, verts_in[base + r.v[2]].id,
+                                   verts_in[base + r.v[3]].id});
+    }
+    base += std::size_t(verts_from[s]);
+  }
 }
 
 // The received vertices (once each: several ranks may send the same), tets and focus.
 void unpack_tets(const Comm& comm, const Part& part, const std::vector<VertexRecord>& verts_in,
-                 const std::vector<TetRecord>& tets_in, Part& out) {
+                 const std::vector<std::int64_t>& verts_from, const std::vector<TetRecord>& tets_in,
+                 const std::vector<std::int64_t>& tets_from, Part& out) {
   std::vector<std::uint32_t> order(verts_in.size());
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return verts_in[a].id < verts_in[b].id; });
@@ -77,9 +102,13 @@ void unpack_tets(const Comm& comm, const Part& part, const std::vector<VertexRec
     out.points.push_back(point(r.p));
     if (metric) out.metrics.push_back(r.m);
   }
-  for (const auto& t : tets_in) out.tets.push_back(t.v), out.tet_refs.push_back(t.ref);
-  if (comm.max(std::int64_t(part.focus.empty() ? 0 : 1)) > 0)
-    for (const auto& t : tets_in) out.focus.push_back(t.focus > 0 ? 1 : 0);
+  const bool focus = comm.max(std::int64_t(part.focus.empty() ? 0 : 1)) > 0;
+  for_each_received(tets_in, tets_from, verts_in, verts_from,
+                    [&](const TetRecord& r, const std::array<GlobalId, 4>& v) {
+                      out.tets.push_back(v);
+                      out.tet_refs.push_back(r.ref);
+                      if (focus) out.focus.push_back(r.focus > 0 ? 1 : 0);
+                    });
 }
 
 // A part as read (triangles anywhere, faces between ranks unknown): every
@@ -102,9 +131,10 @@ Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex
         {key, turned_over(part.triangles[i]) ? 3 : 1, part.triangle_refs[i]});
   }
 
-  auto tets_in = comm.exchange(tets_out);
+  std::vector<std::int64_t> tets_from, verts_from;
+  auto tets_in = comm.exchange(tets_out, &tets_from);
   tets_out = {};
-  auto verts_in = comm.exchange(verts_out);
+  auto verts_in = comm.exchange(verts_out, &verts_from);
   verts_out = {};
   auto faces_in = comm.exchange(faces_out);
   faces_out = {};
@@ -147,7 +177,7 @@ Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex
   replies = {};
 
   Part out;
-  unpack_tets(comm, part, verts_in, tets_in, out);
+  unpack_tets(comm, part, verts_in, verts_from, tets_in, tets_from, out);
   std::sort(got.begin(), got.end(),
             [](const FaceReply& a, const FaceReply& b) { return a.key != b.key ? a.key < b.key : a.kind < b.kind; });
   for (const auto& r : got) {
@@ -248,9 +278,10 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
     keep_triangles(part, triangle_stays);
   }
 
-  auto tets_in = comm.exchange(tets_out);
+  std::vector<std::int64_t> tets_from, verts_from;
+  auto tets_in = comm.exchange(tets_out, &tets_from);
   tets_out = {};
-  auto verts_in = comm.exchange(verts_out);
+  auto verts_in = comm.exchange(verts_out, &verts_from);
   verts_out = {};
   auto tris_in = comm.exchange(tris_out);
   tris_out = {};
@@ -266,6 +297,13 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
   part.tets.reserve(part.tets.size() + tets_in.size());
   part.tet_refs.reserve(part.tet_refs.size() + tets_in.size());
   if (focus) part.focus.reserve(part.focus.size() + tets_in.size());
+  for_each_received(tets_in, tets_from, verts_in, verts_from,
+                    [&](const TetRecord& r, const std::array<GlobalId, 4>& v) {
+                      part.tets.push_back(v);
+                      part.tet_refs.push_back(r.ref);
+                      if (focus) part.focus.push_back(r.focus > 0 ? 1 : 0);
+                    });
+  tets_in = {};
   {
     const VertexIndex held(part.vertex_ids);
     std::sort(verts_in.begin(), verts_in.end(),
@@ -279,12 +317,6 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
     }
   }
   verts_in = {};
-  for (const auto& t : tets_in) {
-    part.tets.push_back(t.v);
-    part.tet_refs.push_back(t.ref);
-    if (focus) part.focus.push_back(t.focus > 0 ? 1 : 0);
-  }
-  tets_in = {};
   std::sort(shared.begin(), shared.end());
   part.shared_faces.clear();
   part.shared_with.clear();

@@ -33,65 +33,60 @@ struct ValueAcross {
 }  // namespace
 
 TetsAround::TetsAround(const Part& part, const VertexIndex& index) : first(part.vertex_ids.size() + 1, 0) {
-  for (const auto& t : part.tets)
-    for (GlobalId g : t) ++first[std::size_t(index.find(g)) + 1];
+  // The tets in local numbers while the rows are made (freed on return).
+  std::vector<std::array<std::uint32_t, 4>> local(part.tets.size());
+  for (std::size_t t = 0; t < part.tets.size(); ++t)
+    for (int c = 0; c < 4; ++c) {
+      local[t][std::size_t(c)] = std::uint32_t(index.find(part.tets[t][std::size_t(c)]));
+      ++first[local[t][std::size_t(c)] + 1];
+    }
   for (std::size_t v = 0; v + 1 < first.size(); ++v) first[v + 1] += first[v];
   around.resize(first.back());
   auto fill = first;
-  for (std::size_t t = 0; t < part.tets.size(); ++t)
-    for (GlobalId g : part.tets[t]) around[fill[std::size_t(index.find(g))]++] = std::uint32_t(t);
+  for (std::size_t t = 0; t < local.size(); ++t)
+    for (auto v : local[t]) around[fill[v]++] = std::uint32_t(t);
 }
 
 LocalNeighbours local_neighbours(const Part& part, const VertexIndex& index) {
   LocalNeighbours nb;
   const std::size_t nt = part.tets.size();
+  // The tets around each vertex; the part's own global ids are compared
+  // below (a copy of the tets in local numbers beside the rows and the
+  // result would cost 16 bytes a tet at the rounds' peak).
+  const TetsAround rows(part, index);
+  const auto& first = rows.first;
+  const auto& around = rows.around;
+  const auto local = [&](GlobalId g) { return std::uint32_t(index.find(g)); };
   nb.across.assign(nt, {-1, -1, -1, -1});
-  // The tets in local vertex numbers, and those around each vertex.
-  std::vector<std::array<std::uint32_t, 4>> tets(nt);
-  std::vector<std::uint32_t> first(part.vertex_ids.size() + 1, 0);
-  for (std::size_t t = 0; t < nt; ++t)
-    for (int c = 0; c < 4; ++c) {
-      const auto v = std::uint32_t(index.find(part.tets[t][std::size_t(c)]));
-      tets[t][std::size_t(c)] = v;
-      ++first[v + 1];
-    }
-  for (std::size_t v = 0; v + 1 < first.size(); ++v) first[v + 1] += first[v];
-  std::vector<std::uint32_t> around(first.back());
-  {
-    auto fill = first;
-    for (std::size_t t = 0; t < nt; ++t)
-      for (auto v : tets[t]) around[fill[v]++] = std::uint32_t(t);
-  }
   for (std::size_t t = 0; t < nt; ++t) {
-    const auto& v = tets[t];
+    const auto& v = part.tets[t];
+    if (nb.across[t][0] >= 0 && nb.across[t][1] >= 0 && nb.across[t][2] >= 0 && nb.across[t][3] >= 0) continue;
+    const std::uint32_t lv[4] = {local(v[0]), local(v[1]), local(v[2]), local(v[3])};
     for (int f = 0; f < 4; ++f) {
       if (nb.across[t][std::size_t(f)] >= 0) continue;
       const auto& c = kTetFaces[f];
-      const std::uint32_t a = v[std::size_t(c[0])], b = v[std::size_t(c[1])], d = v[std::size_t(c[2])];
+      const GlobalId a = v[std::size_t(c[0])], b = v[std::size_t(c[1])], d = v[std::size_t(c[2])];
       // The other tets holding the face: among those around its vertex
       // with the fewest.
-      std::uint32_t pick = a;
-      for (auto e : {b, d})
-        if (first[e + 1] - first[e] < first[pick + 1] - first[pick]) pick = e;
+      std::uint32_t pick = lv[c[0]];
+      for (int e : {c[1], c[2]})
+        if (first[lv[e] + 1] - first[lv[e]] < first[pick + 1] - first[pick]) pick = lv[e];
       int found = 0;
       std::uint32_t other = 0;
       for (auto i = first[pick]; i < first[pick + 1]; ++i) {
         const auto u = around[i];
         if (u == t) continue;
-        const auto& w = tets[u];
-        const auto has = [&](std::uint32_t x) { return w[0] == x || w[1] == x || w[2] == x || w[3] == x; };
+        const auto& w = part.tets[u];
+        const auto has = [&](GlobalId x) { return w[0] == x || w[1] == x || w[2] == x || w[3] == x; };
         if (has(a) && has(b) && has(d)) ++found, other = u;
       }
-      if (found > 1) {
-        const auto& g = part.tets[t];
-        too_many(face_key(g[std::size_t(c[0])], g[std::size_t(c[1])], g[std::size_t(c[2])]), std::size_t(found) + 1);
-      }
+      if (found > 1) too_many(face_key(a, b, d), std::size_t(found) + 1);
       if (found == 0) {
         nb.open.push_back({std::uint32_t(t), std::int32_t(f)});
         continue;
       }
       nb.across[t][std::size_t(f)] = std::int32_t(other);
-      const auto& w = tets[other];
+      const auto& w = part.tets[other];
       for (int e = 0; e < 4; ++e)  // the face of `other` without its vertex off the face
         if (w[std::size_t(e)] != a && w[std::size_t(e)] != b && w[std::size_t(e)] != d)
           nb.across[other][std::size_t(e)] = std::int32_t(t);
