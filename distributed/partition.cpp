@@ -22,8 +22,8 @@ constexpr std::int64_t kTetsPerNode = 50'000, kMaxClusterSize = 32;
 // another part (a cluster's tip, a lone small cluster) go there, in
 // kSmoothingPasses passes that each decide from the last one's parts.
 // A ragged cut touches itself at vertices and edges, whose tets the next
-// round keeps out (pinches.hpp): 4.3M tets on 4 ranks kept 18.7k and
-// 39.6k tets out in rounds 2 and 3 before.
+// round keeps out (pinches.hpp; 4.3M tets on 4 ranks, rounds 2 and 3:
+// 18.7k and 39.6k tets kept out unsmoothed, 1.9k and 4.6k smoothed).
 constexpr int kSmoothingPasses = 2;
 void smooth_cut(const Comm& comm, const TetNeighbours& nb, std::vector<int>& dest) {
   for (int pass = 0; pass < kSmoothingPasses; ++pass) {
