@@ -1,6 +1,7 @@
-// The cut of a distributed mesh into parts: the dual graph (a node per
-// tet, an edge per inner face, from neighbours.hpp) cut by PT-Scotch
-// (SCOTCH_dgraphPart).
+// The cut of a distributed mesh into parts: the dual graph (an edge per
+// inner face, from neighbours.hpp; a node per tet, or per cluster of up
+// to 32 face-neighbours past 50k tets per rank) cut by PT-Scotch
+// (SCOTCH_dgraphPart), then smoothed.
 #pragma once
 
 #include <metrica/distributed/comm.hpp>
@@ -22,9 +23,11 @@ struct PartitionWeights {
   std::int32_t heavy = 100;
 };
 
-// The rank each local tet goes to: `parts` parts (1 .. the ranks), on
-// ranks 0 .. parts - 1; the others wait this round. Throws (on every
-// rank) when a face has more than two tets.
+// The rank each local tet goes to: `parts` parts (1 .. the ranks). Fewer
+// parts than ranks go to ranks 0 .. parts - 1 and the others wait this
+// round; as many parts as ranks go each to the rank holding most of its
+// tets already. Throws (on every rank) when the graph exceeds
+// PT-Scotch's integers.
 std::vector<int> partition(const Comm& comm, const Part& part, const TetNeighbours& nb, const PartitionWeights& weights,
                            int parts);
 
