@@ -110,11 +110,15 @@ std::vector<GlobalId> unfinished_on_both_sides(const Comm& comm, const Part& par
   return mine;
 }
 
-// Cuts the mesh into `parts` and moves the tets there.
-void move_to_parts(const Comm& comm, Part& part, const PartitionWeights& weights, int parts) {
+// Cuts the mesh into `parts` and moves the tets there; the seconds the
+// cut took.
+double move_to_parts(const Comm& comm, Part& part, const PartitionWeights& weights, int parts) {
+  Stopwatch clock;
   TetNeighbours nb = neighbours(comm, part, VertexIndex(part.vertex_ids));
   const auto dest = partition(comm, part, nb, weights, parts);
+  const double cut_seconds = clock.seconds();
   part = migrate(comm, std::move(part), std::move(nb), dest);
+  return cut_seconds;
 }
 
 struct Spread {
@@ -189,13 +193,7 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       // across a sharp layer (polar-1: parts 2x apart).
       if (predicted > 0.5 * now && predicted < 2.0 * now) weights.tets.assign(part.tets.size(), 1);
       Stopwatch step_clock;
-      double cut_seconds = 0;
-      {
-        TetNeighbours nb = neighbours(comm, part, VertexIndex(part.vertex_ids));
-        const auto dest = partition(comm, part, nb, weights, parts);
-        cut_seconds = step_clock.seconds();
-        part = migrate(comm, std::move(part), std::move(nb), dest);
-      }
+      const double cut_seconds = move_to_parts(comm, part, weights, parts);
       const double move_seconds = step_clock.seconds() - cut_seconds;
       const auto result = adapt_part(comm, part, settings, next_id);
       const double adapt_seconds = step_clock.seconds() - cut_seconds - move_seconds;

@@ -42,10 +42,32 @@ struct TriangleRecord {
   std::int32_t ref, pad = 0;
 };
 
+// Tets with their vertices on their way: per destination rank, then as
+// received (with how many came from each rank).
+struct Outgoing {
+  std::vector<std::vector<TetRecord>> tets;
+  std::vector<std::vector<VertexRecord>> verts;
+  explicit Outgoing(std::size_t ranks) : tets(ranks), verts(ranks) {}
+};
+struct Arrived {
+  std::vector<TetRecord> tets;
+  std::vector<VertexRecord> verts;
+  std::vector<std::int64_t> tets_from, verts_from;
+};
+Arrived deliver(const Comm& comm, Outgoing& out) {
+  Arrived in;
+  in.tets = comm.exchange(out.tets, &in.tets_from);
+  out.tets = {};
+  in.verts = comm.exchange(out.verts, &in.verts_from);
+  out.verts = {};
+  return in;
+}
+
 // The tets leaving for other ranks (all but those for rank `stay`), each
 // rank's vertices sent once with them.
-void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int>& dest, int stay,
-               std::vector<std::vector<TetRecord>>& tets_out, std::vector<std::vector<VertexRecord>>& verts_out) {
+void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int>& dest, int stay, Outgoing& out) {
+  auto& tets_out = out.tets;
+  auto& verts_out = out.verts;
   const auto n = tets_out.size();
   std::vector<std::vector<std::uint32_t>> by_rank(n);
   for (std::size_t t = 0; t < part.tets.size(); ++t)
@@ -72,23 +94,21 @@ void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int
 // f(record, its vertices' global ids) for each tet received, in order:
 // a record names its vertices in the list the same rank sent.
 template <class F>
-void for_each_received(const std::vector<TetRecord>& tets_in, const std::vector<std::int64_t>& tets_from,
-                       const std::vector<VertexRecord>& verts_in, const std::vector<std::int64_t>& verts_from, F&& f) {
+void for_each_received(const Arrived& in, F&& f) {
   std::size_t t = 0, base = 0;
-  for (std::size_t s = 0; s < tets_from.size(); ++s) {
-    for (std::int64_t i = 0; i < tets_from[s]; ++i, ++t) {
-      const auto& r = tets_in[t];
-      f(r, std::array<GlobalId, 4>{verts_in[base + r.v[0]].id, verts_in[base + r.v[1]].id, verts_in[base + r.v[2]].id,
-                                   verts_in[base + r.v[3]].id});
+  for (std::size_t s = 0; s < in.tets_from.size(); ++s) {
+    for (std::int64_t i = 0; i < in.tets_from[s]; ++i, ++t) {
+      const auto& r = in.tets[t];
+      f(r, std::array<GlobalId, 4>{in.verts[base + r.v[0]].id, in.verts[base + r.v[1]].id, in.verts[base + r.v[2]].id,
+                                   in.verts[base + r.v[3]].id});
     }
-    base += std::size_t(verts_from[s]);
+    base += std::size_t(in.verts_from[s]);
   }
 }
 
 // The received vertices (once each: several ranks may send the same), tets and focus.
-void unpack_tets(const Comm& comm, const Part& part, const std::vector<VertexRecord>& verts_in,
-                 const std::vector<std::int64_t>& verts_from, const std::vector<TetRecord>& tets_in,
-                 const std::vector<std::int64_t>& tets_from, Part& out) {
+void unpack_tets(const Comm& comm, const Part& part, const Arrived& in, Part& out) {
+  const auto& verts_in = in.verts;
   std::vector<std::uint32_t> order(verts_in.size());
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return verts_in[a].id < verts_in[b].id; });
@@ -103,21 +123,19 @@ void unpack_tets(const Comm& comm, const Part& part, const std::vector<VertexRec
     if (metric) out.metrics.push_back(r.m);
   }
   const bool focus = comm.max(std::int64_t(part.focus.empty() ? 0 : 1)) > 0;
-  for_each_received(tets_in, tets_from, verts_in, verts_from,
-                    [&](const TetRecord& r, const std::array<GlobalId, 4>& v) {
-                      out.tets.push_back(v);
-                      out.tet_refs.push_back(r.ref);
-                      if (focus) out.focus.push_back(r.focus > 0 ? 1 : 0);
-                    });
+  for_each_received(in, [&](const TetRecord& r, const std::array<GlobalId, 4>& v) {
+    out.tets.push_back(v);
+    out.tet_refs.push_back(r.ref);
+    if (focus) out.focus.push_back(r.focus > 0 ? 1 : 0);
+  });
 }
 
 // A part as read (triangles anywhere, faces between ranks unknown): every
 // face meets its tets and triangles at the rank its key hashes to.
 Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex& index, const std::vector<int>& dest) {
   const auto n = std::size_t(comm.size());
-  std::vector<std::vector<TetRecord>> tets_out(n);
-  std::vector<std::vector<VertexRecord>> verts_out(n);
-  pack_tets(part, index, dest, -1, tets_out, verts_out);
+  Outgoing travelling(n);
+  pack_tets(part, index, dest, -1, travelling);
   std::vector<std::vector<FaceRecord>> faces_out(n);
   for (std::size_t t = 0; t < part.tets.size(); ++t)
     for (const auto& f : kTetFaces) {
@@ -131,11 +149,7 @@ Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex
         {key, turned_over(part.triangles[i]) ? 3 : 1, part.triangle_refs[i]});
   }
 
-  std::vector<std::int64_t> tets_from, verts_from;
-  auto tets_in = comm.exchange(tets_out, &tets_from);
-  tets_out = {};
-  auto verts_in = comm.exchange(verts_out, &verts_from);
-  verts_out = {};
+  const Arrived in = deliver(comm, travelling);
   auto faces_in = comm.exchange(faces_out);
   faces_out = {};
 
@@ -177,7 +191,7 @@ Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex
   replies = {};
 
   Part out;
-  unpack_tets(comm, part, verts_in, verts_from, tets_in, tets_from, out);
+  unpack_tets(comm, part, in, out);
   std::sort(got.begin(), got.end(),
             [](const FaceReply& a, const FaceReply& b) { return a.key != b.key ? a.key < b.key : a.kind < b.kind; });
   for (const auto& r : got) {
@@ -194,8 +208,7 @@ Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex
 Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<int>& dest) {
   const int me = comm.rank();
   const auto n = std::size_t(comm.size());
-  std::vector<std::vector<TetRecord>> tets_out(n);
-  std::vector<std::vector<VertexRecord>> verts_out(n);
+  Outgoing travelling(n);
   std::vector<std::vector<TriangleRecord>> tris_out(n);
   std::vector<std::vector<SharedRecord>> shared_out(n);
   std::vector<std::pair<FaceKey, std::int32_t>> shared;  // the faces between ranks of the tets that stay
@@ -220,7 +233,7 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
       }
       return a;
     };
-    pack_tets(part, index, dest, me, tets_out, verts_out);
+    pack_tets(part, index, dest, me, travelling);
     for (std::size_t t = 0; t < part.tets.size(); ++t) {
       const auto a = across(t);
       const auto& v = part.tets[t];
@@ -278,11 +291,7 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
     keep_triangles(part, triangle_stays);
   }
 
-  std::vector<std::int64_t> tets_from, verts_from;
-  auto tets_in = comm.exchange(tets_out, &tets_from);
-  tets_out = {};
-  auto verts_in = comm.exchange(verts_out, &verts_from);
-  verts_out = {};
+  Arrived in = deliver(comm, travelling);
   auto tris_in = comm.exchange(tris_out);
   tris_out = {};
   for (const auto& r : comm.exchange(shared_out)) shared.emplace_back(r.key, r.rank);
@@ -291,20 +300,20 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
   // What arrives: new vertices once each (several ranks may send the same,
   // and this part may hold it already), the tets, their shared faces. The
   // arrays grow once, to their size (a doubling would hold both copies).
-  part.vertex_ids.reserve(part.vertex_ids.size() + verts_in.size());
-  part.points.reserve(part.points.size() + verts_in.size());
-  if (metric) part.metrics.reserve(part.metrics.size() + verts_in.size());
-  part.tets.reserve(part.tets.size() + tets_in.size());
-  part.tet_refs.reserve(part.tet_refs.size() + tets_in.size());
-  if (focus) part.focus.reserve(part.focus.size() + tets_in.size());
-  for_each_received(tets_in, tets_from, verts_in, verts_from,
-                    [&](const TetRecord& r, const std::array<GlobalId, 4>& v) {
-                      part.tets.push_back(v);
-                      part.tet_refs.push_back(r.ref);
-                      if (focus) part.focus.push_back(r.focus > 0 ? 1 : 0);
-                    });
-  tets_in = {};
+  part.vertex_ids.reserve(part.vertex_ids.size() + in.verts.size());
+  part.points.reserve(part.points.size() + in.verts.size());
+  if (metric) part.metrics.reserve(part.metrics.size() + in.verts.size());
+  part.tets.reserve(part.tets.size() + in.tets.size());
+  part.tet_refs.reserve(part.tet_refs.size() + in.tets.size());
+  if (focus) part.focus.reserve(part.focus.size() + in.tets.size());
+  for_each_received(in, [&](const TetRecord& r, const std::array<GlobalId, 4>& v) {
+    part.tets.push_back(v);
+    part.tet_refs.push_back(r.ref);
+    if (focus) part.focus.push_back(r.focus > 0 ? 1 : 0);
+  });
+  in.tets = {};
   {
+    auto& verts_in = in.verts;
     const VertexIndex held(part.vertex_ids);
     std::sort(verts_in.begin(), verts_in.end(),
               [](const VertexRecord& a, const VertexRecord& b) { return a.id < b.id; });
@@ -316,7 +325,7 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
       if (metric) part.metrics.push_back(r.m);
     }
   }
-  verts_in = {};
+  in.verts = {};
   std::sort(shared.begin(), shared.end());
   part.shared_faces.clear();
   part.shared_with.clear();

@@ -18,7 +18,8 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted = {}
 
 // The tets within `layers` edge steps of the vertices `near` (sorted
 // global ids): a tet with a vertex at fewer steps. The later rounds of an
-// adaptation adapt only there, around what the round before kept.
+// adaptation adapt only there, around what the round before left
+// unfinished.
 std::vector<bool> tets_near(const Part& part, const std::vector<GlobalId>& near, int layers);
 
 }  // namespace metrica::distributed
