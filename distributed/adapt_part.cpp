@@ -61,12 +61,11 @@ struct ActiveBounds {
   std::vector<bool> triangle_active;   // per triangle of the part: a face of an active tet
 };
 
-ActiveBounds active_bounds(const Part& part, const std::vector<bool>& active) {
+ActiveBounds active_bounds(const Part& part, const VertexIndex& index, const std::vector<bool>& active) {
   ActiveBounds b;
   // Every face asked about below has its three vertices on a kept tet, a
   // shared face or a triangle: the active tets' faces among those, sorted
   // (a band along the active region's boundary, not all its faces).
-  const VertexIndex index(part.vertex_ids);
   const auto local = [&](GlobalId g) { return std::size_t(index.find(g)); };
   std::vector<bool> special(part.vertex_ids.size(), false), on_active(part.vertex_ids.size(), false);
   for (std::size_t t = 0; t < part.tets.size(); ++t)
@@ -120,6 +119,8 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   ActiveBounds bounds;
   std::vector<FaceKey> faces_kept;  // faces of the adapted mesh whose vertices were all kept
   bool changed = false;             // this rank adapted some tets
+  // The part's vertices keep their places until the adapted ones join them.
+  const VertexIndex index(part.vertex_ids);
   comm.step([&] {
     if (part.tets.empty()) return;
     Stopwatch clock;
@@ -132,11 +133,10 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
         ++result.kept_out;
         result.kept_vertices.insert(result.kept_vertices.end(), part.tets[t].begin(), part.tets[t].end());
       }
-    bounds = active_bounds(part, active);
+    bounds = active_bounds(part, index, active);
     const auto& frozen = bounds.frozen;
 
     // The adapted tets' mesh, numbered locally.
-    const VertexIndex index(part.vertex_ids);
     std::vector<std::int64_t> local(part.vertex_ids.size(), -1);
     std::vector<std::uint32_t> global_of;  // local -> part vertex
     io::MeshData data;
@@ -277,7 +277,6 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     for (std::size_t t = 0; t < kept.size(); ++t) kept[t] = !active[t];
     keep_tets(part, kept);
     part.focus.clear();
-    const VertexIndex index(part.vertex_ids);
     const VertexIndex have(adapted.vertex_ids);
     std::vector<bool> used(part.vertex_ids.size(), false);
     for (const auto& t : part.tets)
