@@ -225,11 +225,10 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
         const auto u = nb.local[t][std::size_t(f)];
         if (u >= 0 && dest[std::size_t(u)] != dest[t]) a[std::size_t(f)] = dest[std::size_t(u)];
       }
-      auto r = std::lower_bound(nb.remote.begin(), nb.remote.end(), std::uint32_t(t),
-                                [](const RemoteFace& x, std::uint32_t y) { return x.tet < y; });
-      for (; r != nb.remote.end() && r->tet == t; ++r) {
-        const auto d = remote_dest[std::size_t(r - nb.remote.begin())];
-        if (d != dest[t]) a[std::size_t(r->face)] = d;
+      const auto [lo, hi] = remote_faces(nb, std::uint32_t(t));
+      for (auto i = lo; i < hi; ++i) {
+        const auto d = remote_dest[i];
+        if (d != dest[t]) a[std::size_t(nb.remote[i].face)] = d;
       }
       return a;
     };

@@ -150,11 +150,10 @@ std::vector<std::int32_t> values_across(const Comm& comm, const TetNeighbours& n
   comm.step([&] {
     for (const auto& d : got) {
       const auto t = std::uint32_t(d.to - nb.first);
-      auto it = std::lower_bound(nb.remote.begin(), nb.remote.end(), t,
-                                 [](const RemoteFace& r, std::uint32_t x) { return r.tet < x; });
-      while (it != nb.remote.end() && it->tet == t && it->other != d.from) ++it;
-      if (it == nb.remote.end() || it->tet != t) throw std::runtime_error("a face between ranks is known on one side");
-      across[std::size_t(it - nb.remote.begin())] = d.value;
+      auto [i, last] = remote_faces(nb, t);
+      while (i < last && nb.remote[i].other != d.from) ++i;
+      if (i == last) throw std::runtime_error("a face between ranks is known on one side");
+      across[i] = d.value;
     }
   });
   return across;

@@ -33,10 +33,8 @@ void smooth_cut(const Comm& comm, const TetNeighbours& nb, std::vector<int>& des
       int part[4], faces = 0;
       for (auto u : nb.local[t])
         if (u >= 0) part[faces++] = dest[std::size_t(u)];
-      auto r = std::lower_bound(nb.remote.begin(), nb.remote.end(), std::uint32_t(t),
-                                [](const RemoteFace& x, std::uint32_t y) { return x.tet < y; });
-      for (; r != nb.remote.end() && r->tet == t && faces < 4; ++r)
-        part[faces++] = across[std::size_t(r - nb.remote.begin())];
+      const auto [lo, hi] = remote_faces(nb, std::uint32_t(t));
+      for (auto i = lo; i < hi && faces < 4; ++i) part[faces++] = across[i];
       int own = 0;
       for (int i = 0; i < faces; ++i) own += part[i] == dest[t];
       if (own > 1) continue;
@@ -122,10 +120,8 @@ std::vector<int> partition(const Comm& comm, const Part& part, const TetNeighbou
         for (auto u : nb.local[t])
           if (u >= 0 && cluster[std::size_t(u)] != std::int32_t(c))
             add(global_cluster[std::size_t(u)], heavy[t] || heavy[std::size_t(u)]);
-        auto r = std::lower_bound(nb.remote.begin(), nb.remote.end(), t,
-                                  [](const RemoteFace& x, std::uint32_t y) { return x.tet < y; });
-        for (; r != nb.remote.end() && r->tet == t; ++r) {
-          const auto i = std::size_t(r - nb.remote.begin());
+        const auto [lo, hi] = remote_faces(nb, t);
+        for (auto i = lo; i < hi; ++i) {
           add(cluster_across[i], heavy[t] || heavy_across[i]);
         }
       }

@@ -8,6 +8,7 @@
 #include <metrica/distributed/comm.hpp>
 #include <metrica/distributed/part.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <utility>
@@ -45,6 +46,15 @@ struct TetNeighbours {
   std::vector<std::array<std::int32_t, 4>> local;  // local tet across each face; -1: none here
   std::vector<RemoteFace> remote;                  // sorted by (tet, face)
 };
+
+// The places in nb.remote of local tet t's faces between ranks: [first, last).
+inline std::pair<std::size_t, std::size_t> remote_faces(const TetNeighbours& nb, std::uint32_t t) {
+  const auto below = [](const RemoteFace& r, std::uint32_t x) { return r.tet < x; };
+  const auto from = std::lower_bound(nb.remote.begin(), nb.remote.end(), t, below);
+  auto to = from;
+  while (to != nb.remote.end() && to->tet == t) ++to;
+  return {std::size_t(from - nb.remote.begin()), std::size_t(to - nb.remote.begin())};
+}
 
 // Every rank calls it. Throws (on every rank) when a face has more than
 // two tets.
