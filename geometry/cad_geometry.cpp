@@ -4,6 +4,7 @@
 #include <boost/container/small_vector.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 namespace metrica {
 namespace {
@@ -82,43 +83,57 @@ GeoParam CadGeometry::boundary_vertex(const Mesh& mesh, std::span<const VertexId
     }
     return best;
   }
-  // On the surface: each parent's (u, v) there, the first parent that lies
-  // on the surface itself as the reference for the period shift.
+  // On the surface: each parent's (u, v) there. At a degenerate point (a
+  // cone's apex, a sphere's pole: d/du vanishes) u is free and takes the
+  // mean of the other parents'; such a point may be a model vertex or a
+  // surface vertex at the border of the parameter range. The reference for
+  // the period shift is the first parent on the surface itself that is not
+  // degenerate (a pole's u says nothing of where the others are).
   const int s = surface;
   if (!model->has(2, s)) return {};
-  boost::container::small_vector<std::array<double, 2>, 4> uv(parents.size());
-  std::size_t ref = 0;
-  for (std::size_t i = 0; i < parents.size(); ++i)
-    if (mesh.geo_param(parents[i]).dim == 2) {
-      ref = i;
-      break;
-    }
-  uv[ref] = model->on_surface(mesh.geo_param(parents[ref]), s);
-  for (std::size_t i = 0; i < parents.size(); ++i)
-    if (i != ref) uv[i] = model->on_surface(mesh.geo_param(parents[i]), s, &uv[ref]);
-  // Degenerate points (a cone's apex: d/du vanishes): that parameter is
-  // free there and takes the mean of the other parents'.
+  const std::size_t n = parents.size();
+  boost::container::small_vector<std::array<double, 2>, 4> uv(n);
+  for (std::size_t i = 0; i < n; ++i) uv[i] = model->on_surface(mesh.geo_param(parents[i]), s);
+  const CadModel::Range& range = model->range(2, s);
   const double tiny = 1e-9 * model->size();
-  for (std::size_t k = 0; k < 2; ++k) {
-    boost::container::small_vector<bool, 4> free(parents.size(), false);
-    double sum = 0.0;
-    int n = 0;
-    for (std::size_t i = 0; i < parents.size(); ++i) {
-      if (mesh.geo_param(parents[i]).dim == 2) {
-        sum += uv[i][k];
-        ++n;
-        continue;
+  boost::container::small_vector<std::array<bool, 2>, 4> free(n, {false, false});
+  for (std::size_t i = 0; i < n; ++i) {
+    if (mesh.geo_param(parents[i]).dim == 2) {
+      // Only the border of the range can be degenerate.
+      bool border = false;
+      for (std::size_t k = 0; k < 2; ++k) {
+        const double scale = std::max(1.0, range.hi[k] - range.lo[k]);
+        border = border || std::abs(uv[i][k] - range.lo[k]) < 1e-12 * scale ||
+                 std::abs(uv[i][k] - range.hi[k]) < 1e-12 * scale;
       }
-      const auto d = model->derivatives(s, uv[i][0], uv[i][1]);
-      free[i] = d[k].norm() < tiny;
-      if (!free[i]) {
-        sum += uv[i][k];
-        ++n;
-      }
+      if (!border) continue;
     }
-    if (n == 0) continue;
-    for (std::size_t i = 0; i < parents.size(); ++i)
-      if (free[i]) uv[i][k] = sum / n;
+    const auto d = model->derivatives(s, uv[i][0], uv[i][1]);
+    for (std::size_t k = 0; k < 2; ++k) free[i][k] = d[k].norm() < tiny;
+  }
+  std::size_t ref = n;
+  for (int pass = 0; pass < 2 && ref == n; ++pass)
+    for (std::size_t i = 0; i < n; ++i)
+      if (mesh.geo_param(parents[i]).dim == 2 && (pass == 1 || (!free[i][0] && !free[i][1]))) {
+        ref = i;
+        break;
+      }
+  if (ref == n) ref = 0;
+  for (std::size_t k = 0; k < 2; ++k)
+    if (range.period[k] > 0.0)
+      for (std::size_t i = 0; i < n; ++i)
+        uv[i][k] += range.period[k] * std::round((uv[ref][k] - uv[i][k]) / range.period[k]);
+  for (std::size_t k = 0; k < 2; ++k) {
+    double sum = 0.0;
+    int counted = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!free[i][k]) {
+        sum += uv[i][k];
+        ++counted;
+      }
+    if (counted == 0) continue;
+    for (std::size_t i = 0; i < n; ++i)
+      if (free[i][k]) uv[i][k] = sum / counted;
   }
   GeoParam g{s, 2, 0.0, 0.0};
   for (std::size_t i = 0; i < parents.size(); ++i) {

@@ -289,6 +289,37 @@ TEST_SUITE("unit") {
     CHECK((g.point(m) - 0.5 * (mesh.point(a) + mesh.point(b))).norm() < 1e-9);
   }
 
+  TEST_CASE("at a sphere's pole recorded on the surface u is free: the midpoint stays on the other's meridian") {
+    // gmsh's mesh of a sphere may put a surface vertex at a pole: (u, v) at
+    // the border of v's range, where d/du vanishes and u says nothing.
+    CadModel model(std::string(METRICA_TEST_DATA_DIR) + "/msh/box_sphere.geo");
+    const CadGeometry g{&model};
+    int sphere = 0;
+    for (int s : model.entities(2)) {
+      const auto& r = model.range(2, s);
+      if (model.derivatives(s, 0.5 * (r.lo[0] + r.hi[0]), r.lo[1])[0].norm() < 1e-9) sphere = s;
+    }
+    REQUIRE(sphere != 0);
+    const auto& r = model.range(2, sphere);
+    const double u_far = r.lo[0] + 0.77 * (r.hi[0] - r.lo[0]);
+    const GeoParam pole{sphere, 2, r.lo[0], r.lo[1]};
+    const GeoParam far{sphere, 2, u_far, r.lo[1] + 0.2};
+    Mesh mesh;
+    const VertexId a = mesh.add_vertex(model.value(pole)), b = mesh.add_vertex(model.value(far));
+    mesh.enable_geo_params();
+    mesh.set_geo_param(a, pole);
+    mesh.set_geo_param(b, far);
+    const std::array<double, 2> half{0.5, 0.5};
+    for (const auto ends : {std::array<VertexId, 2>{a, b}, std::array<VertexId, 2>{b, a}}) {
+      const GeoParam m = g.boundary_vertex(mesh, ends, half, sphere);
+      CHECK(m.u == doctest::Approx(u_far));
+      CHECK(m.v == doctest::Approx(r.lo[1] + 0.1));
+      // Halfway along the meridian: as far from either end.
+      const Point p = g.point(m);
+      CHECK(std::abs((p - mesh.point(a)).norm() - (p - mesh.point(b)).norm()) < 1e-9);
+    }
+  }
+
   TEST_CASE("backtracking halves the way to the model until the cavity accepts - else stays straight") {
     Mesh mesh;
     const ShiftedGeometry g{{}, Point(1.0, 0.0, 0.0)};
