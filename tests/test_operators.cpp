@@ -554,6 +554,59 @@ TEST_SUITE("unit") {
     CHECK(plans > 10);
   }
 
+  TEST_CASE("the boundary's link condition: a collapse may not put an edge on four boundary faces") {
+    // Triangle a b x inside the mesh between two caps, each a fan of five
+    // boundary faces around its own inner vertex: ab, bx and xa are
+    // boundary edges, abx is not a boundary face. Merging a into b would
+    // bring x a's two boundary faces onto bx, which has two already.
+    io::MeshData data;
+    data.vertices = {{0, 0, 0},        {0.3, 0, 0},      {0.6, 1, 0},       {0.3, 0.4, 0.3},   {0.4, 0.4, 0.3},
+                     {0.3, 0.4, -0.3}, {0.4, 0.4, -0.3}, {0.33, 0.35, 0.1}, {0.33, 0.35, -0.1}};
+    enum : VertexId { a, b, x, p1, p2, q1, q2, c1, c2 };
+    data.tets = {{c1, a, b, p1}, {c1, b, p2, p1}, {c1, b, x, p2}, {c1, x, p1, p2}, {c1, x, a, p1}, {c1, b, a, x},
+                 {c2, b, a, q1}, {c2, q2, b, q1}, {c2, x, b, q2}, {c2, q1, x, q2}, {c2, a, x, q1}, {c2, a, b, x}};
+    data.triangles = {{a, b, p1}, {b, p2, p1}, {b, x, p2}, {x, p1, p2}, {x, a, p1},
+                      {b, a, q1}, {q2, b, q1}, {x, b, q2}, {q1, x, q2}, {a, x, q1}};
+    data.triangle_refs.assign(data.triangles.size(), 1);
+    Mesh mesh = build_mesh(data);
+    REQUIRE(mesh.validate().ok());
+    REQUIRE(mesh.vertex_class(a) == VertexClass::surface);
+    CollapseScratch s;
+    auto balls = [&](VertexId from, VertexId to) {
+      vertex_ball(mesh, from, s.ball);
+      vertex_neighbours(mesh, s.ball, from, s.neighbours);
+      vertex_ball(mesh, to, s.ball_b);
+      vertex_neighbours(mesh, s.ball_b, to, s.neighbours_b);
+    };
+    balls(a, b);
+    CHECK_FALSE(boundary_link_kept(mesh, a, b, s));
+    balls(b, a);
+    CHECK_FALSE(boundary_link_kept(mesh, b, a, s));
+    test::set_uniform_metric(mesh, 10.0);
+    balls(a, b);
+    CollapseOptions any;
+    any.shape_floor = 0.0;
+    CHECK_FALSE(decide_collapse<Anisotropic, Filtered>(mesh, a, b, s, any));
+    // p1's collapse onto a: its boundary neighbours b, x, p2 and a's meet on
+    // the faces a b p1 and x a p1 only.
+    balls(p1, a);
+    CHECK(boundary_link_kept(mesh, p1, a, s));
+    // On a box every boundary edge between surface faces keeps the link.
+    const Mesh box = make_box({.nx = 3, .ny = 3, .nz = 3});
+    std::size_t edges = 0;
+    for (const auto& [u, v] : unique_edges(box)) {
+      if (box.vertex_class(u) != VertexClass::surface) continue;
+      vertex_ball(box, u, s.ball);
+      vertex_ball(box, v, s.ball_b);
+      Shell shell;
+      REQUIRE(edge_shell(box, u, v, s.ball, shell));
+      if (shell.closed) continue;
+      ++edges;
+      CHECK(boundary_link_kept(box, u, v, s));
+    }
+    CHECK(edges > 20);
+  }
+
   TEST_CASE("tet_with_edge finds a tet of every edge from either end, and none for two vertices without an edge") {
     const Mesh mesh = jittered_box(3, 0.2, 7);
     TetList walk;

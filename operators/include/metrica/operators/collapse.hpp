@@ -11,8 +11,9 @@
 //     plane, normal deviation below a tolerance, so the volume is
 //     conserved; an internal surface's exactly, so that it stays on the
 //     input's triangles; CadGeometry: they follow the model's normal);
-//   - an internal surface stays manifold (no edge of it gets a third
-//     face) and the regions on its two sides stay apart;
+//   - the outer boundary and each internal surface stay manifold (no
+//     edge of them gets a third face) and the regions on an internal
+//     surface's two sides stay apart;
 //   - every new tet is positively oriented (Precision), no new edge is
 //     longer than max_new_length, and the worst new tet is above the
 //     quality floor or no worse than the worst tet of the old ball;
@@ -77,6 +78,7 @@ struct CollapseScratch : ScratchGeneration {
   TetList created;
   boost::container::small_vector<int, 32> new_refs;  // of new_tets, when the ball spans regions
   boost::container::small_vector<std::pair<TriangleVertices, SurfaceId>, 32> around;  // surface_link_kept
+  VertexList joined, faced;                                                           // boundary_link_kept
 };
 
 // May vertex a move onto b by the class rules? `shell` is ab's.
@@ -127,6 +129,39 @@ inline bool surface_link_kept(const Mesh& mesh, VertexId a, VertexId b, Collapse
   return true;
 }
 
+// Does the outer boundary stay manifold when a merges into b? A vertex x
+// joined to a and to b by boundary edges must make a boundary face with
+// them: when abx is a face inside the mesh (a tet whose four vertices lie
+// on the boundary, three of its faces on it), edge bx would end on four
+// boundary faces. s.ball and s.ball_b are the two balls.
+inline bool boundary_link_kept(const Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s) {
+  auto holds = [](const auto& list, VertexId v) { return std::find(list.begin(), list.end(), v) != list.end(); };
+  s.joined.clear();
+  s.faced.clear();
+  for (TetId t : s.ball) {
+    const auto& tv = mesh.tet(t);
+    for (int f = 0; f < 4; ++f) {
+      if (tv[f] == a || mesh.neighbour(t, f).valid()) continue;
+      const auto fv = face_vertices(tv, f);
+      VertexList& to = holds(fv, b) ? s.faced : s.joined;
+      for (VertexId x : fv)
+        if (x != a && x != b) to.emplace_back(x);
+    }
+  }
+  if (s.joined.empty()) return true;
+  for (TetId t : s.ball_b) {
+    const auto& tv = mesh.tet(t);
+    for (int f = 0; f < 4; ++f) {
+      if (tv[f] == b || mesh.neighbour(t, f).valid()) continue;
+      const auto fv = face_vertices(tv, f);
+      if (holds(fv, a)) continue;
+      for (VertexId x : fv)
+        if (x != b && holds(s.joined, x) && !holds(s.faced, x)) return false;
+    }
+  }
+  return true;
+}
+
 struct CollapsePlan {
   VertexId from = kNoId, to = kNoId;
   bool moved = false;  // `to` moves to `at` with metric `metric`
@@ -155,6 +190,8 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
     for (TetId t : s.shell.tets) on_shell = on_shell || local_index(mesh.tet(t), x) >= 0;
     if (!on_shell) return Refusal::not_applicable;
   }
+  if (mesh.vertex_class(a) != VertexClass::interior && !boundary_link_kept(mesh, a, b, s))
+    return Refusal::not_applicable;
   if (moved != nullptr && (mesh.vertex_class(b) != VertexClass::interior || mesh.is_fixed(b)))
     return Refusal::not_applicable;
   // A vertex between regions (on an internal surface) has a ball in
