@@ -14,13 +14,22 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <iostream>
+#include <strings.h>
 #include <unistd.h>
 
 namespace metrica::cli {
 
 namespace {
 constexpr int kThreadsPerCore = 8;
+
+// OpenMP's threads sleep as soon as they wait (main.cpp sets it unless
+// the environment chooses).
+bool passive_waiting() {
+  const char* policy = std::getenv("OMP_WAIT_POLICY");
+  return policy != nullptr && strcasecmp(policy, "passive") == 0;
+}
 }  // namespace
 
 Options::Options(std::string command, std::string usage, std::string description)
@@ -32,7 +41,8 @@ bool Options::parse(const std::vector<std::string>& args) {
       "quiet,q", "print only errors")(
       "dry-run", "check the options and the inputs, print what would be done, compute and write nothing")(
       "threads", po::value<int>()->value_name("N"),
-      "threads for parallel work (default: all cores; at most 8 per core)");
+      "threads for parallel work (default: all cores, fewer while other processes keep cores busy; at most 8 per "
+      "core)");
   po::options_description all;
   all.add(own_).add(common);
   try {
@@ -76,6 +86,12 @@ bool Options::parse(const std::vector<std::string>& args) {
       n = cap;
     }
     set_thread_count(n);
+  } else if (std::getenv("OMP_NUM_THREADS") == nullptr && passive_waiting()) {
+    // No thread count given: one per core, fewer while other processes
+    // keep cores busy (a thread sharing a core with a busy process holds
+    // every pass back). Only with passive waiting: threads spinning
+    // between passes would count as load.
+    Speculative::settings().follow_load = true;
   }
   if (vm_.count("format-version")) in_range("format-version", 1, 4);
   // Outputs: a known extension (usage), a file that can be written (input);

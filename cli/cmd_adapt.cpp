@@ -15,6 +15,7 @@
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
+#include <metrica/policies/speculative.hpp>
 #include <metrica/policies/threads.hpp>
 #include <metrica/timer.hpp>
 
@@ -238,9 +239,11 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
   if (run.version == 1) throw UsageError("adapt: under mpirun the output is libMeshb version 2, 3 or 4 (64-bit reals)");
   run.talk = log::level() >= log::Level::normal;
   // The node's cores shared among its ranks unless --threads or
-  // OMP_NUM_THREADS chooses.
+  // OMP_NUM_THREADS chooses; each rank keeps its share (the other ranks
+  // are the load it would follow).
   if (!o.has("threads") && std::getenv("OMP_NUM_THREADS") == nullptr)
     set_thread_count(std::max(1, core_count() / distributed::MpiRuntime::local_size()));
+  Speculative::settings().follow_load = false;
   distributed::adapt_distributed(distributed::Comm{}, run);
   return kOk;
 }

@@ -27,8 +27,9 @@ void print_usage(std::FILE* out) {
              "as text (a mesh as ASCII .mesh, --vtu as VTU, a metric or field as ASCII .sol, a report as\n"
              "CSV); what the command prints then goes to standard error. One output at most.\n"
              "Exit status: 0 success, 1 invalid input or failed run, 2 bad usage.\n"
-             "Threads: all cores unless --threads or OMP_NUM_THREADS says; waiting threads sleep at once\n"
-             "(OMP_WAIT_POLICY=passive unless the environment sets it: a busy machine loses less).\n");
+             "Threads: all cores unless --threads or OMP_NUM_THREADS says, fewer while other processes keep\n"
+             "cores busy (looked at before each stage); waiting threads sleep at once (OMP_WAIT_POLICY=passive\n"
+             "unless the environment sets it: a busy machine loses less).\n");
 }
 
 int g_rank = 0;

@@ -698,6 +698,34 @@ TEST_SUITE("parallel") {
     same_as_scan(bounds[2], 0, false);
   }
 
+  TEST_CASE("following the load: the cores other processes leave, at least one thread, at most those wanted") {
+    // 2 cores: idle (the caller alone, or with its own threads running),
+    // one busy neighbour, two.
+    CHECK(threads_for_load(2, 2, 1, 1) == 2);
+    CHECK(threads_for_load(2, 2, 3, 3) == 2);
+    CHECK(threads_for_load(2, 2, 2, 1) == 1);
+    CHECK(threads_for_load(2, 2, 3, 1) == 1);
+    CHECK(threads_for_load(8, 16, 5, 1) == 8);
+    CHECK(threads_for_load(8, 16, 13, 1) == 4);
+    CHECK(threads_for_load(1, 64, 1, 0) == 1);
+    // This process runs (the caller reads), so the machine has a task
+    // ready to run and so does the process.
+    CHECK(runnable_tasks() >= 1);
+    CHECK(own_runnable_threads() >= 1);
+    // follow_load sets a count between one and the threads wanted; off,
+    // the threads wanted.
+    ThreadCountGuard guard;
+    set_thread_count(3);
+    SpeculativeScope scope{{.follow_load = true}};
+    Speculative::follow_load();
+    CHECK(Speculative::settings().load_threads >= 1);
+    CHECK(Speculative::settings().load_threads <= 3);
+    CHECK(Speculative::threads() >= 1);
+    CHECK(Speculative::threads() <= 3);
+    Speculative::settings().follow_load = false;
+    CHECK(Speculative::threads() == 3);
+  }
+
   TEST_CASE("Speculative on 1 thread: no conflict, a valid mesh of the serial quality") {
     ThreadCountGuard guard;
     const Adapted serial = adapt_linear("serial");

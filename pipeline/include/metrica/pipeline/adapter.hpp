@@ -197,6 +197,7 @@ class Adapter {
       ~Leave() { stage.clear(); }
     } leave{stage_};
     stage_ = name;
+    if constexpr (requires { C::follow_load(); }) C::follow_load();
     return f(*this);
   }
 

@@ -101,6 +101,10 @@ class SpeculativeLocks {
 // the calling thread between passes, e.g. with SpeculativeScope):
 //  - threads: 0 for thread_count() (--threads, OMP_NUM_THREADS, or one per
 //    core), else that many;
+//  - follow_load: with threads 0, no more threads than the cores other
+//    processes left free when follow_load() last looked (threads_for_load;
+//    the pipeline looks before each stage; the command's default when no
+//    thread count is given);
 //  - small_list: a work list shorter than this runs on the calling thread,
 //    without pools, while the mesh is small (under 16 x small_list tets:
 //    the first cycles) or the list very short (under small_list / 16: tens
@@ -112,6 +116,8 @@ class SpeculativeLocks {
 struct SpeculativeSettings {
   static constexpr std::size_t kSmallList = 8192;
   int threads = 0;
+  bool follow_load = false;
+  int load_threads = 0;  // follow_load's last count (0: none yet)
   std::size_t small_list = kSmallList;
 };
 
@@ -136,7 +142,21 @@ struct Speculative {
   using Locks = SpeculativeLocks;
 
   static SpeculativeSettings& settings();
-  static int threads() { return settings().threads > 0 ? settings().threads : thread_count(); }
+  static int threads() {
+    const SpeculativeSettings& s = settings();
+    if (s.threads > 0) return s.threads;
+    return s.follow_load && s.load_threads > 0 ? std::min(s.load_threads, thread_count()) : thread_count();
+  }
+  // With follow_load, the threads for the next passes from the machine's
+  // load now (from the calling thread, between passes: a pass sizes its
+  // per-thread state once).
+  static void follow_load() {
+    SpeculativeSettings& s = settings();
+    if (!s.follow_load) return;
+    const int runnable = runnable_tasks();
+    s.load_threads =
+        runnable > 0 ? threads_for_load(thread_count(), core_count(), runnable, own_runnable_threads()) : 0;
+  }
   // "speculative on N threads, lists under M on one thread while the mesh
   // is small" (adapt -v).
   static std::string describe();
