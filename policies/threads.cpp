@@ -5,6 +5,7 @@
 #include <cstring>
 #include <dirent.h>
 #include <omp.h>
+#include <unistd.h>
 
 namespace metrica {
 
@@ -20,6 +21,10 @@ int threads_for_load(int wanted, int cores, int runnable, int own) {
 }
 
 int runnable_tasks() {
+  // The count is the machine's: it says nothing of the cores this process
+  // may use when it may not use them all (a container's cpuset on a larger
+  // host, whose tasks /proc/loadavg counts too).
+  if (sysconf(_SC_NPROCESSORS_ONLN) != omp_get_num_procs()) return 0;
   std::FILE* f = std::fopen("/proc/loadavg", "r");
   if (f == nullptr) return 0;
   double l1 = 0, l5 = 0, l15 = 0;

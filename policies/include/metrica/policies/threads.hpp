@@ -18,7 +18,8 @@ int core_count();
 // and each pass then waits for the thread that process delays.
 int threads_for_load(int wanted, int cores, int runnable, int own);
 // The tasks of the machine ready to run now, the caller among them
-// (/proc/loadavg's fourth field); 0 when unknown.
+// (/proc/loadavg's fourth field); 0 when unknown, or when this process may
+// not use every core of the machine (then the count is not its cores').
 int runnable_tasks();
 // This process's threads ready to run now (state R in /proc/self/task);
 // 0 when unknown. Threads that wait passively between passes sleep.
