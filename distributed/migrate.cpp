@@ -3,8 +3,6 @@
 
 #include <fmt/core.h>
 
-#include <numeric>
-
 namespace metrica::distributed {
 
 namespace {
@@ -106,28 +104,35 @@ void for_each_received(const Arrived& in, F&& f) {
   }
 }
 
-// The received vertices (once each: several ranks may send the same), tets and focus.
-void unpack_tets(const Comm& comm, const Part& part, const Arrived& in, Part& out) {
-  const auto& verts_in = in.verts;
-  std::vector<std::uint32_t> order(verts_in.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return verts_in[a].id < verts_in[b].id; });
-  // Every rank takes part in the reduction (an empty part has no metrics
-  // to say whether the others carry them).
-  const bool metric = comm.max(std::int64_t(part.metrics.size())) > 0;
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const auto& r = verts_in[order[i]];
-    if (i > 0 && verts_in[order[i - 1]].id == r.id) continue;
-    out.vertex_ids.push_back(r.id);
-    out.points.push_back(point(r.p));
-    if (metric) out.metrics.push_back(r.m);
-  }
-  const bool focus = comm.max(std::int64_t(part.focus.empty() ? 0 : 1)) > 0;
+// Appends what arrived to `out`: the tets with their refs and focus, then
+// each vertex `out` does not hold yet, once (several ranks may send the
+// same; the first sender's copy). The arrays grow once, to their size (a
+// doubling would hold both copies); `in` is emptied.
+void append_arrived(Arrived& in, bool metric, bool focus, Part& out) {
+  out.tets.reserve(out.tets.size() + in.tets.size());
+  out.tet_refs.reserve(out.tet_refs.size() + in.tets.size());
+  if (focus) out.focus.reserve(out.focus.size() + in.tets.size());
   for_each_received(in, [&](const TetRecord& r, const std::array<GlobalId, 4>& v) {
     out.tets.push_back(v);
     out.tet_refs.push_back(r.ref);
     if (focus) out.focus.push_back(r.focus > 0 ? 1 : 0);
   });
+  in.tets = {};
+  auto& verts = in.verts;
+  const VertexIndex held(out.vertex_ids);
+  std::stable_sort(verts.begin(), verts.end(),
+                   [](const VertexRecord& a, const VertexRecord& b) { return a.id < b.id; });
+  out.vertex_ids.reserve(out.vertex_ids.size() + verts.size());
+  out.points.reserve(out.points.size() + verts.size());
+  if (metric) out.metrics.reserve(out.metrics.size() + verts.size());
+  for (std::size_t i = 0; i < verts.size(); ++i) {
+    const auto& r = verts[i];
+    if ((i > 0 && verts[i - 1].id == r.id) || held.find(r.id) >= 0) continue;
+    out.vertex_ids.push_back(r.id);
+    out.points.push_back(point(r.p));
+    if (metric) out.metrics.push_back(r.m);
+  }
+  in.verts = {};
 }
 
 // A part as read (triangles anywhere, faces between ranks unknown): every
@@ -149,7 +154,7 @@ Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex
         {key, turned_over(part.triangles[i]) ? 3 : 1, part.triangle_refs[i]});
   }
 
-  const Arrived in = deliver(comm, travelling);
+  Arrived in = deliver(comm, travelling);
   auto faces_in = comm.exchange(faces_out);
   faces_out = {};
 
@@ -190,8 +195,12 @@ Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex
   auto got = comm.exchange(replies);
   replies = {};
 
+  // Every rank takes part in the reductions (an empty part has no metrics
+  // to say whether the others carry them).
+  const bool metric = comm.max(std::int64_t(part.metrics.size())) > 0;
+  const bool focus = comm.max(std::int64_t(part.focus.empty() ? 0 : 1)) > 0;
   Part out;
-  unpack_tets(comm, part, in, out);
+  append_arrived(in, metric, focus, out);
   std::sort(got.begin(), got.end(),
             [](const FaceReply& a, const FaceReply& b) { return a.key != b.key ? a.key < b.key : a.kind < b.kind; });
   for (const auto& r : got) {
@@ -296,35 +305,9 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
   for (const auto& r : comm.exchange(shared_out)) shared.emplace_back(r.key, r.rank);
   shared_out = {};
 
-  // What arrives: new vertices once each (several ranks may send the same,
-  // and this part may hold it already), the tets, their shared faces. The
-  // arrays grow once, to their size (a doubling would hold both copies).
-  part.vertex_ids.reserve(part.vertex_ids.size() + in.verts.size());
-  part.points.reserve(part.points.size() + in.verts.size());
-  if (metric) part.metrics.reserve(part.metrics.size() + in.verts.size());
-  part.tets.reserve(part.tets.size() + in.tets.size());
-  part.tet_refs.reserve(part.tet_refs.size() + in.tets.size());
-  if (focus) part.focus.reserve(part.focus.size() + in.tets.size());
-  for_each_received(in, [&](const TetRecord& r, const std::array<GlobalId, 4>& v) {
-    part.tets.push_back(v);
-    part.tet_refs.push_back(r.ref);
-    if (focus) part.focus.push_back(r.focus > 0 ? 1 : 0);
-  });
-  in.tets = {};
-  {
-    auto& verts_in = in.verts;
-    const VertexIndex held(part.vertex_ids);
-    std::sort(verts_in.begin(), verts_in.end(),
-              [](const VertexRecord& a, const VertexRecord& b) { return a.id < b.id; });
-    for (std::size_t i = 0; i < verts_in.size(); ++i) {
-      const auto& r = verts_in[i];
-      if ((i > 0 && verts_in[i - 1].id == r.id) || held.find(r.id) >= 0) continue;
-      part.vertex_ids.push_back(r.id);
-      part.points.push_back(point(r.p));
-      if (metric) part.metrics.push_back(r.m);
-    }
-  }
-  in.verts = {};
+  // What arrives: the tets, new vertices once each (this part may hold
+  // some already), their shared faces.
+  append_arrived(in, metric, focus, part);
   std::sort(shared.begin(), shared.end());
   part.shared_faces.clear();
   part.shared_with.clear();
