@@ -132,9 +132,10 @@ std::vector<int> partition(const Comm& comm, const Part& part, const TetNeighbou
 
   std::int64_t weight = 0;
   for (auto w : vert_weights) weight += w;
-  if (comm.sum(weight) > std::numeric_limits<SCOTCH_Num>::max() / 2)
+  const std::int64_t total_weight = comm.sum(weight);
+  if (total_weight > std::numeric_limits<SCOTCH_Num>::max() / 2)
     throw InputError(fmt::format("tets weighing {} in all: more than the partitioner's {}-bit weights can sum",
-                                 comm.sum(weight), 8 * sizeof(SCOTCH_Num)));
+                                 total_weight, 8 * sizeof(SCOTCH_Num)));
 
   // A context of its own, deterministic with a fixed seed: the same cut
   // for the same graph on the same number of ranks, run after run.

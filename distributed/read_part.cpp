@@ -199,9 +199,10 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
     }
   }
   for (const auto& [code, k] : l.keywords)
-    if (code != kVerticesCode && code != kTetrahedraCode && code != kTrianglesCode)
-      counts.dropped.push_back(io::meshb::keyword_name(code).empty() ? fmt::format("keyword {}", code)
-                                                                     : std::string(io::meshb::keyword_name(code)));
+    if (code != kVerticesCode && code != kTetrahedraCode && code != kTrianglesCode) {
+      const auto name = io::meshb::keyword_name(code);
+      counts.dropped.push_back(name.empty() ? fmt::format("keyword {}", code) : std::string(name));
+    }
   if (!metric_path.empty()) {
     const BinaryFile mf(metric_path);
     const Layout ml = scan(mf, metric_path);
