@@ -215,7 +215,7 @@ void write_outputs(const Options& o, const Mesh& mesh, const CadModel* model, co
 // not carry yet is refused up front.
 int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice& policies,
                     const std::optional<AnalyticMetric>& analytic, const MetricBounds& bounds, int iterations) {
-  for (const char* name : {"geometry", "keep-surface", "metric-out", "vtu", "dry-run"})
+  for (const char* name : {"keep-surface", "metric-out", "vtu", "dry-run"})
     if (o.has(name))
       throw UsageError(fmt::format("adapt: --{} is not available under mpirun yet (docs/distributed.md)", name));
   distributed::DistributedAdapt run;
@@ -229,6 +229,7 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
     if (io::format_of(run.metric) != io::FileFormat::solb && io::format_of(run.metric) != io::FileFormat::sol)
       throw UsageError(fmt::format("adapt: {}: the metric must be a .sol or .solb", run.metric));
   }
+  if (o.has("geometry")) run.geometry = o.get<std::string>("geometry");
   run.analytic = analytic;
   run.bounds = bounds;
   run.options = ao;

@@ -2,6 +2,7 @@
 #include <metrica/distributed/adapt_part.hpp>
 #include <metrica/distributed/pinches.hpp>
 #include <metrica/error.hpp>
+#include <metrica/geometry/association.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
@@ -192,8 +193,20 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       for (auto v : global_of) metrics.push_back(part.metrics[v]);
       assign_metric(mesh, metrics);
     }
+    if (settings.model) {
+      // A vertex at a model vertex is a corner whatever the faces around it.
+      mesh.enable_geo_params();
+      bool model_vertex = false;
+      for (std::size_t l = 0; l < global_of.size(); ++l) {
+        const GeoParam& g = part.geo[global_of[l]];
+        mesh.set_geo_param(VertexId(l), g);
+        model_vertex |= g.dim == 0;
+      }
+      if (model_vertex) mesh.classify();
+    }
     AdaptInputs inputs;
     inputs.metric = settings.exact;
+    inputs.model = settings.model;
     adapt_by_name(mesh, settings.options, settings.policies, inputs);
     // The passes' freed blocks back to the kernel before the file content
     // is made beside the mesh: kept, they set a rank's peak (4.3M tets on
@@ -201,6 +214,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     release_freed_memory();
     // Valid, with the volume checked over all parts by the caller.
     require_adapted(mesh, nullptr, result.volume_before, 1e300);
+    if (settings.model) require_on_model(mesh, *settings.model, bo.source, kPartFaceId);
     result.volume_after = mesh.volume();
     // The round's figures, and the vertices near what it could not finish.
     // 1: an edge out of [kShortEdge, kLongEdge] (counts on a kept face);
@@ -217,6 +231,10 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     if (!settings.exact) {
       for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
         if (mesh.vertex_alive(v)) adapted.metrics.push_back(mesh.metric(v));
+    }
+    if (settings.model) {
+      for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+        if (mesh.vertex_alive(v)) adapted.geo.push_back(mesh.geo_param(v));
     }
     std::vector<bool> alive(std::size_t(mesh.vertex_capacity()));
     for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) alive[std::size_t(v)] = mesh.vertex_alive(v);
@@ -295,6 +313,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   append(part.vertex_ids, adapted.vertex_ids);
   append(part.points, adapted.points);
   append(part.metrics, adapted.metrics);
+  append(part.geo, adapted.geo);
   append(part.tets, adapted.tets);
   append(part.tet_refs, adapted.tet_refs);
   append(part.triangles, adapted.triangles);

@@ -6,6 +6,7 @@
 #include <metrica/distributed/read_part.hpp>
 #include <metrica/distributed/write_part.hpp>
 #include <metrica/error.hpp>
+#include <metrica/geometry/association.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
 #include <metrica/timer.hpp>
@@ -121,6 +122,22 @@ double move_to_parts(const Comm& comm, Part& part, const PartitionWeights& weigh
   return cut_seconds;
 }
 
+// Each boundary vertex on its entity of `model`, by projection (the
+// association of the single process, from the surface ids around it).
+AssociateVertex associate_on(const CadModel& model) {
+  return [&model, tolerance = 1e-3 * model.size()](GlobalId v, const Point& p, std::span<FanSide> fan) {
+    std::vector<int> surfaces;
+    for (const auto& side : fan)
+      if (std::find(surfaces.begin(), surfaces.end(), side.surface) == surfaces.end()) {
+        if (!model.has(2, side.surface)) throw InputError(unknown_surfaces_message({side.surface}, model));
+        surfaces.push_back(side.surface);
+      }
+    const VertexAssociation a = associate_vertex(model, p, surfaces, vertex_class_of_fan(fan), {}, tolerance);
+    if (!(a.distance <= tolerance)) throw InputError(off_model_message(VertexId(v), p, a, model, tolerance));
+    return a.param;
+  };
+}
+
 struct Spread {
   std::int64_t total, low, high;
 };
@@ -132,7 +149,14 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   const bool talk = run.talk && comm.rank() == 0;
   Stopwatch clock;
   ReadCounts counts;
-  Part part = read_part(comm, run.input, run.metric, counts);
+  // Every rank opens the model, rank 0 first: an error is said once.
+  std::unique_ptr<CadModel> model;
+  if (!run.geometry.empty())
+    for (const bool first : {true, false})
+      comm.step([&] {
+        if ((comm.rank() == 0) == first) model = std::make_unique<CadModel>(run.geometry);
+      });
+  Part part = read_part(comm, run.input, run.metric, counts, model ? associate_on(*model) : AssociateVertex{});
   std::int32_t max_ref = 0;
   comm.step([&] {
     for (int r : part.triangle_refs) {
@@ -165,6 +189,7 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   settings.policies = run.policies;
   settings.exact = run.analytic ? &exact : nullptr;
   settings.default_surface_id = std::int32_t(comm.max(std::int64_t(max_ref))) + 1;
+  settings.model = model.get();
   GlobalId next_id = counts.vertices;
   const double volume_in = comm.sum(part_volume(part));
   std::vector<GlobalId> frozen_before;
@@ -221,10 +246,11 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
             round_clock.seconds());
         std::fflush(stdout);
       }
+      // On a model the boundary moves onto it: the volume follows.
       const double volume_now = comm.sum(part_volume(part));
       comm.step([&] {
         const double tolerance = adapted_volume_tolerance(it + 1, run.options.volume_budget);
-        if (comm.rank() == 0 && std::abs(volume_now - volume_in) > tolerance * volume_in)
+        if (comm.rank() == 0 && !model && std::abs(volume_now - volume_in) > tolerance * volume_in)
           throw InputError(fmt::format("adapt: the volume moved by {:.3g} relative (at most {:.3g}); nothing written",
                                        std::abs(volume_now - volume_in) / volume_in, tolerance));
       });
@@ -251,7 +277,23 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   const double in_range = double(comm.sum(q.edges_in_range)) / std::max(1.0, edges);
   const double min_q = comm.min(q.min_quality);
   const double mean_q = comm.sum(q.sum_quality) / std::max(1.0, double(tets.total));
-  const auto written = write_part(comm, part, run.output, run.version);
+  // How far the boundary vertices are from their entities (each counted
+  // on every rank holding it).
+  double farthest = 0;
+  if (model)
+    for (std::size_t v = 0; v < part.geo.size(); ++v)
+      if (part.geo[v].valid()) farthest = std::max(farthest, (model->value(part.geo[v]) - part.points[v]).norm());
+  farthest = comm.max(farthest);
+  // An output `check --geometry` would refuse is not written (its tolerance).
+  comm.step([&] {
+    constexpr double kOnModel = 1e-8;
+    if (comm.rank() == 0 && farthest > kOnModel)
+      throw InputError(
+          fmt::format("adapt: the boundary is not on {} (largest distance {:.3g}, at most {:.0e}); "
+                      "nothing written",
+                      model->source(), farthest, kOnModel));
+  });
+  const auto written = write_part(comm, part, run.output, run.version, model.get());
   if (talk) {
     fmt::print("wrote {}: {} vertices, {} triangles, {} tets (libMeshb v{}) on {} ranks ({:.2f} s in all)\n",
                run.output, written.vertices, written.triangles, written.tets, written.version, comm.size(),
@@ -261,6 +303,8 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
     if (run.rounds > 0)
       fmt::print("edges in [1/sqrt2, sqrt2] {:.2f}%, mean ratio min {:.4f} mean {:.4f}\n", 100.0 * in_range, min_q,
                  mean_q);
+    if (model)
+      fmt::print("boundary vertices on {}: largest distance to their entity {:.3g}\n", model->source(), farthest);
   }
 }
 

@@ -41,23 +41,30 @@ struct TriangleRecord {
 };
 
 // Tets with their vertices on their way: per destination rank, then as
-// received (with how many came from each rank).
+// received (with how many came from each rank). The vertices' CAD
+// parameters, when the mesh has a model, travel beside them in the same
+// order.
 struct Outgoing {
   std::vector<std::vector<TetRecord>> tets;
   std::vector<std::vector<VertexRecord>> verts;
-  explicit Outgoing(std::size_t ranks) : tets(ranks), verts(ranks) {}
+  std::vector<std::vector<GeoParam>> geo;
+  explicit Outgoing(std::size_t ranks) : tets(ranks), verts(ranks), geo(ranks) {}
 };
 struct Arrived {
   std::vector<TetRecord> tets;
   std::vector<VertexRecord> verts;
+  std::vector<GeoParam> geo;
   std::vector<std::int64_t> tets_from, verts_from;
 };
-Arrived deliver(const Comm& comm, Outgoing& out) {
+// `geo`: whether any rank's part has CAD parameters (the same on all).
+Arrived deliver(const Comm& comm, Outgoing& out, bool geo) {
   Arrived in;
   in.tets = comm.exchange(out.tets, &in.tets_from);
   out.tets = {};
   in.verts = comm.exchange(out.verts, &in.verts_from);
   out.verts = {};
+  if (geo) in.geo = comm.exchange(out.geo);
+  out.geo = {};
   return in;
 }
 
@@ -82,6 +89,7 @@ void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int
           sent_to[v] = int(q);
           slot[v] = std::uint32_t(verts_out[q].size());
           verts_out[q].push_back({g, coords(part.points[v]), part.metrics.empty() ? Sym6{} : part.metrics[v]});
+          if (!part.geo.empty()) out.geo[q].push_back(part.geo[v]);
         }
         r.v[std::size_t(c)] = slot[v];
       }
@@ -108,7 +116,7 @@ void for_each_received(const Arrived& in, F&& f) {
 // each vertex `out` does not hold yet, once (several ranks may send the
 // same; the first sender's copy). The arrays grow once, to their size (a
 // doubling would hold both copies); `in` is emptied.
-void append_arrived(Arrived& in, bool metric, bool focus, Part& out) {
+void append_arrived(Arrived& in, bool metric, bool focus, bool geo, Part& out) {
   out.tets.reserve(out.tets.size() + in.tets.size());
   out.tet_refs.reserve(out.tet_refs.size() + in.tets.size());
   if (focus) out.focus.reserve(out.focus.size() + in.tets.size());
@@ -118,21 +126,26 @@ void append_arrived(Arrived& in, bool metric, bool focus, Part& out) {
     if (focus) out.focus.push_back(r.focus > 0 ? 1 : 0);
   });
   in.tets = {};
-  auto& verts = in.verts;
+  const auto& verts = in.verts;
   const VertexIndex held(out.vertex_ids);
-  std::stable_sort(verts.begin(), verts.end(),
-                   [](const VertexRecord& a, const VertexRecord& b) { return a.id < b.id; });
+  std::vector<std::uint32_t> order(verts.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return verts[a].id < verts[b].id; });
   out.vertex_ids.reserve(out.vertex_ids.size() + verts.size());
   out.points.reserve(out.points.size() + verts.size());
   if (metric) out.metrics.reserve(out.metrics.size() + verts.size());
-  for (std::size_t i = 0; i < verts.size(); ++i) {
-    const auto& r = verts[i];
-    if ((i > 0 && verts[i - 1].id == r.id) || held.find(r.id) >= 0) continue;
+  if (geo) out.geo.reserve(out.geo.size() + verts.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const auto& r = verts[order[k]];
+    if ((k > 0 && verts[order[k - 1]].id == r.id) || held.find(r.id) >= 0) continue;
     out.vertex_ids.push_back(r.id);
     out.points.push_back(point(r.p));
     if (metric) out.metrics.push_back(r.m);
+    if (geo) out.geo.push_back(in.geo[order[k]]);
   }
   in.verts = {};
+  in.geo = {};
 }
 
 // A part as read (triangles anywhere, faces between ranks unknown): every
@@ -154,7 +167,8 @@ Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex
         {key, turned_over(part.triangles[i]) ? 3 : 1, part.triangle_refs[i]});
   }
 
-  Arrived in = deliver(comm, travelling);
+  const bool geo = comm.max(std::int64_t(part.geo.size())) > 0;
+  Arrived in = deliver(comm, travelling, geo);
   auto faces_in = comm.exchange(faces_out);
   faces_out = {};
 
@@ -200,7 +214,7 @@ Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex
   const bool metric = comm.max(std::int64_t(part.metrics.size())) > 0;
   const bool focus = comm.max(std::int64_t(part.focus.empty() ? 0 : 1)) > 0;
   Part out;
-  append_arrived(in, metric, focus, out);
+  append_arrived(in, metric, focus, geo, out);
   std::sort(got.begin(), got.end(),
             [](const FaceReply& a, const FaceReply& b) { return a.key != b.key ? a.key < b.key : a.kind < b.kind; });
   for (const auto& r : got) {
@@ -285,6 +299,7 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
 
   const bool metric = comm.max(std::int64_t(part.metrics.size())) > 0;
   const bool focus = comm.max(std::int64_t(part.focus.empty() ? 0 : 1)) > 0;
+  const bool geo = comm.max(std::int64_t(part.geo.size())) > 0;
   // What stays, compacted in place: the tets, the vertices they use, the triangles.
   {
     std::vector<bool> stays(part.tets.size());
@@ -299,7 +314,7 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
     keep_triangles(part, triangle_stays);
   }
 
-  Arrived in = deliver(comm, travelling);
+  Arrived in = deliver(comm, travelling, geo);
   auto tris_in = comm.exchange(tris_out);
   tris_out = {};
   for (const auto& r : comm.exchange(shared_out)) shared.emplace_back(r.key, r.rank);
@@ -307,7 +322,7 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
 
   // What arrives: the tets, new vertices once each (this part may hold
   // some already), their shared faces.
-  append_arrived(in, metric, focus, part);
+  append_arrived(in, metric, focus, geo, part);
   std::sort(shared.begin(), shared.end());
   part.shared_faces.clear();
   part.shared_with.clear();

@@ -294,9 +294,52 @@ Slices read_on_rank0(const Comm& comm, const std::string& path, const std::strin
   return s;
 }
 
+// The CAD parameters of the slice's vertices (invalid inside the domain):
+// each triangle's corners go with the triangle's other two corners and
+// surface id to the rank that read them.
+std::vector<GeoParam> associate_slice(const Comm& comm, const Slices& s, const AssociateVertex& associate) {
+  struct Corner {
+    GlobalId vertex, a, b;
+    std::int32_t surface, pad = 0;
+  };
+  const auto n = std::size_t(comm.size());
+  const auto reader = [&](GlobalId v) {
+    const auto q =
+        std::size_t(std::upper_bound(s.vertex_starts.begin(), s.vertex_starts.end(), v) - s.vertex_starts.begin() - 1);
+    return std::min(q, n - 1);
+  };
+  std::vector<std::vector<Corner>> out(n);
+  for (std::size_t i = 0; i < s.part.triangles.size(); ++i) {
+    const auto& t = s.part.triangles[i];
+    for (int c = 0; c < 3; ++c)
+      out[reader(t[std::size_t(c)])].push_back(
+          {t[std::size_t(c)], t[std::size_t((c + 1) % 3)], t[std::size_t((c + 2) % 3)], s.part.triangle_refs[i]});
+  }
+  auto in = comm.exchange(out);
+  out = {};
+  std::vector<GeoParam> geo(s.points.size());
+  comm.step([&] {
+    std::sort(in.begin(), in.end(), [](const Corner& x, const Corner& y) { return x.vertex < y.vertex; });
+    std::vector<FanSide> fan;
+    for (std::size_t i = 0; i < in.size();) {
+      std::size_t j = i;
+      fan.clear();
+      for (; j < in.size() && in[j].vertex == in[i].vertex; ++j) {
+        fan.push_back({in[j].a, in[j].surface});
+        fan.push_back({in[j].b, in[j].surface});
+      }
+      const auto local = std::size_t(in[i].vertex - s.first_vertex);
+      geo[local] = associate(in[i].vertex, s.points[local], fan);
+      i = j;
+    }
+  });
+  return geo;
+}
+
 }  // namespace
 
-Part read_part(const Comm& comm, const std::string& mesh_path, const std::string& metric_path, ReadCounts& counts) {
+Part read_part(const Comm& comm, const std::string& mesh_path, const std::string& metric_path, ReadCounts& counts,
+               const AssociateVertex& associate) {
   Slices s;
   bool binary = false;
   // Rank 0 opens the files first: a missing or malformed file is said once.
@@ -346,6 +389,17 @@ Part read_part(const Comm& comm, const std::string& mesh_path, const std::string
       answers[q].push_back({coords(s.points[local]), s.metrics.empty() ? Sym6{} : s.metrics[local]});
     }
   const auto got = comm.exchange(answers);
+  answers = {};
+  std::vector<GeoParam> geo_got;
+  if (associate) {
+    const auto geo = associate_slice(comm, s, associate);
+    std::vector<std::vector<GeoParam>> geo_answers(n);
+    at = 0;
+    for (std::size_t q = 0; q < n; ++q)
+      for (std::int64_t i = 0; i < from[q]; ++i, ++at)
+        geo_answers[q].push_back(geo[std::size_t(asked[at] - s.first_vertex)]);
+    geo_got = comm.exchange(geo_answers);
+  }
   Part part = std::move(s.part);
   at = 0;
   for (std::size_t q = 0; q < n; ++q)
@@ -353,6 +407,7 @@ Part read_part(const Comm& comm, const std::string& mesh_path, const std::string
       part.vertex_ids.push_back(v);
       part.points.push_back(point(got[at].p));
       if (!metric_path.empty()) part.metrics.push_back(got[at].m);
+      if (associate) part.geo.push_back(geo_got[at]);
       ++at;
     }
   return part;

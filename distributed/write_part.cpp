@@ -1,5 +1,7 @@
 #include <metrica/distributed/write_part.hpp>
 #include <metrica/error.hpp>
+#include <metrica/geometry/association.hpp>
+#include <metrica/io/meshb_keywords.hpp>
 
 #include <fmt/core.h>
 
@@ -58,7 +60,8 @@ void write_at(MPI_File file, std::uint64_t at, const std::string& bytes) {
 
 }  // namespace
 
-WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& path, int version) {
+WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& path, int version,
+                         const CadModel* model) {
   const auto n = std::size_t(comm.size());
   const int me = comm.rank();
   const VertexIndex index(part.vertex_ids);
@@ -130,28 +133,64 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
     triangles.push_back(std::uint32_t(i));
   }
 
+  // The CAD association of the vertices this rank writes, numbered among
+  // them, with what refine and Feflo.a also read (complete_geometry_records).
+  io::MeshData records;
+  if (model != nullptr && !part.geo.empty()) {
+    VertexId k = 0;
+    for (std::size_t v = 0; v < owner.size(); ++v) {
+      if (owner[v] != me) continue;
+      const GeoParam& g = part.geo[v];
+      if (g.valid()) records.on_geometry[std::size_t(g.dim)].push_back({k, g.tag, g.u, g.v, 0.0});
+      ++k;
+    }
+    complete_geometry_records(records, *model);
+  }
+
   WrittenCounts total;
   total.vertices = comm.sum(owned);
   total.triangles = comm.sum(std::int64_t(triangles.size()));
   total.tets = comm.sum(std::int64_t(part.tets.size()));
   const std::int64_t first_triangle = comm.exclusive_scan(std::int64_t(triangles.size()));
   const std::int64_t first_tet = comm.exclusive_scan(std::int64_t(part.tets.size()));
+  std::array<std::int64_t, 3> on_total{}, on_first{};
+  for (std::size_t d = 0; d < 3; ++d) {
+    on_total[d] = comm.sum(std::int64_t(records.on_geometry[d].size()));
+    on_first[d] = comm.exclusive_scan(std::int64_t(records.on_geometry[d].size()));
+  }
   if (version == 0) {
     const auto rows_max = std::max({total.vertices, total.triangles, total.tets});
-    const double v2_bytes = double(total.vertices) * 28 + double(total.triangles) * 16 + double(total.tets) * 20;
+    const double v2_bytes = double(total.vertices) * 28 + double(total.triangles) * 16 + double(total.tets) * 20 +
+                            double(on_total[0]) * 8 + double(on_total[1]) * 24 + double(on_total[2]) * 32;
     version = rows_max >= std::numeric_limits<std::int32_t>::max() ? 4 : v2_bytes > 2.0e9 ? 3 : 2;
   }
   total.version = version;
   const int I = version == 4 ? 8 : 4, O = version >= 3 ? 8 : 4;
   const std::uint64_t head = 4 + std::uint64_t(O) + std::uint64_t(I);  // code, next offset, count
-  // Byte layout: header, Dimension, Vertices, Triangles, Tetrahedra, End.
-  const std::uint64_t dimension_at = 8, vertices_at = dimension_at + 4 + std::uint64_t(O) + 4;
-  const std::uint64_t vertex_row = 24 + std::uint64_t(I), triangle_row = 4 * std::uint64_t(I),
-                      tet_row = 5 * std::uint64_t(I);
-  const std::uint64_t triangles_at = vertices_at + head + std::uint64_t(total.vertices) * vertex_row;
-  const std::uint64_t tets_at =
-      triangles_at + (total.triangles ? head + std::uint64_t(total.triangles) * triangle_row : 0);
-  const std::uint64_t end_at = tets_at + head + std::uint64_t(total.tets) * tet_row;
+  // Byte layout: header, Dimension, then each keyword with rows (Vertices,
+  // Triangles, Tetrahedra, VerticesOnGeometric*), End.
+  struct Block {
+    int code;
+    std::int64_t rows;
+    std::uint64_t row_bytes, at = 0;
+  };
+  const auto Iu = std::uint64_t(I);
+  std::vector<Block> blocks{{4, total.vertices, 24 + Iu}, {6, total.triangles, 4 * Iu}, {8, total.tets, 5 * Iu}};
+  for (int d = 0; d < 3; ++d)
+    blocks.push_back({io::meshb::kVerticesOnGeometricVertices + d, on_total[std::size_t(d)],
+                      2 * Iu + (d == 0 ? 0 : 8 * std::uint64_t(d + 1))});
+  std::erase_if(blocks, [](const Block& b) { return b.rows == 0 && b.code != 4 && b.code != 8; });
+  const std::uint64_t dimension_at = 8;
+  std::uint64_t end_at = dimension_at + 4 + std::uint64_t(O) + 4;
+  for (auto& b : blocks) {
+    b.at = end_at;
+    end_at += head + std::uint64_t(b.rows) * b.row_bytes;
+  }
+  const auto block = [&](int code) -> const Block* {
+    for (const auto& b : blocks)
+      if (b.code == code) return &b;
+    return nullptr;
+  };
 
   std::string temporary;
   if (me == 0) temporary = fmt::format("{}.part-{}.tmp", path, ::getpid());
@@ -173,40 +212,55 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
       if (me == 0) {
         Rows h(I, 8);
         h.int32(1), h.int32(version);
-        h.int32(3), h.offset(vertices_at, O), h.int32(3);
-        h.int32(4), h.offset(total.triangles ? triangles_at : tets_at, O), h.integer(total.vertices);
+        h.int32(3), h.offset(blocks[0].at, O), h.int32(3);
         write_at(file, 0, h.bytes());
-        Rows t(I, 8);
-        if (total.triangles) {
-          t.int32(6), t.offset(tets_at, O), t.integer(total.triangles);
-          write_at(file, triangles_at, t.bytes());
+        for (std::size_t i = 0; i < blocks.size(); ++i) {
+          Rows k(I, 8);
+          k.int32(blocks[i].code), k.offset(i + 1 < blocks.size() ? blocks[i + 1].at : end_at, O);
+          k.integer(blocks[i].rows);
+          write_at(file, blocks[i].at, k.bytes());
         }
-        Rows e(I, 8);
-        e.int32(8), e.offset(end_at, O), e.integer(total.tets);
-        write_at(file, tets_at, e.bytes());
         Rows end(I, 8);
         end.int32(54), end.offset(0, O);
         write_at(file, end_at, end.bytes());
       }
+      const auto rows_at = [&](int code, std::int64_t first) {
+        const Block* b = block(code);
+        return b->at + head + std::uint64_t(first) * b->row_bytes;
+      };
       Rows v(I, 8);
       for (std::size_t i = 0; i < owner.size(); ++i) {
         if (owner[i] != me) continue;
         const auto& p = part.points[i];
         v.real(p.x()), v.real(p.y()), v.real(p.z()), v.integer(0);
       }
-      write_at(file, vertices_at + head + std::uint64_t(first_vertex) * vertex_row, v.bytes());
-      Rows f(I, 8);
-      for (auto i : triangles) {
-        for (GlobalId g : part.triangles[i]) f.integer(number[std::size_t(index.find(g))]);
-        f.integer(part.triangle_refs[i]);
+      write_at(file, rows_at(4, first_vertex), v.bytes());
+      if (total.triangles) {
+        Rows f(I, 8);
+        for (auto i : triangles) {
+          for (GlobalId g : part.triangles[i]) f.integer(number[std::size_t(index.find(g))]);
+          f.integer(part.triangle_refs[i]);
+        }
+        write_at(file, rows_at(6, first_triangle), f.bytes());
       }
-      write_at(file, triangles_at + head + std::uint64_t(first_triangle) * triangle_row, f.bytes());
       Rows t(I, 8);
       for (std::size_t i = 0; i < part.tets.size(); ++i) {
         for (GlobalId g : part.tets[i]) t.integer(number[std::size_t(index.find(g))]);
         t.integer(part.tet_refs[i]);
       }
-      write_at(file, tets_at + head + std::uint64_t(first_tet) * tet_row, t.bytes());
+      write_at(file, rows_at(8, first_tet), t.bytes());
+      for (int d = 0; d < 3; ++d) {
+        const auto& list = records.on_geometry[std::size_t(d)];
+        if (on_total[std::size_t(d)] == 0) continue;
+        Rows g(I, 8);
+        for (const auto& r : list) {
+          g.integer(first_vertex + std::int64_t(r.vertex) + 1), g.integer(r.entity);
+          if (d >= 1) g.real(r.u);
+          if (d == 2) g.real(r.v);
+          if (d >= 1) g.real(r.dist);
+        }
+        write_at(file, rows_at(io::meshb::kVerticesOnGeometricVertices + d, on_first[std::size_t(d)]), g.bytes());
+      }
     });
   } catch (const ReportedFailure&) {
     written = false;

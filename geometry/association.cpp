@@ -31,6 +31,81 @@ Candidate project(const CadModel& model, int dim, int tag, const Point& p) {
 
 }  // namespace
 
+VertexAssociation associate_vertex(const CadModel& model, const Point& p, std::span<const int> around, VertexClass cls,
+                                   const VertexRecords& file, double tolerance) {
+  // A vertex at a model vertex is associated with it, not with one of its
+  // curves: new vertices between it and a neighbour on any of those curves
+  // then find the curve they share (CadGeometry::boundary_vertex).
+  const double at_model_vertex = 1e-9 * model.size();
+  Candidate best;
+  bool from_file = false;
+  if (cls == VertexClass::surface && around.size() == 1) {
+    const int s = around[0];
+    for (const auto* r : file.on_surface)
+      if (r->entity == s) {
+        const GeoParam g{s, 2, r->u, r->v};
+        const double d = (model.value(g) - p).norm();
+        if (d < tolerance) {
+          best = {g, d};
+          from_file = true;
+        }
+      }
+    if (!best.param.valid()) best = project(model, 2, s, p);
+  } else {
+    // Curves of the vertex's surfaces (shared by two when it can).
+    std::vector<int> curves;
+    for (int s : around)
+      for (int c : model.curves_of_surface(s))
+        if (std::find(curves.begin(), curves.end(), c) == curves.end()) curves.push_back(c);
+    if (file.model_vertex != 0 && model.has(0, file.model_vertex)) {
+      const GeoParam g{file.model_vertex, 0, 0.0, 0.0};
+      const double d = (model.value(g) - p).norm();
+      if (d < tolerance) {
+        best = {g, d};
+        from_file = true;
+      }
+    }
+    if (!best.param.valid()) {
+      std::vector<int> corners;
+      for (int c : curves)
+        for (int m : model.vertices_of_curve(c))
+          if (std::find(corners.begin(), corners.end(), m) == corners.end()) corners.push_back(m);
+      Candidate nearest;
+      for (int m : corners) {
+        const GeoParam g{m, 0, 0.0, 0.0};
+        const double d = (model.value(g) - p).norm();
+        if (d < nearest.distance) nearest = {g, d};
+      }
+      if (cls == VertexClass::corner || nearest.distance <= at_model_vertex) best = nearest;
+    }
+    if (best.distance > tolerance)
+      for (int c : curves) {
+        const Candidate k = project(model, 1, c, p);
+        // Between two curves equally near (a model vertex), the first found.
+        if (k.distance < best.distance - 1e-12 * model.size()) best = k;
+      }
+    if (best.distance > tolerance && around.size() == 1) best = project(model, 2, around[0], p);
+  }
+  return {best.param, best.distance, from_file && best.param.valid()};
+}
+
+std::string off_model_message(VertexId v, const Point& p, const VertexAssociation& a, const CadModel& model,
+                              double tolerance) {
+  return fmt::format(
+      "vertex {} at ({:.6g}, {:.6g}, {:.6g}) is {:.3g} from every entity of {} it may lie on (tolerance {:.3g}): "
+      "the model does not match the mesh",
+      v + 1, p.x(), p.y(), p.z(), a.distance, model.source(), tolerance);
+}
+
+std::string unknown_surfaces_message(const std::set<int>& missing, const CadModel& model) {
+  std::string ids;
+  for (int s : missing) ids += fmt::format("{}{}", ids.empty() ? "" : ", ", s);
+  const auto& all = model.entities(2);
+  return fmt::format(
+      "the mesh's surface ids {} are not surfaces of {} (its surfaces are {}..{}): the model does not match the mesh",
+      ids, model.source(), *std::min_element(all.begin(), all.end()), *std::max_element(all.begin(), all.end()));
+}
+
 AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshData* input, double tolerance) {
   if (tolerance <= 0.0) tolerance = 1e-3 * model.size();
   // The surface ids around each surface vertex (boundary and internal
@@ -45,14 +120,7 @@ AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshDat
       if (std::find(list.begin(), list.end(), s) == list.end()) list.push_back(s);
     }
   });
-  if (!missing.empty()) {
-    std::string ids;
-    for (int s : missing) ids += fmt::format("{}{}", ids.empty() ? "" : ", ", s);
-    const auto& all = model.entities(2);
-    throw InputError(fmt::format(
-        "the mesh's surface ids {} are not surfaces of {} (its surfaces are {}..{}): the model does not match the mesh",
-        ids, model.source(), *std::min_element(all.begin(), all.end()), *std::max_element(all.begin(), all.end())));
-  }
+  if (!missing.empty()) throw InputError(unknown_surfaces_message(missing, model));
   // The input's (u, v) per vertex and surface, and its model vertices.
   std::vector<std::vector<const io::GeoRecord*>> on_surface(input != nullptr ? mesh.vertex_capacity() : 0);
   std::vector<int> on_model_vertex(input != nullptr ? mesh.vertex_capacity() : 0, 0);
@@ -62,10 +130,6 @@ AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshDat
     for (const auto& r : input->on_geometry[0])
       if (r.vertex < on_model_vertex.size()) on_model_vertex[r.vertex] = r.entity;
   }
-  // A vertex at a model vertex is associated with it, not with one of its
-  // curves: new vertices between it and a neighbour on any of those curves
-  // then find the curve they share (CadGeometry::boundary_vertex).
-  const double at_model_vertex = 1e-9 * model.size();
 
   mesh.enable_geo_params();
   AssociationReport report;
@@ -73,75 +137,25 @@ AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshDat
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
     if (!mesh.vertex_alive(v) || surfaces[v].empty()) continue;
     const Point p = mesh.point(v);
-    const auto& around = surfaces[v];
-    Candidate best;
-    const VertexClass cls = mesh.vertex_class(v);
-    if (cls == VertexClass::surface && around.size() == 1) {
-      const int s = around[0];
-      if (!on_surface.empty())
-        for (const auto* r : on_surface[v])
-          if (r->entity == s) {
-            const GeoParam g{s, 2, r->u, r->v};
-            const double d = (model.value(g) - p).norm();
-            if (d < tolerance) {
-              best = {g, d};
-              ++report.from_file;
-            }
-          }
-      if (!best.param.valid()) best = project(model, 2, s, p);
-    } else {
-      // Curves of the vertex's surfaces (shared by two when it can).
-      std::vector<int> curves;
-      for (int s : around)
-        for (int c : model.curves_of_surface(s))
-          if (std::find(curves.begin(), curves.end(), c) == curves.end()) curves.push_back(c);
-      if (!on_model_vertex.empty() && on_model_vertex[v] != 0 && model.has(0, on_model_vertex[v])) {
-        const GeoParam g{on_model_vertex[v], 0, 0.0, 0.0};
-        const double d = (model.value(g) - p).norm();
-        if (d < tolerance) {
-          best = {g, d};
-          ++report.from_file;
-        }
-      }
-      if (!best.param.valid()) {
-        std::vector<int> corners;
-        for (int c : curves)
-          for (int m : model.vertices_of_curve(c))
-            if (std::find(corners.begin(), corners.end(), m) == corners.end()) corners.push_back(m);
-        Candidate nearest;
-        for (int m : corners) {
-          const GeoParam g{m, 0, 0.0, 0.0};
-          const double d = (model.value(g) - p).norm();
-          if (d < nearest.distance) nearest = {g, d};
-        }
-        if (cls == VertexClass::corner || nearest.distance <= at_model_vertex) best = nearest;
-      }
-      if (best.distance > tolerance)
-        for (int c : curves) {
-          const Candidate k = project(model, 1, c, p);
-          // Between two curves equally near (a model vertex), the first found.
-          if (k.distance < best.distance - 1e-12 * model.size()) best = k;
-        }
-      if (best.distance > tolerance && around.size() == 1) best = project(model, 2, around[0], p);
-    }
-    if (!(best.distance <= tolerance))
-      throw InputError(fmt::format(
-          "vertex {} at ({:.6g}, {:.6g}, {:.6g}) is {:.3g} from every entity of {} it may lie on (tolerance {:.3g}): "
-          "the model does not match the mesh",
-          v + 1, p.x(), p.y(), p.z(), best.distance, model.source(), tolerance));
-    mesh.set_geo_param(v, best.param);
-    reclassify |= best.param.dim == 0 && mesh.vertex_class(v) != VertexClass::corner;
-    report.max_distance = std::max(report.max_distance, best.distance);
+    VertexRecords file;
+    if (input != nullptr) file = {on_surface[v], on_model_vertex[v]};
+    const VertexAssociation a = associate_vertex(model, p, surfaces[v], mesh.vertex_class(v), file, tolerance);
+    if (!(a.distance <= tolerance)) throw InputError(off_model_message(v, p, a, model, tolerance));
+    report.from_file += a.from_file;
+    mesh.set_geo_param(v, a.param);
+    reclassify |= a.param.dim == 0 && mesh.vertex_class(v) != VertexClass::corner;
+    report.max_distance = std::max(report.max_distance, a.distance);
     ++report.vertices;
   }
   if (reclassify) mesh.classify();
   return report;
 }
 
-ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance) {
+ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance, SurfaceId skip) {
   ModelDistance d;
   std::vector<std::uint8_t> boundary(mesh.vertex_capacity(), 0);
   for_each_surface_face(mesh, [&](TetId t, int f) {
+    if (skip != 0 && mesh.face_surface_id(t, f) == skip) return;
     for (VertexId v : face_vertices(mesh.tet(t), f)) boundary[v] = 1;
   });
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
@@ -195,9 +209,9 @@ void complete_geometry_records(io::MeshData& data, const CadModel& model) {
   curves.erase(std::unique(curves.begin(), curves.end(), same), curves.end());
 }
 
-void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what) {
+void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what, SurfaceId skip) {
   constexpr double kTolerance = 1e-8;
-  const ModelDistance d = model_distance(mesh, model, kTolerance);
+  const ModelDistance d = model_distance(mesh, model, kTolerance, skip);
   if (d.unassociated == 0 && d.max <= kTolerance) return;
   throw InputError(
       fmt::format("{}: the boundary is not on {} ({} vertices without an entity, {} farther than {:.0e}, "

@@ -12,6 +12,17 @@ struct EdgeSide {
   bool operator<(const EdgeSide& o) const { return key < o.key || (key == o.key && surface < o.surface); }
 };
 
+// The class of a boundary vertex on `degree` ridge edges, `pair_changes`
+// when they lie between different pairs of surfaces.
+VertexClass boundary_class(unsigned degree, bool pair_changes, bool corner_anyway) {
+  if (corner_anyway || degree == 1 || degree >= 3 || pair_changes) return VertexClass::corner;
+  return degree == 2 ? VertexClass::ridge : VertexClass::surface;
+}
+
+std::uint64_t surface_pair(SurfaceId lo, SurfaceId hi) {
+  return (std::uint64_t(std::uint32_t(lo)) << 32) | std::uint32_t(hi);
+}
+
 }  // namespace
 
 Classification compute_classification(const Mesh& mesh) {
@@ -44,7 +55,7 @@ Classification compute_classification(const Mesh& mesh) {
     const bool ridge = lo != hi || mesh.feature_edges().count(sides[i].key) != 0;
     if (ridge) {
       c.ridges.insert(sides[i].key);
-      const std::uint64_t pair = (std::uint64_t(std::uint32_t(lo)) << 32) | std::uint32_t(hi);
+      const std::uint64_t pair = surface_pair(lo, hi);
       for (VertexId v : edge_from_key(sides[i].key)) {
         if (degree[v] == 0)
           first_pair[v] = pair;
@@ -61,12 +72,31 @@ Classification compute_classification(const Mesh& mesh) {
     // A vertex at a model vertex (a CAD model's corner, even where the
     // mesh sees no ridge: a closed curve's seam point) stays a corner.
     const bool model_corner = mesh.has_geo_params() && mesh.geo_param(v).valid() && mesh.geo_param(v).dim == 0;
-    if (mesh.is_required(v) || degree[v] == 1 || degree[v] >= 3 || pair_changes[v] || model_corner)
-      c.vertex_class[v] = VertexClass::corner;
-    else if (degree[v] == 2)
-      c.vertex_class[v] = VertexClass::ridge;
+    c.vertex_class[v] = boundary_class(degree[v], pair_changes[v] != 0, mesh.is_required(v) || model_corner);
   }
   return c;
+}
+
+VertexClass vertex_class_of_fan(std::span<FanSide> sides) {
+  std::sort(sides.begin(), sides.end());
+  unsigned degree = 0;
+  bool pair_changes = false;
+  std::uint64_t first_pair = 0;
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j].other == sides[i].other) ++j;
+    const SurfaceId lo = sides[i].surface, hi = sides[j - 1].surface;
+    if (lo != hi) {
+      const std::uint64_t pair = surface_pair(lo, hi);
+      if (degree == 0)
+        first_pair = pair;
+      else if (first_pair != pair)
+        pair_changes = true;
+      ++degree;
+    }
+    i = j;
+  }
+  return sides.empty() ? VertexClass::interior : boundary_class(degree, pair_changes, false);
 }
 
 void Mesh::classify() {

@@ -58,6 +58,29 @@ TEST_SUITE("unit") {
     CHECK(b.corners == a.corners);
   }
 
+  TEST_CASE("a vertex's class from the triangles around it alone is the mesh's (cube-cylinder, a box)") {
+    for (const auto& d :
+         {io::read_meshb(test::ugawg("cube-cylinder.mesh")), box_mesh_data({.nx = 3, .ny = 2, .nz = 2})}) {
+      const auto mesh = build_mesh(d);
+      std::vector<std::vector<FanSide>> fans(d.vertices.size());
+      for (std::size_t i = 0; i < d.triangles.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+          for (int k : {1, 2})
+            fans[d.triangles[i][std::size_t(c)]].push_back(
+                {std::int64_t(d.triangles[i][std::size_t((c + k) % 3)]), d.triangle_refs[i]});
+      std::size_t corners = 0, ridges = 0;
+      for (VertexId v = 0; v < d.vertices.size(); ++v) {
+        CAPTURE(v);
+        const VertexClass c = vertex_class_of_fan(fans[v]);
+        CHECK(c == mesh.vertex_class(v));
+        corners += c == VertexClass::corner;
+        ridges += c == VertexClass::ridge;
+      }
+      CHECK(corners >= 8);
+      CHECK(ridges > 0);
+    }
+  }
+
   TEST_CASE("feature edges and required vertices from the input") {
     auto d = box_mesh_data({.nx = 2, .ny = 2, .nz = 2});
     // A feature edge across the middle of face z = 0 (same surface id on

@@ -4,11 +4,13 @@
 # conforming output (metrica check), balanced parts, the same output to the
 # bit for a given N with --concurrency serial, the parallel read and write
 # round trip (--rounds 0), an error on one rank (every rank exits 1, one
-# message, no output left behind), more ranks than the mesh has work for.
-# Usage: tests/test_mpi.sh METRICA [CASE]   (CASE: adapt, repeat, roundtrip, errors; all by default)
+# message, no output left behind), more ranks than the mesh has work for,
+# the boundary on a CAD model.
+# Usage: tests/test_mpi.sh METRICA [CASE]   (CASE: adapt, repeat, roundtrip, errors, geometry; all by default)
 set -euo pipefail
 metrica="$1"
 only="${2:-all}"
+data="$(cd "$(dirname "$0")" && pwd)/data/ugawg"
 dir="$(mktemp -d)"
 trap 'rm -rf "$dir"' EXIT
 fail() {
@@ -128,5 +130,27 @@ PY
   set -e
   [ "$code" -eq 2 ] || fail "an ASCII output under mpirun: exit $code (want 2): $msg"
   ls "$dir" | grep -q tmp && fail "a temporary file was left: $(ls "$dir")"
+fi
+# On the CAD model (cube-cylinder, UGAWG's STEP file): every boundary
+# vertex on its entity within 1e-8 (check --geometry), with a second
+# iteration on 2 parts; the output carries the association for the next
+# run; a model that does not match the mesh is refused.
+if [ "$only" = all ] || [ "$only" = geometry ]; then
+  run 2 adapt "$data/cube-cylinder.meshb" --geometry "$data/cube-cylinder.step" --analytic polar-2 --iterations 2 \
+    --threads 1 -o "$dir/cc.meshb" >"$dir/cc.txt" 2>&1 || { cat "$dir/cc.txt"; fail "cube-cylinder on 2 ranks failed"; }
+  grep -q "iteration 2 round 1: .* (2 parts," "$dir/cc.txt" || { cat "$dir/cc.txt"; fail "cube-cylinder: no round on 2 parts"; }
+  report=$("$metrica" check "$dir/cc.meshb" --geometry "$data/cube-cylinder.step" -v 2>&1) ||
+    { echo "$report"; fail "cube-cylinder on 2 ranks: invalid or off the model"; }
+  from_file=$(sed -n 's/.*associated (\([0-9,]*\) with the input.s parameters).*/\1/p' <<<"$report" | tr -d ,)
+  [ "${from_file:-0}" -gt 1000 ] || { echo "$report"; fail "cube-cylinder on 2 ranks: the output carries no association"; }
+  minq=$("$metrica" quality "$dir/cc.meshb" --analytic polar-2 | sed -n 's/.*mean ratio *min \([0-9.]*\).*/\1/p')
+  awk -v q="$minq" 'BEGIN { exit !(q >= 0.3) }' || fail "cube-cylinder on 2 ranks: min Q $minq (want >= 0.3)"
+  set +e
+  msg=$(run 2 adapt "$data/cube-cylinder.meshb" --geometry "$data/cone-cone.step" --analytic polar-2 -o "$dir/cc-bad.meshb" 2>&1)
+  code=$?
+  set -e
+  [ "$code" -eq 1 ] || fail "a model that does not match: exit $code (want 1): $msg"
+  grep -q "the model does not match the mesh" <<<"$msg" || fail "a model that does not match: $msg"
+  [ ! -e "$dir/cc-bad.meshb" ] || fail "a model that does not match left an output"
 fi
 echo "test_mpi: ok"

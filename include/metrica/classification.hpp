@@ -11,6 +11,7 @@
 #include <metrica/mesh.hpp>
 
 #include <cstdint>
+#include <span>
 #include <unordered_set>
 #include <vector>
 
@@ -29,6 +30,18 @@ struct Classification {
 // vertices, without changing the mesh (validate() compares it with the
 // stored one; Mesh::classify() stores it).
 Classification compute_classification(const Mesh& mesh);
+
+// One boundary vertex's class from the surface faces around it, for a
+// vertex of a mesh held in pieces (no feature edges, not required): each
+// face at the vertex gives its two edges there, as the edge's other end
+// and the face's surface id. The rule of compute_classification. Sorts
+// `sides`.
+struct FanSide {
+  std::int64_t other;
+  SurfaceId surface;
+  friend auto operator<=>(const FanSide&, const FanSide&) = default;
+};
+VertexClass vertex_class_of_fan(std::span<FanSide> sides);
 
 // Ridge curves: connected chains of ridge edges between corners (a closed
 // ridge loop without corners counts as one curve).

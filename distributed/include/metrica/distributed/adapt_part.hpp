@@ -9,6 +9,7 @@
 
 #include <metrica/distributed/comm.hpp>
 #include <metrica/distributed/part.hpp>
+#include <metrica/geometry/cad_model.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
@@ -26,6 +27,8 @@ struct PartAdaptSettings {
   const MetricFunction* exact = nullptr;
   // The id of boundary faces no input triangle covers (the same on all ranks).
   SurfaceId default_surface_id = 1;
+  // The CAD model the boundary lies on (Part::geo); none: the input's facets.
+  const CadModel* model = nullptr;
 };
 
 // The quality of some tets in their metric: edges (once per piece they
@@ -56,7 +59,8 @@ struct PartAdaptResult {
 inline constexpr double kShortEdge = 0.5, kLongEdge = 2.0, kPoorTet = 0.3, kPoorAtKeptFace = 0.5;
 
 // Adapts the part in place (the tets Part::focus flags, all when it is
-// empty). `next_id` (the same on every rank) is the
+// empty); on a model its boundary vertices end on it (within 1e-8, or
+// it throws). `next_id` (the same on every rank) is the
 // first unused global id, advanced past the new vertices of all ranks.
 // Throws (on every rank) when one part's adaptation failed or left an
 // invalid mesh.

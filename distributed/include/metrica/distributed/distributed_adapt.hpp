@@ -16,7 +16,8 @@ namespace metrica::distributed {
 
 struct DistributedAdapt {
   std::string input, output;
-  std::string metric;  // a .sol/.solb at the input's vertices, or empty with `analytic`
+  std::string metric;    // a .sol/.solb at the input's vertices, or empty with `analytic`
+  std::string geometry;  // the CAD model the boundary lies on (every rank opens it), or empty
   std::optional<AnalyticMetric> analytic;
   MetricBounds bounds;
   AdaptOptions options;

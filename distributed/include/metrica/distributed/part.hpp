@@ -64,6 +64,9 @@ struct Part {
   std::vector<GlobalId> vertex_ids;  // global id of each local vertex
   std::vector<Point> points;
   std::vector<Sym6> metrics;  // per local vertex; empty with an analytic metric
+  // Per local vertex, its CAD entity and parameters (invalid inside the
+  // domain); empty without a model.
+  std::vector<GeoParam> geo;
   std::vector<std::array<GlobalId, 4>> tets;
   std::vector<int> tet_refs;
   // Per tet, whether the round adapts it (empty: all); travels with it.
@@ -89,8 +92,8 @@ void keep_only(std::vector<T>& v, const std::vector<bool>& keep) {
     if (keep[i]) v[w++] = v[i];
   v.resize(w);
 }
-// The part's tets (with refs and focus), vertices (with points and
-// metrics) or triangles (with refs) flagged in `keep`, in place.
+// The part's tets (with refs and focus), vertices (with points, metrics
+// and CAD parameters) or triangles (with refs) flagged in `keep`, in place.
 inline void keep_tets(Part& part, const std::vector<bool>& keep) {
   keep_only(part.tets, keep);
   keep_only(part.tet_refs, keep);
@@ -100,6 +103,7 @@ inline void keep_vertices(Part& part, const std::vector<bool>& keep) {
   keep_only(part.vertex_ids, keep);
   keep_only(part.points, keep);
   keep_only(part.metrics, keep);
+  keep_only(part.geo, keep);
 }
 inline void keep_triangles(Part& part, const std::vector<bool>& keep) {
   keep_only(part.triangles, keep);

@@ -6,9 +6,12 @@
 // the other byte order) are read by rank 0 and sent out in slices.
 #pragma once
 
+#include <metrica/classification.hpp>
 #include <metrica/distributed/comm.hpp>
 #include <metrica/distributed/part.hpp>
 
+#include <functional>
+#include <span>
 #include <string>
 
 namespace metrica::distributed {
@@ -19,9 +22,17 @@ struct ReadCounts {
   std::vector<std::string> dropped;
 };
 
+// A boundary vertex's CAD entity and parameters from its point and the
+// input's triangles around it (FanSide: each triangle's two edges at the
+// vertex, with its surface id); throws InputError when it has none.
+using AssociateVertex = std::function<GeoParam(GlobalId, const Point&, std::span<FanSide>)>;
+
 // The rank's first part (the tets of its slice, their vertices with their
 // metric when `metric_path` is not empty, the triangles of its slice).
-// Throws on every rank when the input cannot be read on one.
-Part read_part(const Comm& comm, const std::string& mesh_path, const std::string& metric_path, ReadCounts& counts);
+// With `associate`, each vertex's CAD parameters too (Part::geo): the
+// rank that read a vertex gathers the triangles at it and asks
+// `associate`. Throws on every rank when the input cannot be read on one.
+Part read_part(const Comm& comm, const std::string& mesh_path, const std::string& metric_path, ReadCounts& counts,
+               const AssociateVertex& associate = {});
 
 }  // namespace metrica::distributed

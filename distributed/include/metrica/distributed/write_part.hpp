@@ -7,6 +7,7 @@
 
 #include <metrica/distributed/comm.hpp>
 #include <metrica/distributed/part.hpp>
+#include <metrica/geometry/cad_model.hpp>
 
 #include <string>
 
@@ -17,7 +18,10 @@ struct WrittenCounts {
   int version = 2;
 };
 
-// `version` 0 chooses: 2, or 3 past 2 GB, or 4 past 2^31 - 1 rows.
-WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& path, int version = 0);
+// `version` 0 chooses: 2, or 3 past 2 GB, or 4 past 2^31 - 1 rows. With
+// a model, the vertices' CAD association too (VerticesOnGeometric*, as
+// the single process writes them).
+WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& path, int version = 0,
+                         const CadModel* model = nullptr);
 
 }  // namespace metrica::distributed

@@ -14,6 +14,8 @@
 #include <metrica/io/mesh_data.hpp>
 #include <metrica/mesh.hpp>
 
+#include <set>
+#include <span>
 #include <string>
 
 namespace metrica {
@@ -30,6 +32,26 @@ struct AssociationReport {
 AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshData* input = nullptr,
                             double tolerance = 0.0);
 
+// One boundary vertex's association, for meshes held in pieces: p, the
+// surface ids of the faces around it, its class (vertex_class_of_fan)
+// and the input's records of it (none: by projection alone).
+struct VertexRecords {
+  std::span<const io::GeoRecord* const> on_surface;  // its (u, v) on surfaces
+  int model_vertex = 0;                              // its model vertex (0: none)
+};
+struct VertexAssociation {
+  GeoParam param;  // invalid when no entity may hold it
+  double distance = std::numeric_limits<double>::infinity();
+  bool from_file = false;
+};
+VertexAssociation associate_vertex(const CadModel& model, const Point& p, std::span<const int> surfaces,
+                                   VertexClass cls, const VertexRecords& file, double tolerance);
+// The InputErrors of associate: vertex v farther than the tolerance from
+// every entity it may lie on; surface ids the model does not have.
+std::string off_model_message(VertexId v, const Point& p, const VertexAssociation& a, const CadModel& model,
+                              double tolerance);
+std::string unknown_surfaces_message(const std::set<int>& missing, const CadModel& model);
+
 // How far the boundary vertices are from their entities.
 struct ModelDistance {
   std::size_t vertices = 0;      // boundary vertices with an entity
@@ -38,12 +60,13 @@ struct ModelDistance {
   VertexId worst = kNoId;        // where
   std::size_t beyond = 0;        // vertices farther than the tolerance asked
 };
-ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance = 1e-8);
+// Faces of surface `skip` (a piece's cut) make no boundary vertex.
+ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance = 1e-8, SurfaceId skip = 0);
 
 // InputError naming `what` when a boundary vertex has no model entity or
 // lies farther than `check --geometry`'s default tolerance (1e-8) from it:
 // an output that check would refuse is never written.
-void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what);
+void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what, SurfaceId skip = 0);
 
 // Adds to `data` (whose primary records extract_mesh_data wrote) what
 // refine and Feflo.a also read: a model vertex's t on each of its curves,
