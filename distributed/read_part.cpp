@@ -294,6 +294,12 @@ Slices read_on_rank0(const Comm& comm, const std::string& path, const std::strin
   return s;
 }
 
+// The rank that read vertex v.
+std::size_t reader_of(const Slices& s, GlobalId v) {
+  const auto q = std::upper_bound(s.vertex_starts.begin(), s.vertex_starts.end(), v) - s.vertex_starts.begin() - 1;
+  return std::min(std::size_t(q), s.vertex_starts.size() - 2);
+}
+
 // The CAD parameters of the slice's vertices (invalid inside the domain):
 // each triangle's corners go with the triangle's other two corners and
 // surface id to the rank that read them.
@@ -303,16 +309,11 @@ std::vector<GeoParam> associate_slice(const Comm& comm, const Slices& s, const A
     std::int32_t surface, pad = 0;
   };
   const auto n = std::size_t(comm.size());
-  const auto reader = [&](GlobalId v) {
-    const auto q =
-        std::size_t(std::upper_bound(s.vertex_starts.begin(), s.vertex_starts.end(), v) - s.vertex_starts.begin() - 1);
-    return std::min(q, n - 1);
-  };
   std::vector<std::vector<Corner>> out(n);
   for (std::size_t i = 0; i < s.part.triangles.size(); ++i) {
     const auto& t = s.part.triangles[i];
     for (int c = 0; c < 3; ++c)
-      out[reader(t[std::size_t(c)])].push_back(
+      out[reader_of(s, t[std::size_t(c)])].push_back(
           {t[std::size_t(c)], t[std::size_t((c + 1) % 3)], t[std::size_t((c + 2) % 3)], s.part.triangle_refs[i]});
   }
   auto in = comm.exchange(out);
@@ -370,11 +371,7 @@ Part read_part(const Comm& comm, const std::string& mesh_path, const std::string
   std::sort(wanted.begin(), wanted.end());
   wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
   std::vector<std::vector<GlobalId>> ask(n);
-  for (GlobalId v : wanted) {
-    const auto q =
-        std::size_t(std::upper_bound(s.vertex_starts.begin(), s.vertex_starts.end(), v) - s.vertex_starts.begin() - 1);
-    ask[std::min(q, n - 1)].push_back(v);
-  }
+  for (GlobalId v : wanted) ask[reader_of(s, v)].push_back(v);
   std::vector<std::int64_t> from;
   const auto asked = comm.exchange(ask, &from);
   struct Answer {

@@ -175,11 +175,14 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
     std::uint64_t row_bytes, at = 0;
   };
   const auto Iu = std::uint64_t(I);
-  std::vector<Block> blocks{{4, total.vertices, 24 + Iu}, {6, total.triangles, 4 * Iu}, {8, total.tets, 5 * Iu}};
+  using namespace io::meshb;
+  std::vector<Block> blocks{
+      {kVertices, total.vertices, 24 + Iu}, {kTriangles, total.triangles, 4 * Iu}, {kTetrahedra, total.tets, 5 * Iu}};
+  // (vertex, entity), then t and dist on a curve, u, v and dist on a surface.
   for (int d = 0; d < 3; ++d)
-    blocks.push_back({io::meshb::kVerticesOnGeometricVertices + d, on_total[std::size_t(d)],
-                      2 * Iu + (d == 0 ? 0 : 8 * std::uint64_t(d + 1))});
-  std::erase_if(blocks, [](const Block& b) { return b.rows == 0 && b.code != 4 && b.code != 8; });
+    blocks.push_back(
+        {kVerticesOnGeometricVertices + d, on_total[std::size_t(d)], 2 * Iu + 8 * std::uint64_t(d == 0 ? 0 : d + 1)});
+  std::erase_if(blocks, [](const Block& b) { return b.rows == 0 && b.code != kVertices && b.code != kTetrahedra; });
   const std::uint64_t dimension_at = 8;
   std::uint64_t end_at = dimension_at + 4 + std::uint64_t(O) + 4;
   for (auto& b : blocks) {
@@ -212,7 +215,7 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
       if (me == 0) {
         Rows h(I, 8);
         h.int32(1), h.int32(version);
-        h.int32(3), h.offset(blocks[0].at, O), h.int32(3);
+        h.int32(kDimension), h.offset(blocks[0].at, O), h.int32(3);
         write_at(file, 0, h.bytes());
         for (std::size_t i = 0; i < blocks.size(); ++i) {
           Rows k(I, 8);
@@ -221,7 +224,7 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
           write_at(file, blocks[i].at, k.bytes());
         }
         Rows end(I, 8);
-        end.int32(54), end.offset(0, O);
+        end.int32(kEnd), end.offset(0, O);
         write_at(file, end_at, end.bytes());
       }
       const auto rows_at = [&](int code, std::int64_t first) {
@@ -234,21 +237,21 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
         const auto& p = part.points[i];
         v.real(p.x()), v.real(p.y()), v.real(p.z()), v.integer(0);
       }
-      write_at(file, rows_at(4, first_vertex), v.bytes());
+      write_at(file, rows_at(kVertices, first_vertex), v.bytes());
       if (total.triangles) {
         Rows f(I, 8);
         for (auto i : triangles) {
           for (GlobalId g : part.triangles[i]) f.integer(number[std::size_t(index.find(g))]);
           f.integer(part.triangle_refs[i]);
         }
-        write_at(file, rows_at(6, first_triangle), f.bytes());
+        write_at(file, rows_at(kTriangles, first_triangle), f.bytes());
       }
       Rows t(I, 8);
       for (std::size_t i = 0; i < part.tets.size(); ++i) {
         for (GlobalId g : part.tets[i]) t.integer(number[std::size_t(index.find(g))]);
         t.integer(part.tet_refs[i]);
       }
-      write_at(file, rows_at(8, first_tet), t.bytes());
+      write_at(file, rows_at(kTetrahedra, first_tet), t.bytes());
       for (int d = 0; d < 3; ++d) {
         const auto& list = records.on_geometry[std::size_t(d)];
         if (on_total[std::size_t(d)] == 0) continue;
@@ -259,7 +262,7 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
           if (d == 2) g.real(r.v);
           if (d >= 1) g.real(r.dist);
         }
-        write_at(file, rows_at(io::meshb::kVerticesOnGeometricVertices + d, on_first[std::size_t(d)]), g.bytes());
+        write_at(file, rows_at(kVerticesOnGeometricVertices + d, on_first[std::size_t(d)]), g.bytes());
       }
     });
   } catch (const ReportedFailure&) {
