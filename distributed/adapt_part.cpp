@@ -59,7 +59,11 @@ bool holds(const std::vector<FaceKey>& sorted, const FaceKey& k) {
 struct ActiveBounds {
   std::vector<FaceKey> frozen;         // faces of active tets kept as they are (sorted): shared or against a kept tet
   std::vector<FaceKey> shared_active;  // the shared faces of active tets (sorted)
-  std::vector<bool> triangle_active;   // per triangle of the part: a face of an active tet
+  // Per triangle of the part: a face of an active tet the adaptation may
+  // change. One on a frozen face (an internal surface's, with a tet on
+  // either side) stays in the part as it is: the part's mesh has that face
+  // on its boundary, among the faces it keeps.
+  std::vector<bool> triangle_active;
 };
 
 ActiveBounds active_bounds(const Part& part, const VertexIndex& index, const std::vector<bool>& active) {
@@ -105,7 +109,7 @@ ActiveBounds active_bounds(const Part& part, const VertexIndex& index, const std
   std::sort(b.shared_active.begin(), b.shared_active.end());
   b.triangle_active.resize(part.triangles.size());
   for (std::size_t i = 0; i < part.triangles.size(); ++i)
-    b.triangle_active[i] = holds(faces, face_key(part.triangles[i]));
+    b.triangle_active[i] = holds(faces, face_key(part.triangles[i])) && !holds(b.frozen, face_key(part.triangles[i]));
   return b;
 }
 
@@ -161,18 +165,12 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     auto local_face = [&](const std::array<GlobalId, 3>& k) {
       return TriangleVertices{number(k[0]), number(k[1]), number(k[2])};
     };
-    std::vector<FaceKey> listed;
     for (std::size_t i = 0; i < part.triangles.size(); ++i) {
       if (!bounds.triangle_active[i]) continue;
-      const auto key = face_key(part.triangles[i]);
-      listed.push_back(key);
-      if (holds(frozen, key)) data.required_triangles.push_back(std::uint32_t(data.triangles.size()));
       data.triangles.push_back(local_face(part.triangles[i]));
       data.triangle_refs.push_back(part.triangle_refs[i]);
     }
-    std::sort(listed.begin(), listed.end());
     for (const auto& k : frozen) {
-      if (holds(listed, k)) continue;
       data.required_triangles.push_back(std::uint32_t(data.triangles.size()));
       data.triangles.push_back(local_face(k));
       data.triangle_refs.push_back(kPartFaceId);

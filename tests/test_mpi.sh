@@ -5,12 +5,13 @@
 # bit for a given N with --concurrency serial, the parallel read and write
 # round trip (--rounds 0), an error on one rank (every rank exits 1, one
 # message, no output left behind), more ranks than the mesh has work for,
-# the boundary on a CAD model.
-# Usage: tests/test_mpi.sh METRICA [CASE]   (CASE: adapt, repeat, roundtrip, errors, geometry; all by default)
+# the boundary on a CAD model, two regions with the surface between them.
+# Usage: tests/test_mpi.sh METRICA [CASE]   (CASE: adapt, repeat, roundtrip, errors, geometry, regions; all by default)
 set -euo pipefail
 metrica="$1"
 only="${2:-all}"
 data="$(cd "$(dirname "$0")" && pwd)/data/ugawg"
+msh="$(cd "$(dirname "$0")" && pwd)/data/msh"
 dir="$(mktemp -d)"
 trap 'rm -rf "$dir"' EXIT
 fail() {
@@ -152,5 +153,27 @@ if [ "$only" = all ] || [ "$only" = geometry ]; then
   [ "$code" -eq 1 ] || fail "a model that does not match: exit $code (want 1): $msg"
   grep -q "the model does not match the mesh" <<<"$msg" || fail "a model that does not match: $msg"
   [ ! -e "$dir/cc-bad.meshb" ] || fail "a model that does not match left an output"
+fi
+# Two regions (a ball in a box, gmsh's .msh 4.1 with physical groups):
+# the faces between parts cross the internal surface, which stays
+# internal with its id, and each region keeps its volume (no model: the
+# interface's vertices stay on the input's facets); on the model
+# (box_sphere.geo, its own bootstrap) every boundary and interface vertex
+# on it.
+if [ "$only" = all ] || [ "$only" = regions ]; then
+  regions() { "$metrica" info "$1" | sed -n '/^Regions/,$p' | awk '$1 ~ /^[0-9]+$/ { print $1, $3 }'; }
+  run 2 adapt "$msh/box_sphere_41.msh" --analytic linear --hmin 0.06 --hmax 0.06 --iterations 2 --threads 1 \
+    -o "$dir/bs.meshb" >"$dir/bs.txt" 2>&1 || { cat "$dir/bs.txt"; fail "two regions on 2 ranks failed"; }
+  grep -q "iteration 2 round 1: .* (2 parts," "$dir/bs.txt" || { cat "$dir/bs.txt"; fail "two regions: no round on 2 parts"; }
+  "$metrica" check "$dir/bs.meshb" -q || fail "two regions on 2 ranks: invalid output"
+  "$metrica" info "$dir/bs.meshb" | grep -Eq '^ +100 +[0-9,]+ +[0-9.]+ +internal' ||
+    fail "two regions on 2 ranks: surface 100 is no longer internal: $("$metrica" info "$dir/bs.meshb")"
+  paste <(regions "$msh/box_sphere_41.msh") <(regions "$dir/bs.meshb") |
+    awk '{ if ($1 != $3 || ($2 - $4) > 1e-6 || ($4 - $2) > 1e-6) bad = 1 } END { exit bad || NR != 2 }' ||
+    fail "two regions on 2 ranks: the regions' volumes moved: $(regions "$msh/box_sphere_41.msh") against $(regions "$dir/bs.meshb")"
+  "$metrica" bootstrap "$msh/box_sphere.geo" --size 0.15 --threads 1 -o "$dir/bsb.meshb" -q
+  run 2 adapt "$dir/bsb.meshb" --geometry "$msh/box_sphere.geo" --analytic linear --hmin 0.06 --hmax 0.06 \
+    --iterations 2 --threads 1 -o "$dir/bsg.meshb" >"$dir/bsg.txt" 2>&1 || { cat "$dir/bsg.txt"; fail "two regions on the model failed"; }
+  "$metrica" check "$dir/bsg.meshb" --geometry "$msh/box_sphere.geo" -q || fail "two regions on the model: invalid or off the model"
 fi
 echo "test_mpi: ok"
