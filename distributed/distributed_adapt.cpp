@@ -122,18 +122,24 @@ double move_to_parts(const Comm& comm, Part& part, const PartitionWeights& weigh
   return cut_seconds;
 }
 
-// Each boundary vertex on its entity of `model`, by projection (the
-// association of the single process, from the surface ids around it).
-AssociateVertex associate_on(const CadModel& model) {
-  return [&model, tolerance = 1e-3 * model.size()](GlobalId v, const Point& p, std::span<FanSide> fan) {
+// Each boundary vertex on its entity of `model` (the association of the
+// single process: the input's parameters where they give the vertex's
+// point, else by projection, from the surface ids around it).
+// `report` counts the vertices this rank associates.
+AssociateVertex associate_on(const CadModel& model, AssociationReport& report) {
+  return [&model, &report, tolerance = 1e-3 * model.size()](GlobalId v, const Point& p, std::span<FanSide> fan,
+                                                            const VertexRecords& file) {
     std::vector<int> surfaces;
     for (const auto& side : fan)
       if (std::find(surfaces.begin(), surfaces.end(), side.surface) == surfaces.end()) {
         if (!model.has(2, side.surface)) throw InputError(unknown_surfaces_message({side.surface}, model));
         surfaces.push_back(side.surface);
       }
-    const VertexAssociation a = associate_vertex(model, p, surfaces, vertex_class_of_fan(fan), {}, tolerance);
+    const VertexAssociation a = associate_vertex(model, p, surfaces, vertex_class_of_fan(fan), file, tolerance);
     if (!(a.distance <= tolerance)) throw InputError(off_model_message(VertexId(v), p, a, model, tolerance));
+    ++report.vertices;
+    report.from_file += a.from_file;
+    report.max_distance = std::max(report.max_distance, a.distance);
     return a.param;
   };
 }
@@ -156,7 +162,12 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       comm.step([&] {
         if ((comm.rank() == 0) == first) model = std::make_unique<CadModel>(run.geometry);
       });
-  Part part = read_part(comm, run.input, run.metric, counts, model ? associate_on(*model) : AssociateVertex{});
+  AssociationReport associated;
+  Part part =
+      read_part(comm, run.input, run.metric, counts, model ? associate_on(*model, associated) : AssociateVertex{});
+  const std::int64_t on_model = comm.sum(std::int64_t(associated.vertices)),
+                     from_file = comm.sum(std::int64_t(associated.from_file));
+  const double farthest_in = comm.max(associated.max_distance);
   std::int32_t max_ref = 0;
   comm.step([&] {
     for (int r : part.triangle_refs) {
@@ -173,6 +184,11 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   if (talk) {
     fmt::print("distributed: {} ranks read {} vertices, {} tets, {} triangles of {} in slices ({:.2f} s)\n",
                comm.size(), counts.vertices, counts.tets, counts.triangles, run.input, clock.seconds());
+    if (model)
+      fmt::print(
+          "distributed: {} boundary vertices associated with {} ({} with the input's parameters), "
+          "farthest {:.3g} from its entity\n",
+          on_model, model->source(), from_file, farthest_in);
     if (!counts.dropped.empty()) {
       std::string names;
       for (const auto& d : counts.dropped) names += (names.empty() ? "" : ", ") + d;

@@ -1,5 +1,6 @@
 #include <metrica/distributed/read_part.hpp>
 #include <metrica/error.hpp>
+#include <metrica/geometry/association.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/io/meshb_keywords.hpp>
@@ -18,6 +19,10 @@ namespace metrica::distributed {
 namespace {
 
 constexpr int kVerticesCode = 4, kTrianglesCode = 6, kTetrahedraCode = 8, kEndCode = 54, kSolCode = 62;
+// VerticesOnGeometricVertices and VerticesOnGeometricTriangles: what the
+// association reads of the input (a vertex's model vertex, its (u, v));
+// VerticesOnGeometricEdges, between them, it does not need.
+constexpr int kOnModelVertexCode = 40, kOnSurfaceCode = 42;
 
 // Where each keyword of a native-order binary libMeshb file starts: its
 // row count and the offset of its first row.
@@ -79,7 +84,8 @@ Layout scan(const BinaryFile& f, const std::string& path) {
     const std::uint64_t next = l.offset() == 4 ? std::uint64_t(std::uint32_t(f.get<std::int32_t>(at + 4)))
                                                : std::uint64_t(f.get<std::int64_t>(at + 4));
     std::uint64_t body = at + 4 + std::uint64_t(l.offset());
-    if (code == kVerticesCode || code == kTrianglesCode || code == kTetrahedraCode || code == kSolCode) {
+    if (code == kVerticesCode || code == kTrianglesCode || code == kTetrahedraCode || code == kSolCode ||
+        code == kOnModelVertexCode || code == kOnSurfaceCode) {
       Keyword k;
       k.count = l.integer() == 4 ? f.get<std::int32_t>(body) : f.get<std::int64_t>(body);
       body += std::uint64_t(l.integer());
@@ -130,6 +136,14 @@ std::vector<char> rows(const BinaryFile& f, const Keyword& k, std::size_t row_by
   return out;
 }
 
+// A VerticesOnGeometricVertices (dim 0) or VerticesOnGeometricTriangles
+// (dim 2) record of the input.
+struct FileRecord {
+  GlobalId vertex;
+  std::int32_t dim, entity;
+  double u, v;
+};
+
 // The slice of every keyword this rank reads (global ids are 0-based).
 struct Slices {
   std::vector<Point> points;
@@ -137,6 +151,8 @@ struct Slices {
   GlobalId first_vertex = 0;
   std::vector<std::int64_t> vertex_starts;  // first vertex of every rank's slice, and the count last
   Part part;                                // tets and triangles of the slice
+  // The input's association records of the slice (any vertex; with a model).
+  std::vector<FileRecord> records;
 };
 
 void check_vertex(GlobalId v, std::int64_t n, const std::string& path, const char* what) {
@@ -144,7 +160,7 @@ void check_vertex(GlobalId v, std::int64_t n, const std::string& path, const cha
 }
 
 Slices read_binary_slices(const Comm& comm, const std::string& path, const Layout& l, const BinaryFile& f,
-                          const std::string& metric_path, ReadCounts& counts) {
+                          const std::string& metric_path, bool records, ReadCounts& counts) {
   Slices s;
   const auto kw = [&](int code) -> const Keyword& {
     static const Keyword none;
@@ -198,8 +214,24 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
       s.part.triangle_refs.push_back(int(read_integer(p + 3 * I, I)));
     }
   }
+  if (records)
+    for (const int code : {kOnModelVertexCode, kOnSurfaceCode}) {
+      const Keyword& k = kw(code);
+      const int dim = code - kOnModelVertexCode;
+      auto [a, b] = part_slice(std::size_t(k.count), n, r);
+      const std::size_t row = 2 * std::size_t(I) + (dim == 0 ? 0 : 3 * std::size_t(R));
+      const auto bytes = rows(f, k, row, std::int64_t(a), std::int64_t(b));
+      for (std::size_t i = 0; i < b - a; ++i) {
+        const char* p = bytes.data() + i * row;
+        FileRecord rec{read_integer(p, I) - 1, dim, std::int32_t(read_integer(p + I, I)), 0.0, 0.0};
+        check_vertex(rec.vertex, kv.count, path, io::meshb::keyword_name(code).data());
+        if (dim == 2) rec.u = read_real(p + 2 * I, R), rec.v = read_real(p + 2 * I + R, R);
+        s.records.push_back(rec);
+      }
+    }
   for (const auto& [code, k] : l.keywords)
-    if (code != kVerticesCode && code != kTetrahedraCode && code != kTrianglesCode) {
+    if (code != kVerticesCode && code != kTetrahedraCode && code != kTrianglesCode &&
+        !(records && code >= kOnModelVertexCode && code <= kOnSurfaceCode)) {
       const auto name = io::meshb::keyword_name(code);
       counts.dropped.push_back(name.empty() ? fmt::format("keyword {}", code) : std::string(name));
     }
@@ -231,7 +263,8 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
 
 // Rank 0 reads the whole input with the single-process readers and sends
 // each rank its slices (ASCII .mesh, .msh, the other byte order).
-Slices read_on_rank0(const Comm& comm, const std::string& path, const std::string& metric_path, ReadCounts& counts) {
+Slices read_on_rank0(const Comm& comm, const std::string& path, const std::string& metric_path, bool records,
+                     ReadCounts& counts) {
   struct Row {
     Coords p;
     Sym6 m;
@@ -248,6 +281,7 @@ Slices read_on_rank0(const Comm& comm, const std::string& path, const std::strin
   std::vector<std::vector<Row>> rows_out(n);
   std::vector<std::vector<Tet>> tets_out(n);
   std::vector<std::vector<Tri>> tris_out(n);
+  std::vector<std::vector<FileRecord>> records_out(n);
   std::int64_t header[3] = {0, 0, 0};
   if (comm.rank() == 0) {
     comm.step([&] {
@@ -266,12 +300,18 @@ Slices read_on_rank0(const Comm& comm, const std::string& path, const std::strin
         for (std::size_t i = fa; i < fb; ++i)
           tris_out[q].push_back({{d.triangles[i][0], d.triangles[i][1], d.triangles[i][2]}, d.triangle_refs[i]});
       }
+      if (records)
+        for (const std::size_t dim : {0, 2})
+          for (const auto& g : d.on_geometry[dim]) {
+            const std::size_t q = std::min(n - 1, std::size_t(g.vertex) * n / d.vertices.size());
+            records_out[q].push_back({GlobalId(g.vertex), std::int32_t(dim), g.entity, g.u, g.v});
+          }
       header[0] = std::int64_t(d.vertices.size()), header[1] = std::int64_t(d.tets.size()),
       header[2] = std::int64_t(d.triangles.size());
       if (!d.edges.empty()) counts.dropped.push_back("Edges");
       if (!d.required_vertices.empty() || !d.required_edges.empty() || !d.required_triangles.empty())
         counts.dropped.push_back("Required*");
-      if (!d.on_geometry[0].empty() || !d.on_geometry[1].empty() || !d.on_geometry[2].empty())
+      if (!records && (!d.on_geometry[0].empty() || !d.on_geometry[1].empty() || !d.on_geometry[2].empty()))
         counts.dropped.push_back("VerticesOnGeometric*");
     });
   } else {
@@ -283,6 +323,7 @@ Slices read_on_rank0(const Comm& comm, const std::string& path, const std::strin
   const auto rows_in = comm.exchange(rows_out);
   const auto tets_in = comm.exchange(tets_out);
   const auto tris_in = comm.exchange(tris_out);
+  s.records = comm.exchange(records_out);
   for (std::size_t q = 0; q <= n; ++q) s.vertex_starts.push_back(std::int64_t(std::size_t(header[0]) * q / n));
   s.first_vertex = s.vertex_starts[std::size_t(comm.rank())];
   for (const auto& r : rows_in) {
@@ -318,19 +359,40 @@ std::vector<GeoParam> associate_slice(const Comm& comm, const Slices& s, const A
   }
   auto in = comm.exchange(out);
   out = {};
+  std::vector<std::vector<FileRecord>> records_out(n);
+  for (const auto& r : s.records) records_out[reader_of(s, r.vertex)].push_back(r);
+  auto records = comm.exchange(records_out);
+  records_out = {};
   std::vector<GeoParam> geo(s.points.size());
   comm.step([&] {
     std::sort(in.begin(), in.end(), [](const Corner& x, const Corner& y) { return x.vertex < y.vertex; });
+    std::stable_sort(records.begin(), records.end(),
+                     [](const FileRecord& x, const FileRecord& y) { return x.vertex < y.vertex; });
     std::vector<FanSide> fan;
+    std::vector<io::GeoRecord> on_surface;
+    std::vector<const io::GeoRecord*> on_surface_of;
+    auto next_record = records.begin();
     for (std::size_t i = 0; i < in.size();) {
+      const GlobalId vertex = in[i].vertex;
       std::size_t j = i;
       fan.clear();
-      for (; j < in.size() && in[j].vertex == in[i].vertex; ++j) {
+      for (; j < in.size() && in[j].vertex == vertex; ++j) {
         fan.push_back({in[j].a, in[j].surface});
         fan.push_back({in[j].b, in[j].surface});
       }
-      const auto local = std::size_t(in[i].vertex - s.first_vertex);
-      geo[local] = associate(in[i].vertex, s.points[local], fan);
+      // The input's records of this vertex.
+      VertexRecords file;
+      on_surface.clear();
+      while (next_record != records.end() && next_record->vertex < vertex) ++next_record;
+      for (; next_record != records.end() && next_record->vertex == vertex; ++next_record) {
+        if (next_record->dim == 0) file.model_vertex = next_record->entity;
+        if (next_record->dim == 2) on_surface.push_back({0, next_record->entity, next_record->u, next_record->v, 0.0});
+      }
+      on_surface_of.clear();
+      for (const auto& r : on_surface) on_surface_of.push_back(&r);
+      file.on_surface = on_surface_of;
+      const auto local = std::size_t(vertex - s.first_vertex);
+      geo[local] = associate(vertex, s.points[local], fan, file);
       i = j;
     }
   });
@@ -359,10 +421,10 @@ Part read_part(const Comm& comm, const std::string& mesh_path, const std::string
     if (!l.native) return;
     if (!metric_path.empty() && io::encoding_of(metric_path, ".sol", ".solb") != io::Encoding::binary) return;
     binary = true;
-    s = read_binary_slices(comm, mesh_path, l, f, metric_path, counts);
+    s = read_binary_slices(comm, mesh_path, l, f, metric_path, bool(associate), counts);
   });
   // Every rank takes the same path: the file is the same for all.
-  if (!binary) s = read_on_rank0(comm, mesh_path, metric_path, counts);
+  if (!binary) s = read_on_rank0(comm, mesh_path, metric_path, bool(associate), counts);
 
   // The vertices of the slice's tets, from the ranks that read them.
   const auto n = std::size_t(comm.size());

@@ -140,6 +140,10 @@ if [ "$only" = all ] || [ "$only" = geometry ]; then
   run 2 adapt "$data/cube-cylinder.meshb" --geometry "$data/cube-cylinder.step" --analytic polar-2 --iterations 2 \
     --threads 1 -o "$dir/cc.meshb" >"$dir/cc.txt" 2>&1 || { cat "$dir/cc.txt"; fail "cube-cylinder on 2 ranks failed"; }
   grep -q "iteration 2 round 1: .* (2 parts," "$dir/cc.txt" || { cat "$dir/cc.txt"; fail "cube-cylinder: no round on 2 parts"; }
+  # The input's VerticesOnGeometric* records read in slices: the single
+  # process takes 158 of UGAWG's (u, v) as they are.
+  grep -q "211 boundary vertices associated .* (158 with the input's parameters)" "$dir/cc.txt" ||
+    { cat "$dir/cc.txt"; fail "cube-cylinder: the input's association records were not read as the single process reads them"; }
   report=$("$metrica" check "$dir/cc.meshb" --geometry "$data/cube-cylinder.step" -v 2>&1) ||
     { echo "$report"; fail "cube-cylinder on 2 ranks: invalid or off the model"; }
   from_file=$(sed -n 's/.*associated (\([0-9,]*\) with the input.s parameters).*/\1/p' <<<"$report" | tr -d ,)
