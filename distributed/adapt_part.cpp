@@ -212,13 +212,20 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     release_freed_memory();
     // Valid, with the volume checked over all parts by the caller.
     require_adapted(mesh, nullptr, result.volume_before, 1e300);
-    if (settings.model) require_on_model(mesh, *settings.model, bo.source, kPartFaceId);
+    // A boundary vertex the round left off the model (its closing could
+    // not place it) is unfinished: the next round, with it inside a part,
+    // projects it again; the output is written only with every vertex on
+    // the model.
+    std::vector<VertexId> off_model;
+    if (settings.model) off_model = vertices_off_model(mesh, *settings.model, kOnModel, kPartFaceId);
+    result.off_model = std::int64_t(off_model.size());
     result.volume_after = mesh.volume();
     // The round's figures, and the vertices near what it could not finish.
     // 1: an edge out of [kShortEdge, kLongEdge] (counts on a kept face);
     // 2: a tet below kPoorTet (counts anywhere).
     std::vector<std::uint8_t> unfinished(std::size_t(mesh.vertex_capacity()), 0);
     result.quality = tally(mesh, settings.policies.space, &unfinished);
+    for (VertexId v : off_model) unfinished[std::size_t(v)] |= 2;
     // Back to global ids: the kept faces' vertices by their coordinates.
     std::vector<std::pair<Bits, GlobalId>> kept;
     for (const auto& k : frozen)

@@ -251,13 +251,15 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       const double edges = double(comm.sum(result.quality.edges));
       const double in_range = double(comm.sum(result.quality.edges_in_range)) / std::max(1.0, edges);
       const double min_q = comm.min(result.quality.min_quality);
+      const std::int64_t off_model = comm.sum(result.off_model);
       if (talk) {
         fmt::print(
             "  {}round {}: {} tets ({} part{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
-            "adapted: in range {:5.1f}% min Q {:.3f} | {} vertices unfinished | volume change {:.2g} | "
+            "adapted: in range {:5.1f}% min Q {:.3f} | {} vertices unfinished{} | volume change {:.2g} | "
             "cut {:.2f} s, move {:.2f} s, adapt {:.2f} s (rank 0), {:.2f} s in all\n",
             run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, parts,
             parts == 1 ? "" : "s", tets.low, tets.high, adapted, kept_out, 100.0 * in_range, min_q, unfinished,
+            off_model > 0 ? fmt::format(" ({} off the model)", off_model) : "",
             before > 0 ? std::abs(after - before) / before : 0.0, cut_seconds, move_seconds, adapt_seconds,
             round_clock.seconds());
         std::fflush(stdout);
@@ -275,7 +277,8 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       // adaptation is done. The tets a round adapts against the faces it
       // keeps are its poorest; the next round has them inside a part.
       last_parts = parts;
-      if (parts == 1 || unfinished == 0 || (round + 1 >= kFewestRounds && min_q >= kPoorAtKeptFace)) break;
+      if (parts == 1 || unfinished == 0 || (round + 1 >= kFewestRounds && min_q >= kPoorAtKeptFace && off_model == 0))
+        break;
     }
   // The output spread over every rank when the last round ran on fewer.
   if (run.rounds > 0 && last_parts < comm.size() && comm.sum(std::int64_t(part.tets.size())) >= comm.size()) {
@@ -296,18 +299,27 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   // How far the boundary vertices are from their entities (each counted
   // on every rank holding it).
   double farthest = 0;
-  if (model)
+  std::int64_t without = 0;  // vertices of boundary or interface triangles without an entity
+  if (model) {
     for (std::size_t v = 0; v < part.geo.size(); ++v)
       if (part.geo[v].valid()) farthest = std::max(farthest, (model->value(part.geo[v]) - part.points[v]).norm());
+    const VertexIndex index(part.vertex_ids);
+    std::vector<bool> counted(part.geo.size(), false);
+    for (const auto& f : part.triangles)
+      for (GlobalId g : f) {
+        const auto v = std::size_t(index.find(g));
+        if (!part.geo[v].valid() && !counted[v]) counted[v] = true, ++without;
+      }
+  }
   farthest = comm.max(farthest);
+  without = comm.sum(without);
   // An output `check --geometry` would refuse is not written (its tolerance).
   comm.step([&] {
-    constexpr double kOnModel = 1e-8;
-    if (comm.rank() == 0 && farthest > kOnModel)
+    if (comm.rank() == 0 && (farthest > kOnModel || without > 0))
       throw InputError(
-          fmt::format("adapt: the boundary is not on {} (largest distance {:.3g}, at most {:.0e}); "
-                      "nothing written",
-                      model->source(), farthest, kOnModel));
+          fmt::format("adapt: the boundary is not on {} ({} vertices without an entity, largest distance {:.3g}, "
+                      "at most {:.0e}); nothing written",
+                      model->source(), without, farthest, kOnModel));
   });
   const auto written = write_part(comm, part, run.output, run.version, model.get());
   if (talk) {

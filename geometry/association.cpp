@@ -151,13 +151,33 @@ AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshDat
   return report;
 }
 
-ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance, SurfaceId skip) {
-  ModelDistance d;
+namespace {
+// Per vertex, whether it is on a surface face (not of surface `skip`).
+std::vector<std::uint8_t> boundary_vertices(const Mesh& mesh, SurfaceId skip) {
   std::vector<std::uint8_t> boundary(mesh.vertex_capacity(), 0);
   for_each_surface_face(mesh, [&](TetId t, int f) {
     if (skip != 0 && mesh.face_surface_id(t, f) == skip) return;
     for (VertexId v : face_vertices(mesh.tet(t), f)) boundary[v] = 1;
   });
+  return boundary;
+}
+}  // namespace
+
+std::vector<VertexId> vertices_off_model(const Mesh& mesh, const CadModel& model, double tolerance, SurfaceId skip) {
+  const auto boundary = boundary_vertices(mesh, skip);
+  std::vector<VertexId> off;
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    if (!boundary[v] || !mesh.vertex_alive(v)) continue;
+    if (!mesh.has_geo_params() || !mesh.geo_param(v).valid() ||
+        !((model.value(mesh.geo_param(v)) - mesh.point(v)).norm() <= tolerance))
+      off.push_back(v);
+  }
+  return off;
+}
+
+ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance, SurfaceId skip) {
+  ModelDistance d;
+  const auto boundary = boundary_vertices(mesh, skip);
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
     if (!boundary[v] || !mesh.vertex_alive(v)) continue;
     if (!mesh.has_geo_params() || !mesh.geo_param(v).valid()) {

@@ -5,6 +5,7 @@
 #include "operator_test_support.hpp"
 
 #include <metrica/error.hpp>
+#include <metrica/classification.hpp>
 #include <metrica/geometry/association.hpp>
 #include <metrica/geometry/bootstrap.hpp>
 #include <metrica/geometry/cad_geometry.hpp>
@@ -169,6 +170,53 @@ TEST_SUITE("unit") {
     CHECK(r.from_file > 100);
     CHECK(r.max_distance < 1e-12);
     CHECK(largest_distance(c.mesh, c.model) < 1e-12);
+  }
+
+  TEST_CASE("one vertex at a time from the triangles and records around it: the whole mesh's association") {
+    // What a rank does with the vertices it read when the mesh is held in pieces.
+    CubeCylinder c;
+    std::vector<std::vector<FanSide>> fans(c.data.vertices.size());
+    for (std::size_t i = 0; i < c.data.triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        for (int j : {1, 2})
+          fans[c.data.triangles[i][std::size_t(k)]].push_back(
+              {std::int64_t(c.data.triangles[i][std::size_t((k + j) % 3)]), c.data.triangle_refs[i]});
+    std::vector<std::vector<const io::GeoRecord*>> on_surface(c.data.vertices.size());
+    std::vector<int> model_vertex(c.data.vertices.size(), 0);
+    for (const auto& r : c.data.on_geometry[2]) on_surface[r.vertex].push_back(&r);
+    for (const auto& r : c.data.on_geometry[0]) model_vertex[r.vertex] = r.entity;
+    std::size_t compared = 0, from_file = 0;
+    for (VertexId v = 0; v < c.data.vertices.size(); ++v) {
+      if (fans[v].empty()) continue;
+      std::vector<int> surfaces;
+      for (const auto& side : fans[v])
+        if (std::find(surfaces.begin(), surfaces.end(), side.surface) == surfaces.end())
+          surfaces.push_back(side.surface);
+      std::sort(surfaces.begin(), surfaces.end());
+      const VertexAssociation a = associate_vertex(c.model, c.data.vertices[v], surfaces, vertex_class_of_fan(fans[v]),
+                                                   {on_surface[v], model_vertex[v]}, 1e-3 * c.model.size());
+      CAPTURE(v);
+      CHECK(a.param == c.mesh.geo_param(v));
+      CHECK(a.distance < 1e-12);
+      ++compared;
+      from_file += a.from_file;
+    }
+    CHECK(compared == 211);
+    CHECK(from_file == 158);
+  }
+
+  TEST_CASE("the vertices off the model: one moved off it is listed - not when its faces are skipped") {
+    CubeCylinder c;
+    CHECK(vertices_off_model(c.mesh, c.model, 1e-8).empty());
+    // A vertex inside the quarter cylinder (surface 5), moved outwards.
+    VertexId moved = kNoId;
+    for (VertexId v = 0; v < c.mesh.vertex_capacity() && moved == kNoId; ++v)
+      if (c.mesh.geo_param(v).dim == 2 && c.mesh.geo_param(v).tag == 5) moved = v;
+    REQUIRE(moved != kNoId);
+    c.mesh.point(moved) *= 1.0 + 1e-6;
+    CHECK(vertices_off_model(c.mesh, c.model, 1e-8) == std::vector<VertexId>{moved});
+    CHECK(vertices_off_model(c.mesh, c.model, 1e-4).empty());
+    CHECK(vertices_off_model(c.mesh, c.model, 1e-8, 5).empty());
   }
 
   TEST_CASE("association round trip through meshb: every boundary vertex keeps its entity and parameters") {

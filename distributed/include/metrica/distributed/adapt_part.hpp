@@ -54,13 +54,18 @@ struct PartAdaptResult {
   // little to do; a coarse one leaves long edges and poor tets.
   std::vector<GlobalId> kept_vertices;
   QualityTally quality;  // of the adapted tets
+  // Boundary vertices farther than kOnModel from their entity (with a
+  // model), among the unfinished ones.
+  std::int64_t off_model = 0;
 };
+
+// How near its entity a boundary vertex must be (check --geometry's default).
+inline constexpr double kOnModel = 1e-8;
 
 inline constexpr double kShortEdge = 0.5, kLongEdge = 2.0, kPoorTet = 0.3, kPoorAtKeptFace = 0.5;
 
 // Adapts the part in place (the tets Part::focus flags, all when it is
-// empty); on a model its boundary vertices end on it (within 1e-8, or
-// it throws). `next_id` (the same on every rank) is the
+// empty); on a model new boundary vertices go on it. `next_id` (the same on every rank) is the
 // first unused global id, advanced past the new vertices of all ranks.
 // Throws (on every rank) when one part's adaptation failed or left an
 // invalid mesh.

@@ -63,6 +63,10 @@ struct ModelDistance {
 // Faces of surface `skip` (a piece's cut) make no boundary vertex.
 ModelDistance model_distance(const Mesh& mesh, const CadModel& model, double tolerance = 1e-8, SurfaceId skip = 0);
 
+// The boundary vertices without an entity or farther than `tolerance`
+// from it (faces of surface `skip` make no boundary vertex).
+std::vector<VertexId> vertices_off_model(const Mesh& mesh, const CadModel& model, double tolerance, SurfaceId skip = 0);
+
 // InputError naming `what` when a boundary vertex has no model entity or
 // lies farther than `check --geometry`'s default tolerance (1e-8) from it:
 // an output that check would refuse is never written.
