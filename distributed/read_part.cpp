@@ -281,7 +281,7 @@ Slices read_on_rank0(const Comm& comm, const std::string& path, const std::strin
   std::vector<std::vector<Row>> rows_out(n);
   std::vector<std::vector<Tet>> tets_out(n);
   std::vector<std::vector<Tri>> tris_out(n);
-  std::vector<std::vector<FileRecord>> records_out(n);
+  std::vector<FileRecord> records_read;  // on rank 0; associate_slice sends each to its vertex's reader
   std::int64_t header[3] = {0, 0, 0};
   if (comm.rank() == 0) {
     comm.step([&] {
@@ -302,10 +302,8 @@ Slices read_on_rank0(const Comm& comm, const std::string& path, const std::strin
       }
       if (records)
         for (const std::size_t dim : {0, 2})
-          for (const auto& g : d.on_geometry[dim]) {
-            const std::size_t q = std::min(n - 1, std::size_t(g.vertex) * n / d.vertices.size());
-            records_out[q].push_back({GlobalId(g.vertex), std::int32_t(dim), g.entity, g.u, g.v});
-          }
+          for (const auto& g : d.on_geometry[dim])
+            records_read.push_back({GlobalId(g.vertex), std::int32_t(dim), g.entity, g.u, g.v});
       header[0] = std::int64_t(d.vertices.size()), header[1] = std::int64_t(d.tets.size()),
       header[2] = std::int64_t(d.triangles.size());
       if (!d.edges.empty()) counts.dropped.push_back("Edges");
@@ -323,7 +321,7 @@ Slices read_on_rank0(const Comm& comm, const std::string& path, const std::strin
   const auto rows_in = comm.exchange(rows_out);
   const auto tets_in = comm.exchange(tets_out);
   const auto tris_in = comm.exchange(tris_out);
-  s.records = comm.exchange(records_out);
+  s.records = std::move(records_read);
   for (std::size_t q = 0; q <= n; ++q) s.vertex_starts.push_back(std::int64_t(std::size_t(header[0]) * q / n));
   s.first_vertex = s.vertex_starts[std::size_t(comm.rank())];
   for (const auto& r : rows_in) {
