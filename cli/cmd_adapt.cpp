@@ -129,7 +129,7 @@ void declare_options(Options& o) {
           "tets, off-size edges at kept faces) and its round adapts only around it; the rounds end when "
           "nothing is left or, from the third on, no tet adapted has mean ratio below 0.5 "
           "(docs/distributed.md); 0: cut, move and write without adapting");
-  o.output_option("metric-out", "also write the metric at the output's vertices (.sol, .solb)",
+  o.output_option("metric-out", "also write the metric at the output's vertices (.sol, .solb; .solb under mpirun)",
                   {io::FileFormat::sol, io::FileFormat::solb});
   o.output_option("vtu", "also write the adapted mesh for ParaView (.vtu)", {io::FileFormat::vtu});
   o.format_version("libMeshb version to write (default: the input's)");
@@ -215,9 +215,7 @@ void write_outputs(const Options& o, const Mesh& mesh, const CadModel* model, co
 // not carry yet is refused up front.
 int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice& policies,
                     const std::optional<AnalyticMetric>& analytic, const MetricBounds& bounds, int iterations) {
-  for (const char* name : {"keep-surface", "metric-out", "vtu", "dry-run"})
-    if (o.has(name))
-      throw UsageError(fmt::format("adapt: --{} is not available under mpirun yet (docs/distributed.md)", name));
+  if (o.has("vtu")) throw UsageError("adapt: --vtu is not available under mpirun yet (docs/distributed.md)");
   distributed::DistributedAdapt run;
   run.input = o.get<std::string>("input");
   run.output = o.get<std::string>("output");
@@ -230,6 +228,14 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
       throw UsageError(fmt::format("adapt: {}: the metric must be a .sol or .solb", run.metric));
   }
   if (o.has("geometry")) run.geometry = o.get<std::string>("geometry");
+  if (o.has("metric-out")) {
+    run.metric_out = o.get<std::string>("metric-out");
+    if (io::format_of(run.metric_out) != io::FileFormat::solb)
+      throw UsageError(fmt::format("adapt: under mpirun --metric-out is one binary .solb written by all ranks (got {})",
+                                   run.metric_out));
+  }
+  run.keep_surface = o.has("keep-surface");
+  run.dry_run = o.dry_run();
   run.analytic = analytic;
   run.bounds = bounds;
   run.options = ao;

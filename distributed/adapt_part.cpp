@@ -202,6 +202,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       }
       if (model_vertex) mesh.classify();
     }
+    if (settings.keep_surface) mesh.keep_surface();
     AdaptInputs inputs;
     inputs.metric = settings.exact;
     inputs.model = settings.model;

@@ -7,6 +7,7 @@
 #include <metrica/distributed/write_part.hpp>
 #include <metrica/error.hpp>
 #include <metrica/geometry/association.hpp>
+#include <metrica/metrics/complexity.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
 #include <metrica/timer.hpp>
@@ -198,7 +199,9 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   }
   MetricFunction exact;
   if (run.analytic)
-    exact = [kind = *run.analytic, b = run.bounds](const Point& p) { return clamp_metric(evaluate(kind, p), b); };
+    exact = [kind = *run.analytic, b = run.bounds](const Point& p) {
+      return b.active() ? clamp_metric(evaluate(kind, p), b) : evaluate(kind, p);
+    };
 
   PartAdaptSettings settings;
   settings.options = run.options;
@@ -206,6 +209,28 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   settings.exact = run.analytic ? &exact : nullptr;
   settings.default_surface_id = std::int32_t(comm.max(std::int64_t(max_ref))) + 1;
   settings.model = model.get();
+  settings.keep_surface = run.keep_surface;
+  if (run.dry_run) {
+    // As the single process predicts: an analytic metric sampled inside
+    // the tets, a metric file by the vertex formula.
+    double predicted = 0;
+    if (settings.exact) {
+      const VertexIndex index(part.vertex_ids);
+      const int order = sample_order(double(counts.tets));
+      double c = 0;
+      for (const auto& t : part.tets) {
+        const auto p = [&](int k) { return part.points[std::size_t(index.find(t[std::size_t(k)]))]; };
+        c += sampled_tet_complexity(p(0), p(1), p(2), p(3), *settings.exact, order);
+      }
+      predicted = kTetsPerMetricVolume * comm.sum(c);
+    } else {
+      predicted_tets(comm, part, settings.exact, predicted);
+    }
+    if (comm.rank() == 0)
+      fmt::print("adapt: {} vertices, {} tets in; about {:.3g} tets out on {} ranks, about {:.3g} a rank\n",
+                 counts.vertices, counts.tets, predicted, comm.size(), predicted / comm.size());
+    return;
+  }
   GlobalId next_id = counts.vertices;
   const double volume_in = comm.sum(part_volume(part));
   std::vector<GlobalId> frozen_before;
@@ -321,11 +346,27 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
                       "at most {:.0e}); nothing written",
                       model->source(), without, farthest, kOnModel));
   });
-  const auto written = write_part(comm, part, run.output, run.version, model.get());
+  const VertexNumbering numbering = number_vertices(comm, part);
+  WrittenCounts written;
+  std::vector<StagedFile> outputs{write_part(comm, part, numbering, run.output, run.version, model.get(), &written)};
+  if (!run.metric_out.empty()) {
+    try {
+      outputs.push_back(write_part_metric(
+          comm, numbering,
+          [&](std::size_t v) { return settings.exact ? (*settings.exact)(part.points[v]) : part.metrics[v]; },
+          run.metric_out, written.version));
+    } catch (...) {
+      discard_outputs(comm, outputs);
+      throw;
+    }
+  }
+  commit_outputs(comm, outputs);
   if (talk) {
     fmt::print("wrote {}: {} vertices, {} triangles, {} tets (libMeshb v{}) on {} ranks ({:.2f} s in all)\n",
                run.output, written.vertices, written.triangles, written.tets, written.version, comm.size(),
                clock.seconds());
+    if (!run.metric_out.empty())
+      fmt::print("wrote {}: the metric at its {} vertices\n", run.metric_out, written.vertices);
     fmt::print("tets per rank {} .. {}, the most {:.3f} x the mean\n", tets.low, tets.high,
                double(tets.high) * comm.size() / double(std::max<std::int64_t>(1, tets.total)));
     if (run.rounds > 0)

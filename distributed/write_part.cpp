@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -60,8 +61,53 @@ void write_at(MPI_File file, std::uint64_t at, const std::string& bytes) {
 
 }  // namespace
 
-WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& path, int version,
-                         const CadModel* model) {
+SharedFile::SharedFile(const Comm& comm, const std::string& path) : comm_(comm) {
+  staged_.path = path;
+  if (comm.rank() == 0) staged_.temporary = fmt::format("{}.part-{}.tmp", path, ::getpid());
+  std::uint64_t size = staged_.temporary.size();
+  MPI_Bcast(&size, 1, MPI_UINT64_T, 0, comm.get());
+  staged_.temporary.resize(size);
+  MPI_Bcast(staged_.temporary.data(), int(size), MPI_CHAR, 0, comm.get());
+  const int opened =
+      MPI_File_open(comm.get(), staged_.temporary.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file_);
+  comm.step([&] {
+    if (opened != MPI_SUCCESS && comm.rank() == 0)
+      throw IoError(fmt::format("{}: cannot create the output next to it ({})", path, staged_.temporary));
+  });
+  open_ = true;
+}
+
+SharedFile::~SharedFile() {
+  if (open_) MPI_File_close(&file_);
+  if (!closed_ && comm_.rank() == 0) std::remove(staged_.temporary.c_str());
+}
+
+StagedFile SharedFile::close() {
+  MPI_File_close(&file_);
+  open_ = false;
+  closed_ = true;
+  return staged_;
+}
+
+void commit_outputs(const Comm& comm, const std::vector<StagedFile>& files) {
+  comm.step([&] {
+    if (comm.rank() != 0) return;
+    for (std::size_t i = 0; i < files.size(); ++i)
+      if (std::rename(files[i].temporary.c_str(), files[i].path.c_str()) != 0) {
+        const std::string why = std::strerror(errno);
+        for (std::size_t j = i; j < files.size(); ++j) std::remove(files[j].temporary.c_str());
+        throw IoError(fmt::format("{}: cannot rename {} to it ({})", files[i].path, files[i].temporary, why));
+      }
+  });
+}
+
+void discard_outputs(const Comm& comm, const std::vector<StagedFile>& files) {
+  if (comm.rank() == 0)
+    for (const auto& f : files) std::remove(f.temporary.c_str());
+}
+
+VertexNumbering number_vertices(const Comm& comm, const Part& part) {
+  VertexNumbering out;
   const auto n = std::size_t(comm.size());
   const int me = comm.rank();
   const VertexIndex index(part.vertex_ids);
@@ -94,14 +140,16 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
     holders = comm.exchange(reply);
   }
   // The owner of each local vertex (this rank unless a lower one holds it).
-  std::vector<int> owner(part.vertex_ids.size(), me);
+  std::vector<int>& owner = out.owner;
+  owner.assign(part.vertex_ids.size(), me);
   for (const auto& h : holders) owner[std::size_t(index.find(h.id))] = int(h.rank);
-  std::int64_t owned = 0;
-  for (int o : owner) owned += o == me;
-  const std::int64_t first_vertex = comm.exclusive_scan(owned);
-  std::vector<std::int64_t> number(part.vertex_ids.size(), 0);  // 1-based in the file
+  for (int o : owner) out.owned += o == me;
+  out.first = comm.exclusive_scan(out.owned);
+  out.total = comm.sum(out.owned);
+  std::vector<std::int64_t>& number = out.number;
+  number.assign(part.vertex_ids.size(), 0);
   {
-    std::int64_t at = first_vertex;
+    std::int64_t at = out.first;
     for (std::size_t v = 0; v < owner.size(); ++v)
       if (owner[v] == me) number[v] = ++at;
     // The numbers of the vertices a lower rank writes, from that rank.
@@ -120,6 +168,16 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
     for (std::size_t q = 0; q < n; ++q)
       for (GlobalId g : want[q]) number[std::size_t(index.find(g))] = got[k++];
   }
+  return out;
+}
+
+StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering& numbering, const std::string& path,
+                      int version, const CadModel* model, WrittenCounts* counts) {
+  const int me = comm.rank();
+  const VertexIndex index(part.vertex_ids);
+  const auto& owner = numbering.owner;
+  const auto& number = numbering.number;
+  const std::int64_t first_vertex = numbering.first;
   // A triangle on a face between parts is written by the lower rank.
   std::vector<std::pair<FaceKey, int>> across;
   for (std::size_t i = 0; i < part.shared_faces.size(); ++i)
@@ -148,7 +206,7 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
   }
 
   WrittenCounts total;
-  total.vertices = comm.sum(owned);
+  total.vertices = numbering.total;
   total.triangles = comm.sum(std::int64_t(triangles.size()));
   total.tets = comm.sum(std::int64_t(part.tets.size()));
   const std::int64_t first_triangle = comm.exclusive_scan(std::int64_t(triangles.size()));
@@ -195,91 +253,101 @@ WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& 
     return nullptr;
   };
 
-  std::string temporary;
-  if (me == 0) temporary = fmt::format("{}.part-{}.tmp", path, ::getpid());
-  {
-    std::uint64_t size = temporary.size();
-    MPI_Bcast(&size, 1, MPI_UINT64_T, 0, comm.get());
-    temporary.resize(size);
-    MPI_Bcast(temporary.data(), int(size), MPI_CHAR, 0, comm.get());
-  }
-  MPI_File file;
-  int opened = MPI_File_open(comm.get(), temporary.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file);
-  if (opened != MPI_SUCCESS)
-    comm.step([&] {
-      if (me == 0) throw IoError(fmt::format("{}: cannot create the output next to it ({})", path, temporary));
-    });
-  bool written = true;
-  try {
-    comm.step([&] {
-      if (me == 0) {
-        Rows h(I, 8);
-        h.int32(1), h.int32(version);
-        h.int32(kDimension), h.offset(blocks[0].at, O), h.int32(3);
-        write_at(file, 0, h.bytes());
-        for (std::size_t i = 0; i < blocks.size(); ++i) {
-          Rows k(I, 8);
-          k.int32(blocks[i].code), k.offset(i + 1 < blocks.size() ? blocks[i + 1].at : end_at, O);
-          k.integer(blocks[i].rows);
-          write_at(file, blocks[i].at, k.bytes());
-        }
-        Rows end(I, 8);
-        end.int32(kEnd), end.offset(0, O);
-        write_at(file, end_at, end.bytes());
-      }
-      const auto rows_at = [&](int code, std::int64_t first) {
-        const Block* b = block(code);
-        return b->at + head + std::uint64_t(first) * b->row_bytes;
-      };
-      Rows v(I, 8);
-      for (std::size_t i = 0; i < owner.size(); ++i) {
-        if (owner[i] != me) continue;
-        const auto& p = part.points[i];
-        v.real(p.x()), v.real(p.y()), v.real(p.z()), v.integer(0);
-      }
-      write_at(file, rows_at(kVertices, first_vertex), v.bytes());
-      if (total.triangles) {
-        Rows f(I, 8);
-        for (auto i : triangles) {
-          for (GlobalId g : part.triangles[i]) f.integer(number[std::size_t(index.find(g))]);
-          f.integer(part.triangle_refs[i]);
-        }
-        write_at(file, rows_at(kTriangles, first_triangle), f.bytes());
-      }
-      Rows t(I, 8);
-      for (std::size_t i = 0; i < part.tets.size(); ++i) {
-        for (GlobalId g : part.tets[i]) t.integer(number[std::size_t(index.find(g))]);
-        t.integer(part.tet_refs[i]);
-      }
-      write_at(file, rows_at(kTetrahedra, first_tet), t.bytes());
-      for (int d = 0; d < 3; ++d) {
-        const auto& list = records.on_geometry[std::size_t(d)];
-        if (on_total[std::size_t(d)] == 0) continue;
-        Rows g(I, 8);
-        for (const auto& r : list) {
-          g.integer(first_vertex + std::int64_t(r.vertex) + 1), g.integer(r.entity);
-          if (d >= 1) g.real(r.u);
-          if (d == 2) g.real(r.v);
-          if (d >= 1) g.real(r.dist);
-        }
-        write_at(file, rows_at(kVerticesOnGeometricVertices + d, on_first[std::size_t(d)]), g.bytes());
-      }
-    });
-  } catch (const ReportedFailure&) {
-    written = false;
-  }
-  MPI_File_close(&file);
-  if (!written) {
-    if (me == 0) std::remove(temporary.c_str());
-    throw ReportedFailure{};
-  }
+  // An error on any rank: every rank throws, and `out` removes the temporary.
+  SharedFile out(comm, path);
+  MPI_File file = out.file();
   comm.step([&] {
-    if (me == 0 && std::rename(temporary.c_str(), path.c_str()) != 0) {
-      std::remove(temporary.c_str());
-      throw IoError(fmt::format("{}: cannot rename {} to it ({})", path, temporary, std::strerror(errno)));
+    if (me == 0) {
+      Rows h(I, 8);
+      h.int32(1), h.int32(version);
+      h.int32(kDimension), h.offset(blocks[0].at, O), h.int32(3);
+      write_at(file, 0, h.bytes());
+      for (std::size_t i = 0; i < blocks.size(); ++i) {
+        Rows k(I, 8);
+        k.int32(blocks[i].code), k.offset(i + 1 < blocks.size() ? blocks[i + 1].at : end_at, O);
+        k.integer(blocks[i].rows);
+        write_at(file, blocks[i].at, k.bytes());
+      }
+      Rows end(I, 8);
+      end.int32(kEnd), end.offset(0, O);
+      write_at(file, end_at, end.bytes());
+    }
+    const auto rows_at = [&](int code, std::int64_t first) {
+      const Block* b = block(code);
+      return b->at + head + std::uint64_t(first) * b->row_bytes;
+    };
+    Rows v(I, 8);
+    for (std::size_t i = 0; i < owner.size(); ++i) {
+      if (owner[i] != me) continue;
+      const auto& p = part.points[i];
+      v.real(p.x()), v.real(p.y()), v.real(p.z()), v.integer(0);
+    }
+    write_at(file, rows_at(kVertices, first_vertex), v.bytes());
+    if (total.triangles) {
+      Rows f(I, 8);
+      for (auto i : triangles) {
+        for (GlobalId g : part.triangles[i]) f.integer(number[std::size_t(index.find(g))]);
+        f.integer(part.triangle_refs[i]);
+      }
+      write_at(file, rows_at(kTriangles, first_triangle), f.bytes());
+    }
+    Rows t(I, 8);
+    for (std::size_t i = 0; i < part.tets.size(); ++i) {
+      for (GlobalId g : part.tets[i]) t.integer(number[std::size_t(index.find(g))]);
+      t.integer(part.tet_refs[i]);
+    }
+    write_at(file, rows_at(kTetrahedra, first_tet), t.bytes());
+    for (int d = 0; d < 3; ++d) {
+      const auto& list = records.on_geometry[std::size_t(d)];
+      if (on_total[std::size_t(d)] == 0) continue;
+      Rows g(I, 8);
+      for (const auto& r : list) {
+        g.integer(first_vertex + std::int64_t(r.vertex) + 1), g.integer(r.entity);
+        if (d >= 1) g.real(r.u);
+        if (d == 2) g.real(r.v);
+        if (d >= 1) g.real(r.dist);
+      }
+      write_at(file, rows_at(kVerticesOnGeometricVertices + d, on_first[std::size_t(d)]), g.bytes());
     }
   });
-  return total;
+  if (counts != nullptr) *counts = total;
+  return out.close();
+}
+
+StagedFile write_part_metric(const Comm& comm, const VertexNumbering& numbering,
+                             const std::function<Sym6(std::size_t)>& metric_of, const std::string& path, int version) {
+  const int me = comm.rank();
+  // Version 1 stores single-precision reals: the mesh's version from 2 on.
+  const int I = version == 4 ? 8 : 4, O = version >= 3 ? 8 : 4;
+  const std::uint64_t head = 4 + std::uint64_t(O) + std::uint64_t(I) + 8;  // code, next, count, 1 type, its code
+  const std::uint64_t dimension_at = 8, sol_at = dimension_at + 4 + std::uint64_t(O) + 4;
+  const std::uint64_t end_at = sol_at + head + std::uint64_t(numbering.total) * 48;
+  using namespace io::meshb;
+  SharedFile out(comm, path);
+  comm.step([&] {
+    if (me == 0) {
+      Rows h(I, 8);
+      h.int32(1), h.int32(version);
+      h.int32(kDimension), h.offset(sol_at, O), h.int32(3);
+      h.int32(kSolAtVertices), h.offset(end_at, O), h.integer(numbering.total);
+      h.int32(1), h.int32(std::int32_t(io::SolType::sym_matrix));
+      write_at(out.file(), 0, h.bytes());
+      Rows end(I, 8);
+      end.int32(kEnd), end.offset(0, O);
+      write_at(out.file(), end_at, end.bytes());
+    }
+    Rows rows(I, 8);
+    for (std::size_t v = 0; v < numbering.owner.size(); ++v) {
+      if (numbering.owner[v] != me) continue;
+      const Sym6 m = metric_of(v);
+      for (double x : m) {
+        if (!std::isfinite(x)) throw IoError(fmt::format("{}: a non-finite metric entry; nothing written", path));
+        rows.real(x);
+      }
+    }
+    write_at(out.file(), sol_at + head + std::uint64_t(numbering.first) * 48, rows.bytes());
+  });
+  return out.close();
 }
 
 }  // namespace metrica::distributed

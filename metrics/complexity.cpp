@@ -46,27 +46,36 @@ double complexity(const Mesh& mesh) {
                         [&](std::size_t i) -> const Sym6& { return mesh.metric(static_cast<VertexId>(i)); });
 }
 
-double sampled_complexity(const Mesh& mesh, const std::function<Sym6(const Point&)>& metric, double samples) {
-  const double tets = std::max<double>(1.0, double(mesh.num_tets()));
+int sample_order(double tets, double samples) {
+  tets = std::max(1.0, tets);
   // A lattice of order m has (m+1)(m+2)(m+3)/6 points.
   int m = 1;
   while (m < 16 && double(m + 2) * (m + 3) * (m + 4) / 6.0 * tets <= samples) ++m;
+  return m;
+}
+
+double sampled_tet_complexity(const Point& a, const Point& b, const Point& d, const Point& e,
+                              const std::function<Sym6(const Point&)>& metric, int m) {
+  double sum = 0.0;
+  int count = 0;
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; i + j <= m; ++j)
+      for (int l = 0; i + j + l <= m; ++l) {
+        const int r = m - i - j - l;
+        const Point p = (double(i) * a + double(j) * b + double(l) * d + double(r) * e) / double(m);
+        sum += std::sqrt(std::max(0.0, determinant(metric(p))));
+        ++count;
+      }
+  return tet_volume(a, b, d, e) * sum / count;
+}
+
+double sampled_complexity(const Mesh& mesh, const std::function<Sym6(const Point&)>& metric, double samples) {
+  const int m = sample_order(double(mesh.num_tets()), samples);
   double c = 0.0;
   for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
     if (!mesh.tet_alive(t)) continue;
     const auto& k = mesh.tet(t);
-    const Point a = mesh.point(k[0]), b = mesh.point(k[1]), d = mesh.point(k[2]), e = mesh.point(k[3]);
-    double sum = 0.0;
-    int count = 0;
-    for (int i = 0; i <= m; ++i)
-      for (int j = 0; i + j <= m; ++j)
-        for (int l = 0; i + j + l <= m; ++l) {
-          const int r = m - i - j - l;
-          const Point p = (double(i) * a + double(j) * b + double(l) * d + double(r) * e) / double(m);
-          sum += std::sqrt(std::max(0.0, determinant(metric(p))));
-          ++count;
-        }
-    c += tet_volume(a, b, d, e) * sum / count;
+    c += sampled_tet_complexity(mesh.point(k[0]), mesh.point(k[1]), mesh.point(k[2]), mesh.point(k[3]), metric, m);
   }
   return c;
 }

@@ -5,8 +5,9 @@
 # bit for a given N with --concurrency serial, the parallel read and write
 # round trip (--rounds 0), an error on one rank (every rank exits 1, one
 # message, no output left behind), more ranks than the mesh has work for,
-# the boundary on a CAD model, two regions with the surface between them.
-# Usage: tests/test_mpi.sh METRICA [CASE]   (CASE: adapt, repeat, roundtrip, errors, geometry, regions; all by default)
+# the boundary on a CAD model, two regions with the surface between them,
+# --metric-out, --keep-surface and --dry-run.
+# Usage: tests/test_mpi.sh METRICA [CASE]   (CASE: adapt, repeat, roundtrip, errors, geometry, regions, options; all by default)
 set -euo pipefail
 metrica="$1"
 only="${2:-all}"
@@ -179,5 +180,40 @@ if [ "$only" = all ] || [ "$only" = regions ]; then
   run 2 adapt "$dir/bsb.meshb" --geometry "$msh/box_sphere.geo" --analytic linear --hmin 0.06 --hmax 0.06 \
     --iterations 2 --threads 1 -o "$dir/bsg.meshb" >"$dir/bsg.txt" 2>&1 || { cat "$dir/bsg.txt"; fail "two regions on the model failed"; }
   "$metrica" check "$dir/bsg.meshb" --geometry "$msh/box_sphere.geo" -q || fail "two regions on the model: invalid or off the model"
+fi
+# The options the single process has: --metric-out (one .solb written by
+# all ranks, the analytic metric at the output's vertices to the bit),
+# --keep-surface (re-adapting on 2 parts leaves every boundary triangle
+# where it was), --dry-run (no output), and what stays refused.
+if [ "$only" = all ] || [ "$only" = options ]; then
+  run 2 adapt "$dir/cube.meshb" --analytic linear --concurrency serial -o "$dir/o.meshb" --metric-out "$dir/o.solb" \
+    >"$dir/o.txt" 2>&1 || { cat "$dir/o.txt"; fail "--metric-out on 2 ranks failed"; }
+  "$metrica" metric "$dir/o.meshb" --analytic linear -o "$dir/o-ref.solb" -q
+  cmp -s "$dir/o.solb" "$dir/o-ref.solb" || fail "--metric-out on 2 ranks: not the metric at the output's vertices"
+  run 2 adapt "$dir/o.meshb" --analytic linear --keep-surface --threads 1 -o "$dir/k.meshb" >"$dir/k.txt" 2>&1 ||
+    { cat "$dir/k.txt"; fail "--keep-surface on 2 ranks failed"; }
+  grep -q "round 1: .* (2 parts," "$dir/k.txt" || { cat "$dir/k.txt"; fail "--keep-surface: no round on 2 parts"; }
+  "$metrica" check "$dir/k.meshb" -q || fail "--keep-surface on 2 ranks: invalid output"
+  # Each triangle as its three corners' coordinates (sorted) and its id.
+  surface() {
+    "$metrica" convert "$1" "$dir/s.mesh" -q
+    awk '/^Vertices/ { getline n; for (i = 1; i <= n; i++) { getline; v[i] = $1 " " $2 " " $3 } }
+      /^Triangles/ { getline n; for (i = 1; i <= n; i++) { getline; a = v[$1]; b = v[$2]; c = v[$3]
+        if (a > b) { t = a; a = b; b = t } if (b > c) { t = b; b = c; c = t } if (a > b) { t = a; a = b; b = t }
+        print a "|" b "|" c "|" $4 } }' "$dir/s.mesh" | sort
+  }
+  [ "$(surface "$dir/o.meshb")" = "$(surface "$dir/k.meshb")" ] || fail "--keep-surface on 2 ranks: the surface changed"
+  msg=$(run 2 adapt "$dir/cube.meshb" --analytic linear -o "$dir/d.meshb" --dry-run 2>&1) || fail "--dry-run: $msg"
+  grep -q "tets out on 2 ranks" <<<"$msg" || fail "--dry-run on 2 ranks: $msg"
+  [ ! -e "$dir/d.meshb" ] || fail "--dry-run on 2 ranks wrote an output"
+  for bad in "--metric-out $dir/m.sol" "--vtu $dir/m.vtu"; do
+    set +e
+    # shellcheck disable=SC2086 # the option and its value
+    msg=$(run 2 adapt "$dir/cube.meshb" --analytic linear -o "$dir/r.meshb" $bad 2>&1)
+    code=$?
+    set -e
+    [ "$code" -eq 2 ] || fail "$bad on 2 ranks: exit $code (want 2, a usage error): $msg"
+    [ ! -e "$dir/r.meshb" ] || fail "$bad on 2 ranks left an output"
+  done
 fi
 echo "test_mpi: ok"

@@ -29,6 +29,8 @@ struct PartAdaptSettings {
   SurfaceId default_surface_id = 1;
   // The CAD model the boundary lies on (Part::geo); none: the input's facets.
   const CadModel* model = nullptr;
+  // --keep-surface: the boundary and internal surfaces stay as they are.
+  bool keep_surface = false;
 };
 
 // The quality of some tets in their metric: edges (once per piece they

@@ -22,10 +22,13 @@ struct DistributedAdapt {
   MetricBounds bounds;
   AdaptOptions options;
   PolicyChoice policies;
-  int iterations = 1;  // --analytic only: the metric re-evaluated between them
-  int rounds = 5;      // at most this many cuts per adaptation
-  int version = 0;     // libMeshb version of the output (0: chosen by size)
-  bool talk = true;    // rank 0 prints progress
+  int iterations = 1;         // --analytic only: the metric re-evaluated between them
+  int rounds = 5;             // at most this many cuts per adaptation
+  int version = 0;            // libMeshb version of the output (0: chosen by size)
+  std::string metric_out;     // also the metric at the output's vertices (.solb), or empty
+  bool keep_surface = false;  // the boundary and internal surfaces stay as they are
+  bool dry_run = false;       // read and check the inputs, say what would be done, adapt and write nothing
+  bool talk = true;           // rank 0 prints progress
 };
 
 // Runs on every rank of comm; throws ReportedFailure (every rank) after an

@@ -9,7 +9,9 @@
 #include <metrica/distributed/part.hpp>
 #include <metrica/geometry/cad_model.hpp>
 
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace metrica::distributed {
 
@@ -18,10 +20,52 @@ struct WrittenCounts {
   int version = 2;
 };
 
-// `version` 0 chooses: 2, or 3 past 2 GB, or 4 past 2^31 - 1 rows. With
-// a model, the vertices' CAD association too (VerticesOnGeometric*, as
-// the single process writes them).
-WrittenCounts write_part(const Comm& comm, const Part& part, const std::string& path, int version = 0,
-                         const CadModel* model = nullptr);
+// The file's numbering of the part's vertices: each is written by the
+// lowest rank holding it; `number` is 1-based, `first` the count written
+// by the ranks before this one. Collective.
+struct VertexNumbering {
+  std::vector<int> owner;            // per local vertex: the rank that writes it
+  std::vector<std::int64_t> number;  // per local vertex: its number in the file
+  std::int64_t owned = 0, first = 0, total = 0;
+};
+VertexNumbering number_vertices(const Comm& comm, const Part& part);
+
+// An output written by every rank: a temporary beside `path` until
+// commit_outputs renames it (with the run's other outputs); removed when
+// not committed.
+struct StagedFile {
+  std::string temporary, path;
+};
+class SharedFile {
+ public:
+  SharedFile(const Comm& comm, const std::string& path);  // collective; IoError on every rank if not created
+  ~SharedFile();
+  SharedFile(const SharedFile&) = delete;
+  SharedFile& operator=(const SharedFile&) = delete;
+  MPI_File file() const { return file_; }
+  StagedFile close();  // collective
+
+ private:
+  const Comm& comm_;
+  MPI_File file_{};
+  StagedFile staged_;
+  bool open_ = false, closed_ = false;
+};
+// Rank 0 renames every staged file onto its target (collective: an error
+// fails every rank, and the temporaries not renamed are removed).
+void commit_outputs(const Comm& comm, const std::vector<StagedFile>& files);
+void discard_outputs(const Comm& comm, const std::vector<StagedFile>& files);
+
+// The mesh as one .meshb. `version` 0 chooses: 2, or 3 past 2 GB, or 4
+// past 2^31 - 1 rows. With a model, the vertices' CAD association too
+// (VerticesOnGeometric*, as the single process writes them).
+StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering& numbering, const std::string& path,
+                      int version, const CadModel* model, WrittenCounts* counts);
+
+// The metric at the output's vertices as one .solb (SolAtVertices, one
+// symmetric tensor per vertex, in write_part's order): metric_of(v) for
+// the local vertices this rank writes. `version` as the mesh's (2 to 4).
+StagedFile write_part_metric(const Comm& comm, const VertexNumbering& numbering,
+                             const std::function<Sym6(std::size_t)>& metric_of, const std::string& path, int version);
 
 }  // namespace metrica::distributed

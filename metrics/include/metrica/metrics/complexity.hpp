@@ -28,6 +28,11 @@ double complexity(const Mesh& mesh);
 // tets of a start mesh by up to 10x (UGAWG linear on 48 tets); sampled, the
 // estimate is within a few tens of percent: what size predictions need.
 double sampled_complexity(const Mesh& mesh, const std::function<Sym6(const Point&)>& metric, double samples = 4e6);
+// Its two steps, for tets held elsewhere (a distributed part): the
+// lattice order for `tets` tets, and one tet's share.
+int sample_order(double tets, double samples = 4e6);
+double sampled_tet_complexity(const Point& a, const Point& b, const Point& c, const Point& d,
+                              const std::function<Sym6(const Point&)>& metric, int order);
 
 // Multiplies every tensor by s (sizes by 1/sqrt(s); complexity by s^1.5).
 void scale_metrics(std::vector<Sym6>& field, double s);
