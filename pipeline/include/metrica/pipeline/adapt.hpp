@@ -42,9 +42,11 @@ struct PipelineRules {
   // ... or, once at least near_unit_conformity of the edges are in the
   // unit band, when a cycle raises that share by less than
   // min_conformity_gain: the last cycles trade splits for collapses, and
-  // the quality phase gains more per second. Far from a unit mesh the
-  // share can stall while the operators work, so the rule waits.
-  double min_conformity_gain = 0.005;
+  // the quality phase gains more per second (a cycle that adds under one
+  // point costs as much as a quality pass that adds more). Far from a
+  // unit mesh the share can stall while the operators work, so the rule
+  // waits.
+  double min_conformity_gain = 0.01;
   double near_unit_conformity = 0.9;
   int quality_passes = 4;
   // Repair rounds while the worst tet is below repair_below, at most
@@ -67,7 +69,7 @@ struct AdaptOptions : PipelineRules {
   // edges with large rings and shells of 5 or 6 ring vertices whose worst
   // tet is at 0.7 or above (0.6 from 7 on), and 2-3 flips need a tet below
   // 0.3 across the face (all rarely flip). The quality phase sweeps from
-  // the tets below polish_below until little changes.
+  // the tets below polish_below, twice a pass.
   ReconnectOptions reconnect{
       .flips = {.short_edge_ring4 = 0.8, .short_edge_ring5 = 1.0, .good_shell = {1, 1, 1, 1, 1, 0.7, 0.7, 0.6}},
       .seed_below = 0.7,
@@ -244,7 +246,9 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   const SmoothOptions smooth = o.smooth;
   ReconnectOptions polish_flips = o.reconnect;
   polish_flips.seed_below = o.polish_below;
-  polish_flips.max_sweeps = 4;
+  // Two sweeps a pass: the later sweeps of a pass flip what the next
+  // pass's first sweep would.
+  polish_flips.max_sweeps = 2;
   SmoothOptions polish_smooth = o.smooth;
   polish_smooth.below = o.quality_phase_smooth_below;
 
