@@ -215,7 +215,6 @@ void write_outputs(const Options& o, const Mesh& mesh, const CadModel* model, co
 // not carry yet is refused up front.
 int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice& policies,
                     const std::optional<AnalyticMetric>& analytic, const MetricBounds& bounds, int iterations) {
-  if (o.has("vtu")) throw UsageError("adapt: --vtu is not available under mpirun yet (docs/distributed.md)");
   distributed::DistributedAdapt run;
   run.input = o.get<std::string>("input");
   run.output = o.get<std::string>("output");
@@ -234,6 +233,7 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
       throw UsageError(fmt::format("adapt: under mpirun --metric-out is one binary .solb written by all ranks (got {})",
                                    run.metric_out));
   }
+  if (o.has("vtu")) run.vtu = o.get<std::string>("vtu");
   run.keep_surface = o.has("keep-surface");
   run.dry_run = o.dry_run();
   run.analytic = analytic;

@@ -360,6 +360,14 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       throw;
     }
   }
+  if (!run.vtu.empty()) {
+    try {
+      outputs.push_back(write_part_vtu(comm, part, numbering, run.vtu));
+    } catch (...) {
+      discard_outputs(comm, outputs);
+      throw;
+    }
+  }
   commit_outputs(comm, outputs);
   if (talk) {
     fmt::print("wrote {}: {} vertices, {} triangles, {} tets (libMeshb v{}) on {} ranks ({:.2f} s in all)\n",
@@ -367,6 +375,7 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
                clock.seconds());
     if (!run.metric_out.empty())
       fmt::print("wrote {}: the metric at its {} vertices\n", run.metric_out, written.vertices);
+    if (!run.vtu.empty()) fmt::print("wrote {}: its tets for ParaView\n", run.vtu);
     fmt::print("tets per rank {} .. {}, the most {:.3f} x the mean\n", tets.low, tets.high,
                double(tets.high) * comm.size() / double(std::max<std::int64_t>(1, tets.total)));
     if (run.rounds > 0)

@@ -6,7 +6,7 @@
 # round trip (--rounds 0), an error on one rank (every rank exits 1, one
 # message, no output left behind), more ranks than the mesh has work for,
 # the boundary on a CAD model, two regions with the surface between them,
-# --metric-out, --keep-surface and --dry-run.
+# --metric-out, --keep-surface, --dry-run and --vtu.
 # Usage: tests/test_mpi.sh METRICA [CASE]   (CASE: adapt, repeat, roundtrip, errors, geometry, regions, options; all by default)
 set -euo pipefail
 metrica="$1"
@@ -184,7 +184,8 @@ fi
 # The options the single process has: --metric-out (one .solb written by
 # all ranks, the analytic metric at the output's vertices to the bit),
 # --keep-surface (re-adapting on 2 parts leaves every boundary triangle
-# where it was), --dry-run (no output), and what stays refused.
+# where it was), --dry-run (no output), --vtu (the output's vertices and
+# tets), and an ASCII --metric-out refused.
 if [ "$only" = all ] || [ "$only" = options ]; then
   run 2 adapt "$dir/cube.meshb" --analytic linear --concurrency serial -o "$dir/o.meshb" --metric-out "$dir/o.solb" \
     >"$dir/o.txt" 2>&1 || { cat "$dir/o.txt"; fail "--metric-out on 2 ranks failed"; }
@@ -206,7 +207,36 @@ if [ "$only" = all ] || [ "$only" = options ]; then
   msg=$(run 2 adapt "$dir/cube.meshb" --analytic linear -o "$dir/d.meshb" --dry-run 2>&1) || fail "--dry-run: $msg"
   grep -q "tets out on 2 ranks" <<<"$msg" || fail "--dry-run on 2 ranks: $msg"
   [ ! -e "$dir/d.meshb" ] || fail "--dry-run on 2 ranks wrote an output"
-  for bad in "--metric-out $dir/m.sol" "--vtu $dir/m.vtu"; do
+  # --vtu: the appended raw arrays hold the output's vertices and tets.
+  run 2 adapt "$dir/cube.meshb" --analytic linear --concurrency serial -o "$dir/v.meshb" --vtu "$dir/v.vtu" \
+    >"$dir/v.txt" 2>&1 || { cat "$dir/v.txt"; fail "--vtu on 2 ranks failed"; }
+  "$metrica" convert "$dir/v.meshb" "$dir/v.mesh" -q
+  python3 - "$dir/v.vtu" "$dir/v.mesh" <<'PY' || fail "--vtu on 2 ranks: not the output's tets"
+import re, struct, sys
+raw = open(sys.argv[1], "rb").read()
+head, data = raw.split(b'<AppendedData encoding="raw">', 1)
+data = data[data.index(b"_") + 1:]
+arrays = {m.group(1): int(m.group(2)) for m in re.finditer(rb'Name="(\w+)"[^>]*offset="(\d+)"', head)}
+def block(name, fmt):
+    at = arrays[name.encode()]
+    n = struct.unpack_from("<Q", data, at)[0]
+    return list(struct.unpack_from("<%d%s" % (n // struct.calcsize(fmt), fmt), data, at + 8))
+xyz, conn, offs, types, refs = (block("Points", "d"), block("connectivity", "q"), block("offsets", "q"),
+                                block("types", "B"), block("ref", "i"))
+text = open(sys.argv[2]).read().split("\n")
+def section(name):
+    i = text.index(name)
+    n = int(text[i + 1])
+    return [line.split() for line in text[i + 2:i + 2 + n]]
+verts = [[float(x) for x in r[:3]] for r in section("Vertices")]
+tets = [[int(x) for x in r] for r in section("Tetrahedra")]
+assert xyz == [c for v in verts for c in v], "points"
+assert conn == [v - 1 for t in tets for v in t[:4]], "connectivity"
+assert offs == [4 * (k + 1) for k in range(len(tets))] and types == [10] * len(tets), "offsets or types"
+assert refs == [t[4] for t in tets], "refs"
+assert raw.endswith(b"</AppendedData>\n</VTKFile>\n"), "the end"
+PY
+  for bad in "--metric-out $dir/m.sol"; do
     set +e
     # shellcheck disable=SC2086 # the option and its value
     msg=$(run 2 adapt "$dir/cube.meshb" --analytic linear -o "$dir/r.meshb" $bad 2>&1)

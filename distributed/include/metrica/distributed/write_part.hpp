@@ -62,6 +62,12 @@ void discard_outputs(const Comm& comm, const std::vector<StagedFile>& files);
 StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering& numbering, const std::string& path,
                       int version, const CadModel* model, WrittenCounts* counts);
 
+// The mesh's tets for ParaView as one .vtu (the single process's arrays:
+// points, tets, their refs as the cell field "ref"), its data appended raw
+// after the XML so that each rank's rows go at offsets from scans.
+StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumbering& numbering,
+                          const std::string& path);
+
 // The metric at the output's vertices as one .solb (SolAtVertices, one
 // symmetric tensor per vertex, in write_part's order): metric_of(v) for
 // the local vertices this rank writes. `version` as the mesh's (2 to 4).
