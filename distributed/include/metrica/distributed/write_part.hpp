@@ -1,8 +1,9 @@
-// Writing a distributed mesh into one binary .meshb: vertices numbered
+// Writing a distributed mesh into one binary .meshb (and its metric as
+// one .solb, its tets as one .vtu): vertices numbered
 // globally (a vertex held by several parts is written by the lowest rank
 // holding it), each rank's rows placed at offsets from exclusive scans,
-// written with MPI-IO into a temporary file that rank 0 renames once every
-// rank has written its share. No rank gathers the mesh.
+// written with MPI-IO into temporary files that rank 0 renames together
+// once every rank has written its share of each. No rank gathers the mesh.
 #pragma once
 
 #include <metrica/distributed/comm.hpp>
