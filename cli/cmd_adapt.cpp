@@ -235,6 +235,12 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
   }
   if (o.has("vtu")) run.vtu = o.get<std::string>("vtu");
   run.keep_surface = o.has("keep-surface");
+  // The ranks on one node share its memory (nodes taken alike).
+  run.max_tets = o.has("max-tets") ? o.positive("max-tets")
+                                   : double(default_max_tets()) * distributed::MpiRuntime::size() /
+                                         std::max(1, distributed::MpiRuntime::local_size());
+  run.max_tets_reason =
+      o.has("max-tets") ? "--max-tets" : "--max-tets N raises it; the default is what 90% of the nodes' memory holds";
   run.dry_run = o.dry_run();
   run.analytic = analytic;
   run.bounds = bounds;

@@ -210,9 +210,9 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   settings.default_surface_id = std::int32_t(comm.max(std::int64_t(max_ref))) + 1;
   settings.model = model.get();
   settings.keep_surface = run.keep_surface;
-  if (run.dry_run) {
-    // As the single process predicts: an analytic metric sampled inside
-    // the tets, a metric file by the vertex formula.
+  {
+    // The output's size as the single process predicts it: an analytic
+    // metric sampled inside the tets, a metric file by the vertex formula.
     double predicted = 0;
     if (settings.exact) {
       const VertexIndex index(part.vertex_ids);
@@ -226,10 +226,17 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
     } else {
       predicted_tets(comm, part, settings.exact, predicted);
     }
-    if (comm.rank() == 0)
-      fmt::print("adapt: {} vertices, {} tets in; about {:.3g} tets out on {} ranks, about {:.3g} a rank\n",
-                 counts.vertices, counts.tets, predicted, comm.size(), predicted / comm.size());
-    return;
+    comm.step([&] {
+      if (comm.rank() == 0 && run.max_tets > 0 && !(predicted <= run.max_tets))
+        throw InputError(fmt::format("adapt: the metric predicts about {:.3g} tets; the limit is {:.3g} tets ({})",
+                                     predicted, run.max_tets, run.max_tets_reason));
+    });
+    if (run.dry_run) {
+      if (comm.rank() == 0)
+        fmt::print("adapt: {} vertices, {} tets in; about {:.3g} tets out on {} ranks, about {:.3g} a rank\n",
+                   counts.vertices, counts.tets, predicted, comm.size(), predicted / comm.size());
+      return;
+    }
   }
   GlobalId next_id = counts.vertices;
   const double volume_in = comm.sum(part_volume(part));

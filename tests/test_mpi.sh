@@ -185,7 +185,7 @@ fi
 # all ranks, the analytic metric at the output's vertices to the bit),
 # --keep-surface (re-adapting on 2 parts leaves every boundary triangle
 # where it was), --dry-run (no output), --vtu (the output's vertices and
-# tets), and an ASCII --metric-out refused.
+# tets), --max-tets, and an ASCII --metric-out refused.
 if [ "$only" = all ] || [ "$only" = options ]; then
   run 2 adapt "$dir/cube.meshb" --analytic linear --concurrency serial -o "$dir/o.meshb" --metric-out "$dir/o.solb" \
     >"$dir/o.txt" 2>&1 || { cat "$dir/o.txt"; fail "--metric-out on 2 ranks failed"; }
@@ -236,6 +236,13 @@ assert offs == [4 * (k + 1) for k in range(len(tets))] and types == [10] * len(t
 assert refs == [t[4] for t in tets], "refs"
 assert raw.endswith(b"</AppendedData>\n</VTKFile>\n"), "the end"
 PY
+  # A run predicted past --max-tets: refused before any work, exit 1.
+  set +e
+  msg=$(run 2 adapt "$dir/cube.meshb" --analytic linear -o "$dir/big.meshb" --max-tets 1000 2>&1)
+  code=$?
+  set -e
+  [ "$code" -eq 1 ] && grep -q "the limit is 1e+03 tets" <<<"$msg" || fail "--max-tets 1000 on 2 ranks: exit $code: $msg"
+  [ ! -e "$dir/big.meshb" ] || fail "--max-tets on 2 ranks left an output"
   for bad in "--metric-out $dir/m.sol"; do
     set +e
     # shellcheck disable=SC2086 # the option and its value

@@ -29,7 +29,11 @@ struct DistributedAdapt {
   std::string vtu;            // also the tets for ParaView (.vtu), or empty
   bool keep_surface = false;  // the boundary and internal surfaces stay as they are
   bool dry_run = false;       // read and check the inputs, say what would be done, adapt and write nothing
-  bool talk = true;           // rank 0 prints progress
+  // A run predicted to make more tets is refused before any work (0: no
+  // limit); `max_tets_reason` says where the limit comes from.
+  double max_tets = 0;
+  std::string max_tets_reason;
+  bool talk = true;  // rank 0 prints progress
 };
 
 // Runs on every rank of comm; throws ReportedFailure (every rank) after an
