@@ -355,27 +355,15 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   });
   const VertexNumbering numbering = number_vertices(comm, part);
   WrittenCounts written;
-  std::vector<StagedFile> outputs{write_part(comm, part, numbering, run.output, run.version, model.get(), &written)};
-  if (!run.metric_out.empty()) {
-    try {
-      outputs.push_back(write_part_metric(
-          comm, numbering,
-          [&](std::size_t v) { return settings.exact ? (*settings.exact)(part.points[v]) : part.metrics[v]; },
-          run.metric_out, written.version));
-    } catch (...) {
-      discard_outputs(comm, outputs);
-      throw;
-    }
-  }
-  if (!run.vtu.empty()) {
-    try {
-      outputs.push_back(write_part_vtu(comm, part, numbering, run.vtu));
-    } catch (...) {
-      discard_outputs(comm, outputs);
-      throw;
-    }
-  }
-  commit_outputs(comm, outputs);
+  StagedOutputs outputs(comm);
+  outputs.add(write_part(comm, part, numbering, run.output, run.version, model.get(), &written));
+  if (!run.metric_out.empty())
+    outputs.add(write_part_metric(
+        comm, numbering,
+        [&](std::size_t v) { return settings.exact ? (*settings.exact)(part.points[v]) : part.metrics[v]; },
+        run.metric_out, written.version));
+  if (!run.vtu.empty()) outputs.add(write_part_vtu(comm, part, numbering, run.vtu));
+  outputs.commit();
   if (talk) {
     fmt::print("wrote {}: {} vertices, {} triangles, {} tets (libMeshb v{}) on {} ranks ({:.2f} s in all)\n",
                run.output, written.vertices, written.triangles, written.tets, written.version, comm.size(),

@@ -90,21 +90,20 @@ StagedFile SharedFile::close() {
   return staged_;
 }
 
-void commit_outputs(const Comm& comm, const std::vector<StagedFile>& files) {
-  comm.step([&] {
-    if (comm.rank() != 0) return;
-    for (std::size_t i = 0; i < files.size(); ++i)
-      if (std::rename(files[i].temporary.c_str(), files[i].path.c_str()) != 0) {
-        const std::string why = std::strerror(errno);
-        for (std::size_t j = i; j < files.size(); ++j) std::remove(files[j].temporary.c_str());
-        throw IoError(fmt::format("{}: cannot rename {} to it ({})", files[i].path, files[i].temporary, why));
-      }
-  });
+StagedOutputs::~StagedOutputs() {
+  if (comm_.rank() == 0)
+    for (std::size_t i = renamed_; i < files_.size(); ++i) std::remove(files_[i].temporary.c_str());
 }
 
-void discard_outputs(const Comm& comm, const std::vector<StagedFile>& files) {
-  if (comm.rank() == 0)
-    for (const auto& f : files) std::remove(f.temporary.c_str());
+void StagedOutputs::commit() {
+  comm_.step([&] {
+    if (comm_.rank() != 0) return;
+    for (; renamed_ < files_.size(); ++renamed_) {
+      const StagedFile& f = files_[renamed_];
+      if (std::rename(f.temporary.c_str(), f.path.c_str()) != 0)
+        throw IoError(fmt::format("{}: cannot rename {} to it ({})", f.path, f.temporary, std::strerror(errno)));
+    }
+  });
 }
 
 VertexNumbering number_vertices(const Comm& comm, const Part& part) {

@@ -32,8 +32,8 @@ struct VertexNumbering {
 VertexNumbering number_vertices(const Comm& comm, const Part& part);
 
 // An output written by every rank: a temporary beside `path` until
-// commit_outputs renames it (with the run's other outputs); removed when
-// not committed.
+// StagedOutputs::commit renames it (with the run's other outputs);
+// removed when not committed.
 struct StagedFile {
   std::string temporary, path;
 };
@@ -52,10 +52,24 @@ class SharedFile {
   StagedFile staged_;
   bool open_ = false, closed_ = false;
 };
-// Rank 0 renames every staged file onto its target (collective: an error
-// fails every rank, and the temporaries not renamed are removed).
-void commit_outputs(const Comm& comm, const std::vector<StagedFile>& files);
-void discard_outputs(const Comm& comm, const std::vector<StagedFile>& files);
+// A run's outputs as one transaction (io::OutputSet's rule for files all
+// ranks write): commit() has rank 0 rename every staged file onto its
+// target (collective: an error fails every rank); what is not renamed,
+// after an error or without a commit, is removed.
+class StagedOutputs {
+ public:
+  explicit StagedOutputs(const Comm& comm) : comm_(comm) {}
+  ~StagedOutputs();
+  StagedOutputs(const StagedOutputs&) = delete;
+  StagedOutputs& operator=(const StagedOutputs&) = delete;
+  void add(StagedFile file) { files_.push_back(std::move(file)); }
+  void commit();
+
+ private:
+  const Comm& comm_;
+  std::vector<StagedFile> files_;
+  std::size_t renamed_ = 0;
+};
 
 // The mesh as one .meshb. `version` 0 chooses: 2, or 3 past 2 GB, or 4
 // past 2^31 - 1 rows. With a model, the vertices' CAD association too
