@@ -70,6 +70,25 @@ std::vector<std::int32_t> predicted_tets(const Comm& comm, const Part& part, con
   return w;
 }
 
+// The output's size (all ranks') as the single process predicts it: an
+// analytic metric sampled inside the tets, a metric file by the vertex
+// formula. `tets`: the input's tets on all ranks.
+double predicted_output(const Comm& comm, const Part& part, const MetricFunction* exact, std::int64_t tets) {
+  double predicted = 0;
+  if (!exact) {
+    predicted_tets(comm, part, exact, predicted);
+    return predicted;
+  }
+  const VertexIndex index(part.vertex_ids);
+  const int order = sample_order(double(tets));
+  double c = 0;
+  for (const auto& t : part.tets) {
+    const auto p = [&](int k) { return part.points[std::size_t(index.find(t[std::size_t(k)]))]; };
+    c += sampled_tet_complexity(p(0), p(1), p(2), p(3), *exact, order);
+  }
+  return kTetsPerMetricVolume * comm.sum(c);
+}
+
 // The volume of the part's tets.
 double part_volume(const Part& part) {
   const VertexIndex index(part.vertex_ids);
@@ -210,33 +229,17 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   settings.default_surface_id = std::int32_t(comm.max(std::int64_t(max_ref))) + 1;
   settings.model = model.get();
   settings.keep_surface = run.keep_surface;
-  {
-    // The output's size as the single process predicts it: an analytic
-    // metric sampled inside the tets, a metric file by the vertex formula.
-    double predicted = 0;
-    if (settings.exact) {
-      const VertexIndex index(part.vertex_ids);
-      const int order = sample_order(double(counts.tets));
-      double c = 0;
-      for (const auto& t : part.tets) {
-        const auto p = [&](int k) { return part.points[std::size_t(index.find(t[std::size_t(k)]))]; };
-        c += sampled_tet_complexity(p(0), p(1), p(2), p(3), *settings.exact, order);
-      }
-      predicted = kTetsPerMetricVolume * comm.sum(c);
-    } else {
-      predicted_tets(comm, part, settings.exact, predicted);
-    }
-    comm.step([&] {
-      if (comm.rank() == 0 && run.max_tets > 0 && !(predicted <= run.max_tets))
-        throw InputError(fmt::format("adapt: the metric predicts about {:.3g} tets; the limit is {:.3g} tets ({})",
-                                     predicted, run.max_tets, run.max_tets_reason));
-    });
-    if (run.dry_run) {
-      if (comm.rank() == 0)
-        fmt::print("adapt: {} vertices, {} tets in; about {:.3g} tets out on {} ranks, about {:.3g} a rank\n",
-                   counts.vertices, counts.tets, predicted, comm.size(), predicted / comm.size());
-      return;
-    }
+  const double predicted_out = predicted_output(comm, part, settings.exact, counts.tets);
+  comm.step([&] {
+    if (comm.rank() == 0 && run.max_tets > 0 && !(predicted_out <= run.max_tets))
+      throw InputError(fmt::format("adapt: the metric predicts about {:.3g} tets; the limit is {:.3g} tets ({})",
+                                   predicted_out, run.max_tets, run.max_tets_reason));
+  });
+  if (run.dry_run) {
+    if (comm.rank() == 0)
+      fmt::print("adapt: {} vertices, {} tets in; about {:.3g} tets out on {} ranks, about {:.3g} a rank\n",
+                 counts.vertices, counts.tets, predicted_out, comm.size(), predicted_out / comm.size());
+    return;
   }
   GlobalId next_id = counts.vertices;
   const double volume_in = comm.sum(part_volume(part));
