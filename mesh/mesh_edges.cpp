@@ -32,7 +32,7 @@ void edges_by_lower_vertex(const Mesh& mesh, const std::vector<std::uint32_t>& s
 }
 
 std::size_t edge_ranges(std::size_t entries, std::size_t max_ranges) {
-  constexpr std::size_t kRangeBytes = std::size_t{32} << 20;
+  constexpr std::size_t kRangeBytes = std::size_t{4} << 20;
   return std::clamp<std::size_t>((entries * sizeof(VertexId) + kRangeBytes - 1) / kRangeBytes, 1,
                                  std::max<std::size_t>(max_ranges, 1));
 }

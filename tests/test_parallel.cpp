@@ -491,9 +491,9 @@ TEST_SUITE("parallel") {
     REQUIRE(serial.size() == two.size());
     REQUIRE(serial.size() == eight.size());
     for (std::size_t i = 0; i < serial.size(); ++i) {
-      CHECK(serial[i].key == two[i].key);
+      CHECK(serial[i].key() == two[i].key());
       CHECK(serial[i].tet == two[i].tet);
-      CHECK(serial[i].key == eight[i].key);
+      CHECK(serial[i].key() == eight[i].key());
       CHECK(serial[i].tet == eight[i].tet);
     }
   }

@@ -41,7 +41,7 @@ TEST_SUITE("property") {
             std::span<const TetId>(seeds), [&](TetId t) -> const TetVertices& { return tets[t]; }, capacity, got);
         REQUIRE(got.size() == expected.size());
         for (std::size_t i = 0; i < got.size(); ++i) {
-          CHECK(got[i].key == expected[i].key);
+          CHECK(got[i].key() == expected[i].key());
           CHECK(got[i].tet == expected[i].tet);
         }
       }
@@ -72,8 +72,9 @@ TEST_SUITE("property") {
       CHECK(got == sorted);
     }
     CHECK(unique_edge_ranges(0) == 1);
-    CHECK(unique_edge_ranges(std::size_t{8} << 20) == 1);  // 32 MiB of entries
-    CHECK(unique_edge_ranges((std::size_t{8} << 20) + 1) == 2);
+    CHECK(unique_edge_ranges(std::size_t{1} << 20) == 1);  // 4 MiB of entries
+    CHECK(unique_edge_ranges((std::size_t{1} << 20) + 1) == 2);
+    CHECK(unique_edge_ranges(std::size_t{3} << 20) == 3);
     CHECK(unique_edge_ranges(std::size_t{1} << 40) == 8);
   }
 }

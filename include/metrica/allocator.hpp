@@ -2,8 +2,11 @@
 // for reuse, large ones handed back to the kernel.
 //
 // Every pass builds work lists and scratch arrays and frees them when it
-// ends. Small ones (below 4 MiB) stay in the heap for the next pass
-// (glibc would otherwise trim and fault them in again). Large ones are
+// ends. Small ones (below 4 MiB) stay in the heap for reuse (glibc would
+// otherwise trim and fault them in again), until the pipeline's stage
+// ends (release_freed_memory in Adapter::run_stage): kept from one stage
+// to the next, 17-23 MiB of them stood under the next peak at 1M tets
+// (docs/benchmarks.md, "Memory"). Large ones are
 // mapped and unmapped: kept in the heap, the freed blocks of passes and
 // of growing arrays stayed resident between the live ones and set the
 // peak (figures: docs/benchmarks.md, "Memory").
@@ -20,8 +23,9 @@ namespace metrica {
 
 void keep_freed_memory();
 
-// Hands the freed memory kept in the heap back to the kernel (between
-// runs of a benchmark, so that each measures its own peak).
+// Hands the freed memory kept in the heap back to the kernel (at the end
+// of each stage of a pipeline, between runs of a benchmark). Safe in any
+// process: only free blocks go.
 void release_freed_memory();
 
 // keep_freed_memory() for one run inside a process that is not ours (the

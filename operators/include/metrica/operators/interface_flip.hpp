@@ -72,7 +72,7 @@ struct InterfaceFlip : EdgeShellSteps {
   PassRoom room() const { return {.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 2}; }
 
   Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {
-    const auto [a, b] = edge_from_key(e.key);
+    const auto [a, b] = edge_from_key(e.key());
     const Shell& shell = s.shell;
     const std::size_t n = shell.tets.size();
     if (!shell.closed || mesh.keeps_surface() || mesh.is_ridge(a, b) || mesh.is_required_edge(a, b))
@@ -172,9 +172,10 @@ inline std::vector<EdgeSeed> interface_edge_seeds(const Mesh& mesh) {
       if (!mesh.is_ridge(a, b)) out.push_back({edge_key(a, b), t});
     }
   });
-  std::sort(out.begin(), out.end(), [](const EdgeSeed& x, const EdgeSeed& y) { return x.key < y.key; });
-  out.erase(std::unique(out.begin(), out.end(), [](const EdgeSeed& x, const EdgeSeed& y) { return x.key == y.key; }),
-            out.end());
+  std::sort(out.begin(), out.end(), [](const EdgeSeed& x, const EdgeSeed& y) { return x.key() < y.key(); });
+  out.erase(
+      std::unique(out.begin(), out.end(), [](const EdgeSeed& x, const EdgeSeed& y) { return x.key() == y.key(); }),
+      out.end());
   return out;
 }
 

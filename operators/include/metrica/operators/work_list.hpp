@@ -19,10 +19,17 @@
 namespace metrica {
 
 // An edge and a tet that holds it (the tet is where a shell walk starts).
+// Three 32-bit words, not a 64-bit key and a padded id: a flip pass lists
+// every edge of its seeds (16 bytes each were the pass's peak).
 struct EdgeSeed {
-  std::uint64_t key;  // edge_key(lower, higher)
+  EdgeSeed() = default;
+  EdgeSeed(std::uint64_t edge, TetId holder)
+      : lower(static_cast<VertexId>(edge >> 32)), higher(static_cast<VertexId>(edge)), tet(holder) {}
+  std::uint64_t key() const { return (std::uint64_t{lower} << 32) | higher; }  // edge_key(lower, higher)
+  VertexId lower, higher;
   TetId tet;
 };
+static_assert(sizeof(EdgeSeed) == 12);
 
 // The distinct edges of `tets`, each with the first tet of `tets` that
 // holds it, ordered by key (lower vertex, then higher): what sorting the
@@ -84,7 +91,7 @@ void unique_edge_seeds(std::span<const TetId> tets, VerticesOf&& vertices_of, st
         EdgeSeed* const begin = out.data() + first[a];
         EdgeSeed* const end = begin + count[a];
         const std::uint64_t key = edge_key(a, b);
-        EdgeSeed* x = std::lower_bound(begin, end, key, [](const EdgeSeed& s, std::uint64_t k) { return s.key < k; });
+        EdgeSeed* x = std::lower_bound(begin, end, key, [](const EdgeSeed& s, std::uint64_t k) { return s.key() < k; });
         std::atomic_ref<TetId> holder(x->tet);
         TetId seen = holder.load(std::memory_order_relaxed);
         const auto mine = static_cast<TetId>(i);

@@ -9,6 +9,7 @@
 // a work list with run(). adapt.hpp builds the standard pipeline from it.
 #pragma once
 
+#include <metrica/allocator.hpp>
 #include <metrica/operators/boundary_swap.hpp>
 #include <metrica/operators/clear_way.hpp>
 #include <metrica/operators/collapse.hpp>
@@ -190,11 +191,17 @@ class Adapter {
   // the passes it runs.
   const std::string& stage() const { return stage_; }
   // Runs `f(*this)` as stage `name` (no stage after it, thrown or not).
+  // The heap's freed blocks go back to the kernel when it ends: a pass
+  // reuses its own freed blocks, but those of the last pass, kept
+  // resident, stood under the next pass's peak (allocator.hpp).
   template <class F>
   OperatorStats run_stage(const std::string& name, F&& f) {
     struct Leave {
       std::string& stage;
-      ~Leave() { stage.clear(); }
+      ~Leave() {
+        stage.clear();
+        release_freed_memory();
+      }
     } leave{stage_};
     stage_ = name;
     if constexpr (requires { C::follow_load(); }) C::follow_load();
@@ -299,6 +306,7 @@ class Adapter {
   // report and the progress callback.
   void finish(CycleReport& c, const Stopwatch& clock) {
     mesh_.compact(part_runner<C>(mesh_.tet_capacity()));
+    release_freed_memory();
     c.vertices = mesh_.num_vertices();
     c.tets = mesh_.num_tets();
     c.conformity = conformity<S, C>(mesh_, &c.min_quality, true, &out_of_band_.edges);
