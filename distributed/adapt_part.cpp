@@ -183,6 +183,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     std::optional<Mesh> built(build_mesh(data, bo));
     Mesh& mesh = *built;
     data = io::MeshData{};
+    release_freed_memory();  // the build's work under the adaptation's peak
     result.volume_before = mesh.volume();
     if (settings.exact) {
       assign_metric(mesh, *settings.exact);
@@ -367,6 +368,7 @@ QualityTally part_quality(const Part& part, const PartAdaptSettings& settings) {
     bo.untagged_expected = true;
     Mesh mesh = build_mesh(data, bo);
     data = io::MeshData{};
+    release_freed_memory();
     if (settings.exact)
       assign_metric(mesh, *settings.exact);
     else

@@ -1,3 +1,4 @@
+#include <metrica/allocator.hpp>
 #include <metrica/distributed/adapt_part.hpp>
 #include <metrica/distributed/distributed_adapt.hpp>
 #include <metrica/distributed/migrate.hpp>
@@ -139,6 +140,9 @@ double move_to_parts(const Comm& comm, Part& part, const PartitionWeights& weigh
   const auto dest = partition(comm, part, nb, weights, parts);
   const double cut_seconds = clock.seconds();
   part = migrate(comm, std::move(part), std::move(nb), dest);
+  // The move's freed buffers back to the kernel: kept, they stood under
+  // the next part's mesh (57 MiB of 143 at 4.3M tets on 4 ranks).
+  release_freed_memory();
   return cut_seconds;
 }
 
