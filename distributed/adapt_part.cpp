@@ -235,6 +235,10 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     std::sort(kept.begin(), kept.end());
     kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
     io::MeshData out = extract_mesh_data(mesh);
+    // Sized once: grown by doubling beside the mesh and its file content,
+    // the copies set a rank's peak.
+    if (!settings.exact) adapted.metrics.reserve(mesh.num_vertices());
+    if (settings.model) adapted.geo.reserve(mesh.num_vertices());
     if (!settings.exact) {
       for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
         if (mesh.vertex_alive(v)) adapted.metrics.push_back(mesh.metric(v));
