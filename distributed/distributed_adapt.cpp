@@ -228,6 +228,13 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
 
   PartAdaptSettings settings;
   settings.options = run.options;
+  // A part's poorest tets lie against the faces it keeps, and what its
+  // quality phase leaves there the next round adapts again: more sweeps
+  // and cycles per part take fewer rounds (4.3M tets on 4 ranks: 4 rounds
+  // in 68.8 s, min Q 0.487, against 5 in 73-76 s, min Q 0.425, with the
+  // single process's 2 sweeps and 0.01).
+  settings.options.polish_sweeps = std::max(settings.options.polish_sweeps, 4);
+  settings.options.min_conformity_gain = std::min(settings.options.min_conformity_gain, 0.005);
   settings.policies = run.policies;
   settings.exact = run.analytic ? &exact : nullptr;
   settings.default_surface_id = std::int32_t(comm.max(std::int64_t(max_ref))) + 1;

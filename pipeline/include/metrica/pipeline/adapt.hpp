@@ -69,13 +69,16 @@ struct AdaptOptions : PipelineRules {
   // edges with large rings and shells of 5 or 6 ring vertices whose worst
   // tet is at 0.7 or above (0.6 from 7 on), and 2-3 flips need a tet below
   // 0.3 across the face (all rarely flip). The quality phase sweeps from
-  // the tets below polish_below, twice a pass.
+  // the tets below polish_below, polish_sweeps times a pass at most.
   ReconnectOptions reconnect{
       .flips = {.short_edge_ring4 = 0.8, .short_edge_ring5 = 1.0, .good_shell = {1, 1, 1, 1, 1, 0.7, 0.7, 0.6}},
       .seed_below = 0.7,
       .max_sweeps = 1,
       .face_flip_below = 0.3};
   double polish_below = 0.75;
+  // Two sweeps a pass: the later sweeps of a pass flip what the next
+  // pass's first sweep would.
+  int polish_sweeps = 2;
   SmoothOptions smooth{.below = 0.3};
   // Smoothing in the quality phase: every vertex (UGAWG linear: min Q 0.64
   // against 0.40 with 0.4).
@@ -246,9 +249,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   const SmoothOptions smooth = o.smooth;
   ReconnectOptions polish_flips = o.reconnect;
   polish_flips.seed_below = o.polish_below;
-  // Two sweeps a pass: the later sweeps of a pass flip what the next
-  // pass's first sweep would.
-  polish_flips.max_sweeps = 2;
+  polish_flips.max_sweeps = o.polish_sweeps;
   SmoothOptions polish_smooth = o.smooth;
   polish_smooth.below = o.quality_phase_smooth_below;
 
