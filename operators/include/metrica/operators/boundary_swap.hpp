@@ -40,7 +40,7 @@ struct BoundarySwap : EdgeShellSteps {
 
   PassRoom room() const { return {.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 0.05}; }
   Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {
-    const auto [a, b] = edge_from_key(e.key());
+    const auto [a, b] = e.ends();
     const Shell& shell = s.shell;
     if (shell.closed || shell.tets.size() != 2 || mesh.is_ridge(a, b) || mesh.keeps_surface() ||
         mesh.is_required_edge(a, b))

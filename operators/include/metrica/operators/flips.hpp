@@ -362,7 +362,7 @@ inline void preview_tets(const Mesh& mesh, std::span<const TetVertices> tets, Pl
 // The seed of an operation on an edge: its two ends, held before the
 // shell is walked (the edge removal, the boundary swap).
 inline Found hold_edge_ends(const EdgeSeed& e, VertexList& hold) {
-  const auto [a, b] = edge_from_key(e.key());
+  const auto [a, b] = e.ends();
   hold.emplace_back(a);
   hold.emplace_back(b);
   return Found::cavity;
@@ -378,7 +378,7 @@ struct EdgeShellSteps {
   }
   template <class Scratch>
   Found find(const Mesh& mesh, const EdgeSeed& e, Scratch& s, VertexList& hold) const {
-    const auto [a, b] = edge_from_key(e.key());
+    const auto [a, b] = e.ends();
     if (!find_edge_shell(mesh, a, b, s.ball, s.shell)) return Found::gone;
     append_shell_vertices(mesh, a, b, s.shell, hold);
     return Found::cavity;
@@ -402,7 +402,7 @@ struct EdgeRemoval {
   PassRoom room() const { return {.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 0.05}; }
   Found seed(const Mesh&, const Item& e, Scratch&, VertexList& hold) const { return hold_edge_ends(e, hold); }
   Found find(const Mesh& mesh, const Item& e, Scratch& s, VertexList& hold) const {
-    const auto [a, b] = edge_from_key(e.key());
+    const auto [a, b] = e.ends();
     // Holding a, a tet that shows a and b holds them for good (a writer
     // would hold a), so its peeked vertices are its vertices.
     const TetVertices held = mesh.peek_tet(e.tet);
@@ -416,7 +416,7 @@ struct EdgeRemoval {
     return Found::cavity;
   }
   Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {
-    const auto [a, b] = edge_from_key(e.key());
+    const auto [a, b] = e.ends();
     return decide_edge_removal<S, P, Criterion>(mesh, a, b, s, options, geometry);
   }
   void apply(Mesh& mesh, const Item&, const Plan& plan, Scratch& s) const {

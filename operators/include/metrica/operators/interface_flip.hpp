@@ -72,7 +72,7 @@ struct InterfaceFlip : EdgeShellSteps {
   PassRoom room() const { return {.max_vertices = 0, .vertices_per_item = 0, .tets_per_item = 2}; }
 
   Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {
-    const auto [a, b] = edge_from_key(e.key());
+    const auto [a, b] = e.ends();
     const Shell& shell = s.shell;
     const std::size_t n = shell.tets.size();
     if (!shell.closed || mesh.keeps_surface() || mesh.is_ridge(a, b) || mesh.is_required_edge(a, b))

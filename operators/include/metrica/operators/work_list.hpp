@@ -26,6 +26,7 @@ struct EdgeSeed {
   EdgeSeed(std::uint64_t edge, TetId holder)
       : lower(static_cast<VertexId>(edge >> 32)), higher(static_cast<VertexId>(edge)), tet(holder) {}
   std::uint64_t key() const { return (std::uint64_t{lower} << 32) | higher; }  // edge_key(lower, higher)
+  EdgeVertices ends() const { return {lower, higher}; }
   VertexId lower, higher;
   TetId tet;
 };
