@@ -3,15 +3,19 @@
 namespace metrica::distributed {
 
 VertexIndex::VertexIndex(const std::vector<GlobalId>& ids) {
-  sorted_.reserve(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) sorted_.emplace_back(ids[i], std::uint32_t(i));
-  std::sort(sorted_.begin(), sorted_.end());
-}
-
-std::int64_t VertexIndex::find(GlobalId id) const {
-  auto it = std::lower_bound(sorted_.begin(), sorted_.end(), std::pair<GlobalId, std::uint32_t>{id, 0});
-  if (it == sorted_.end() || it->first != id) return -1;
-  return it->second;
+  std::size_t size = 4;
+  int bits = 2;
+  while (size < ids.size() + ids.size() / 2) size *= 2, ++bits;
+  keys_.assign(size, kEmpty);
+  places_.assign(size, 0);
+  mask_ = size - 1;
+  shift_ = 64 - bits;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (ids[i] < 0) continue;
+    std::size_t s = slot(ids[i]);
+    while (keys_[s] != kEmpty && keys_[s] != ids[i]) s = (s + 1) & mask_;
+    if (keys_[s] == kEmpty) keys_[s] = ids[i], places_[s] = std::uint32_t(i);
+  }
 }
 
 }  // namespace metrica::distributed

@@ -1,8 +1,9 @@
-// The distributed executor's pieces that need no MPI: face keys and their
-// orientation, the rendezvous ranks, the tets across each face within a
-// part (distributed/neighbours.hpp), the tets a part keeps out of a round
-// where its boundary is pinched (distributed/pinches.hpp). The executor
-// itself runs under mpirun in tests/test_mpi.sh.
+// The distributed executor's pieces that need no MPI: the vertex index,
+// face keys and their orientation, the rendezvous ranks, the tets across
+// each face within a part (distributed/neighbours.hpp), the tets a part
+// keeps out of a round where its boundary is pinched
+// (distributed/pinches.hpp). The executor itself runs under mpirun in
+// tests/test_mpi.sh.
 #include "test_support.hpp"
 
 #include <metrica/box.hpp>
@@ -60,6 +61,27 @@ Part part_of_box(const BoxSpec& spec, const std::function<bool(const Point&)>& k
 }  // namespace
 
 TEST_SUITE("property") {
+  TEST_CASE("a vertex index finds each held id's first place and nothing else") {
+    std::mt19937_64 rng(7);
+    std::vector<GlobalId> ids;
+    std::map<GlobalId, std::int64_t> first;
+    for (int i = 0; i < 5000; ++i) {
+      // Sparse, clustered and repeated ids, and the absent marker -1.
+      const GlobalId g = i % 97 == 0 ? -1 : i % 5 == 0 ? GlobalId(rng() % 2000) : GlobalId(rng() >> 20);
+      if (g >= 0) first.emplace(g, std::int64_t(ids.size()));
+      ids.push_back(g);
+    }
+    const VertexIndex index(ids);
+    for (const auto& [g, place] : first) CHECK(index.find(g) == place);
+    CHECK(index.find(-1) == -1);
+    for (int i = 0; i < 5000; ++i) {
+      const auto g = GlobalId(rng() >> 20);
+      CHECK(index.find(g) == (first.count(g) ? first[g] : -1));
+    }
+    const VertexIndex empty(std::vector<GlobalId>{});
+    CHECK(empty.find(0) == -1);
+  }
+
   TEST_CASE("a face key is sorted and oriented() turns it back into its triangle up to rotation") {
     auto r = test::rng(48);
     std::uniform_int_distribution<GlobalId> id(0, 1'000'000'000'000LL);

@@ -110,15 +110,32 @@ inline void keep_triangles(Part& part, const std::vector<bool>& keep) {
   keep_only(part.triangle_refs, keep);
 }
 
-// The local index of each global id of `part` (a sorted lookup).
+// The local index of each global id of `part`: an open-addressing table
+// (linear probing, at most 2/3 full) of the ids and their places. Every
+// pass over a part's tets looks up their vertices here; a binary search
+// over the sorted ids took 14% of a rank's time at 1M tets on 2 ranks.
 class VertexIndex {
  public:
   explicit VertexIndex(const std::vector<GlobalId>& ids);
-  // Local index of id; -1 when the part does not hold it.
-  std::int64_t find(GlobalId id) const;
+  // Local index of id; -1 when the part does not hold it (the first place
+  // when it holds it twice; negative ids are never held).
+  std::int64_t find(GlobalId id) const {
+    for (std::size_t s = slot(id);; s = (s + 1) & mask_) {
+      if (keys_[s] == kEmpty) return -1;
+      if (keys_[s] == id) return places_[s];
+    }
+  }
 
  private:
-  std::vector<std::pair<GlobalId, std::uint32_t>> sorted_;
+  static constexpr GlobalId kEmpty = -1;
+  std::size_t slot(GlobalId id) const {
+    // Fibonacci hashing: consecutive ids spread over the table.
+    return std::size_t((std::uint64_t(id) * 0x9E3779B97F4A7C15ull) >> shift_);
+  }
+  std::vector<GlobalId> keys_;
+  std::vector<std::uint32_t> places_;
+  std::size_t mask_ = 0;
+  int shift_ = 64;
 };
 
 }  // namespace metrica::distributed
