@@ -10,6 +10,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -124,8 +125,6 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   ActiveBounds bounds;
   std::vector<FaceKey> faces_kept;  // faces of the adapted mesh whose vertices were all kept
   bool changed = false;             // this rank adapted some tets
-  // The part's vertices keep their places until the adapted ones join them.
-  const VertexIndex index(part.vertex_ids);
   comm.step([&] {
     if (part.tets.empty()) return;
     Stopwatch clock;
@@ -137,16 +136,22 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       if (wanted[t] && !active[t]) {
         ++result.kept_out;
         result.kept_vertices.insert(result.kept_vertices.end(), part.tets[t].begin(), part.tets[t].end());
+        result.held.insert(result.held.end(), part.tets[t].begin(), part.tets[t].end());
       }
-    bounds = active_bounds(part, index, active);
+    // The part's records as they came in, until the active tets' go.
+    std::optional<VertexIndex> index(std::in_place, part.vertex_ids);
+    bounds = active_bounds(part, *index, active);
     const auto& frozen = bounds.frozen;
+    for (const auto& k : frozen) result.held.insert(result.held.end(), k.begin(), k.end());
+    std::sort(result.held.begin(), result.held.end());
+    result.held.erase(std::unique(result.held.begin(), result.held.end()), result.held.end());
 
     // The adapted tets' mesh, numbered locally.
     std::vector<std::int64_t> local(part.vertex_ids.size(), -1);
     std::vector<std::uint32_t> global_of;  // local -> part vertex
     io::MeshData data;
     auto number = [&](GlobalId g) {
-      const auto v = std::size_t(index.find(g));
+      const auto v = std::size_t(index->find(g));
       if (local[v] < 0) {
         local[v] = std::int64_t(global_of.size());
         global_of.push_back(std::uint32_t(v));
@@ -177,6 +182,43 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     }
     if (data.tets.empty()) return;
     changed = true;
+    // What the adaptation needs of the records besides `data`: the
+    // metrics and model parameters of its vertices, and the kept faces'
+    // vertices by their coordinates (to find their global ids after).
+    std::vector<Sym6> metrics;
+    std::vector<GeoParam> params;
+    if (!settings.exact) metrics.reserve(global_of.size());
+    if (settings.model) params.reserve(global_of.size());
+    for (auto v : global_of) {
+      if (!settings.exact) metrics.push_back(part.metrics[v]);
+      if (settings.model) params.push_back(part.geo[v]);
+    }
+    std::vector<std::pair<Bits, GlobalId>> kept;
+    for (const auto& k : frozen)
+      for (GlobalId g : k) kept.emplace_back(bits_of(part.points[std::size_t(index->find(g))]), g);
+    std::sort(kept.begin(), kept.end());
+    kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+    // The active tets' records, their triangles and the vertices only they
+    // hold go before the mesh is built: their content is in `data`, and the
+    // adapted tets take their place (4.3M tets on 4 ranks: a rank's peak
+    // was the part's mesh built beside all its records).
+    {
+      std::vector<bool> kept_tets(part.tets.size());
+      for (std::size_t t = 0; t < kept_tets.size(); ++t) kept_tets[t] = !active[t];
+      keep_tets(part, kept_tets);
+      part.focus.clear();
+      std::vector<bool> used(part.vertex_ids.size(), false);
+      for (const auto& t : part.tets)
+        for (GlobalId g : t) used[std::size_t(index->find(g))] = true;
+      keep_vertices(part, used);
+      std::vector<bool> untouched(part.triangles.size());
+      for (std::size_t i = 0; i < untouched.size(); ++i) untouched[i] = !bounds.triangle_active[i];
+      keep_triangles(part, untouched);
+      index.reset();
+      local = {};
+      global_of = {};
+      release_freed_memory();
+    }
     BuildOptions bo;
     bo.default_surface_id = settings.default_surface_id;
     bo.source = fmt::format("part {}", comm.rank());
@@ -188,19 +230,18 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     if (settings.exact) {
       assign_metric(mesh, *settings.exact);
     } else {
-      std::vector<Sym6> metrics;
-      for (auto v : global_of) metrics.push_back(part.metrics[v]);
       assign_metric(mesh, metrics);
+      metrics = {};
     }
     if (settings.model) {
       // A vertex at a model vertex is a corner whatever the faces around it.
       mesh.enable_geo_params();
       bool model_vertex = false;
-      for (std::size_t l = 0; l < global_of.size(); ++l) {
-        const GeoParam& g = part.geo[global_of[l]];
-        mesh.set_geo_param(VertexId(l), g);
-        model_vertex |= g.dim == 0;
+      for (std::size_t l = 0; l < params.size(); ++l) {
+        mesh.set_geo_param(VertexId(l), params[l]);
+        model_vertex |= params[l].dim == 0;
       }
+      params = {};
       if (model_vertex) mesh.classify();
     }
     if (settings.keep_surface) mesh.keep_surface();
@@ -229,11 +270,6 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     result.quality = tally(mesh, settings.policies.space, &unfinished);
     for (VertexId v : off_model) unfinished[std::size_t(v)] |= 2;
     // Back to global ids: the kept faces' vertices by their coordinates.
-    std::vector<std::pair<Bits, GlobalId>> kept;
-    for (const auto& k : frozen)
-      for (GlobalId g : k) kept.emplace_back(bits_of(part.points[std::size_t(index.find(g))]), g);
-    std::sort(kept.begin(), kept.end());
-    kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
     io::MeshData out = extract_mesh_data(mesh);
     // Sized once: grown by doubling beside the mesh and its file content,
     // the copies set a rank's peak.
@@ -299,22 +335,14 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     for (auto& v : t) v = adapted.vertex_ids[std::size_t(v)];
   for (auto& f : adapted.triangles)
     for (auto& v : f) v = adapted.vertex_ids[std::size_t(v)];
-  // The tets kept out, the vertices only they hold and their triangles
-  // stay in the part (compacted in place), the adapted ones join them.
+  // The tets the round kept, the vertices only they hold and their
+  // triangles stay in the part, the adapted ones join them (the kept
+  // faces' vertices come back with the adapted tets).
   {
-    std::vector<bool> kept(part.tets.size());
-    for (std::size_t t = 0; t < kept.size(); ++t) kept[t] = !active[t];
-    keep_tets(part, kept);
-    part.focus.clear();
     const VertexIndex have(adapted.vertex_ids);
-    std::vector<bool> used(part.vertex_ids.size(), false);
-    for (const auto& t : part.tets)
-      for (GlobalId g : t)
-        if (have.find(g) < 0) used[std::size_t(index.find(g))] = true;
-    keep_vertices(part, used);
-    std::vector<bool> untouched(part.triangles.size());
-    for (std::size_t i = 0; i < untouched.size(); ++i) untouched[i] = !bounds.triangle_active[i];
-    keep_triangles(part, untouched);
+    std::vector<bool> apart(part.vertex_ids.size());
+    for (std::size_t v = 0; v < apart.size(); ++v) apart[v] = have.find(part.vertex_ids[v]) < 0;
+    keep_vertices(part, apart);
   }
   const auto append = [](auto& to, auto& from) {
     to.reserve(to.size() + from.size());  // once, to the size (a doubling would hold both copies)

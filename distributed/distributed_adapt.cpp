@@ -106,10 +106,19 @@ double part_volume(const Part& part) {
 
 // How far from what a round left unfinished the next one adapts (edge steps).
 constexpr int kFocusLayers = 8;
-// Rounds before the worst adapted tet may end an adaptation: the first
-// keeps the input's faces between parts, the second cut must cross them
-// somewhere (two cuts of one domain meet), the third adapts there.
+// Rounds after which the worst adapted tet alone may end an adaptation:
+// the first keeps the input's faces between parts, the second cut crosses
+// them somewhere in most meshes (two cuts of one domain meet), the third
+// adapts there. A second round that held none of what the first left
+// unfinished (its cut passed beside it) may end it too.
 constexpr int kFewestRounds = 3;
+
+// How many of `before` (sorted) are in `held` (sorted), on all ranks.
+std::int64_t held_again(const Comm& comm, const std::vector<GlobalId>& before, const std::vector<GlobalId>& held) {
+  std::int64_t n = 0;
+  for (GlobalId g : held) n += std::binary_search(before.begin(), before.end(), g);
+  return comm.sum(n);
+}
 
 // The unfinished vertices (sorted, once each) with those a rank across
 // found on the faces this part shares with it: the tets on both sides of
@@ -240,6 +249,16 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   settings.default_surface_id = std::int32_t(comm.max(std::int64_t(max_ref))) + 1;
   settings.model = model.get();
   settings.keep_surface = run.keep_surface;
+  // The first round of an adaptation on several parts, on a mesh far from
+  // its predicted size, keeps the input's faces between them, coarse where
+  // the metric asks for small tets; the next round adapts again around
+  // every tet it leaves poor. So it runs
+  // the single process's settings, and no repair rounds: they cannot lift
+  // the tets the kept faces hold (at 1M tets on 2 ranks the round took
+  // 7.7 s with 4 of them and one more cycle, 6.2 s without).
+  PartAdaptSettings first_round = settings;
+  first_round.options = run.options;
+  first_round.options.repair_rounds = 0;
   const double predicted_out = predicted_output(comm, part, settings.exact, counts.tets);
   comm.step([&] {
     if (comm.rank() == 0 && run.max_tets > 0 && !(predicted_out <= run.max_tets))
@@ -278,13 +297,16 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       // On a mesh already near its size the tets count as they are: the
       // vertex formula of the metric volume overestimates it in tets
       // across a sharp layer (polar-1: parts 2x apart).
-      if (predicted > 0.5 * now && predicted < 2.0 * now) weights.tets.assign(part.tets.size(), 1);
+      const bool near_size = predicted > 0.5 * now && predicted < 2.0 * now;
+      if (near_size) weights.tets.assign(part.tets.size(), 1);
       Stopwatch step_clock;
       const double cut_seconds = move_to_parts(comm, part, weights, parts);
       const double move_seconds = step_clock.seconds() - cut_seconds;
-      const auto result = adapt_part(comm, part, settings, next_id);
+      const auto result =
+          adapt_part(comm, part, round == 0 && parts > 1 && !near_size ? first_round : settings, next_id);
       const double adapt_seconds = step_clock.seconds() - cut_seconds - move_seconds;
       const double before = comm.sum(result.volume_before), after = comm.sum(result.volume_after);
+      const std::int64_t rekept = round > 0 ? held_again(comm, frozen_before, result.held) : -1;
       // The next cut stays away from what this round left unfinished, and
       // the next round adapts only around it: the rest is adapted already.
       frozen_before = unfinished_on_both_sides(comm, part, result.kept_vertices);
@@ -318,13 +340,14 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
           throw InputError(fmt::format("adapt: the volume moved by {:.3g} relative (at most {:.3g}); nothing written",
                                        std::abs(volume_now - volume_in) / volume_in, tolerance));
       });
-      // Nothing left unfinished (one part kept no face), or from the
-      // third round on no tet adapted below kPoorAtKeptFace: this
+      // Nothing left unfinished (one part kept no face), or no tet adapted
+      // below kPoorAtKeptFace from the third round on, or from the second
+      // when it adapted all the first left unfinished inside parts: this
       // adaptation is done. The tets a round adapts against the faces it
       // keeps are its poorest; the next round has them inside a part.
       last_parts = parts;
-      if (parts == 1 || unfinished == 0 || (round + 1 >= kFewestRounds && min_q >= kPoorAtKeptFace && off_model == 0))
-        break;
+      const bool settled = round + 1 >= kFewestRounds || rekept == 0;
+      if (parts == 1 || unfinished == 0 || (settled && min_q >= kPoorAtKeptFace && off_model == 0)) break;
     }
   // The output spread over every rank when the last round ran on fewer.
   if (run.rounds > 0 && last_parts < comm.size() && comm.sum(std::int64_t(part.tets.size())) >= comm.size()) {

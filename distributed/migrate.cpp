@@ -74,10 +74,28 @@ void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int
   auto& tets_out = out.tets;
   auto& verts_out = out.verts;
   const auto n = tets_out.size();
+  // Every list sized once (grown by doubling, they held up to twice the
+  // records beside the part).
+  std::vector<std::size_t> leaving(n, 0);
+  for (std::size_t t = 0; t < part.tets.size(); ++t)
+    if (dest[t] != stay) ++leaving[std::size_t(dest[t])];
   std::vector<std::vector<std::uint32_t>> by_rank(n);
+  for (std::size_t q = 0; q < n; ++q) by_rank[q].reserve(leaving[q]);
   for (std::size_t t = 0; t < part.tets.size(); ++t)
     if (dest[t] != stay) by_rank[std::size_t(dest[t])].push_back(std::uint32_t(t));
   std::vector<int> sent_to(part.vertex_ids.size(), -1);
+  for (std::size_t q = 0; q < n; ++q) {
+    std::size_t verts = 0;
+    for (auto t : by_rank[q])
+      for (GlobalId g : part.tets[t]) {
+        const auto v = std::size_t(index.find(g));
+        if (sent_to[v] != int(q)) sent_to[v] = int(q), ++verts;
+      }
+    tets_out[q].reserve(by_rank[q].size());
+    verts_out[q].reserve(verts);
+    if (!part.geo.empty()) out.geo[q].reserve(verts);
+  }
+  std::fill(sent_to.begin(), sent_to.end(), -1);
   std::vector<std::uint32_t> slot(part.vertex_ids.size());  // in verts_out[q], once sent to q
   for (std::size_t q = 0; q < n; ++q)
     for (auto t : by_rank[q]) {

@@ -55,6 +55,9 @@ struct PartAdaptResult {
   // a part adapted already (a later cut through finished mesh) leaves
   // little to do; a coarse one leaves long edges and poor tets.
   std::vector<GlobalId> kept_vertices;
+  // Every vertex the round held as it was (sorted, once each): those of
+  // the faces it kept and of the tets it kept out at pinches.
+  std::vector<GlobalId> held;
   QualityTally quality;  // of the adapted tets
   // Boundary vertices farther than kOnModel from their entity (with a
   // model), among the unfinished ones.
