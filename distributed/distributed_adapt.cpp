@@ -105,7 +105,7 @@ double part_volume(const Part& part) {
 }
 
 // How far from what a round left unfinished the next one adapts (edge steps).
-constexpr int kFocusLayers = 8;
+constexpr int kFocusLayers = 6;
 // Rounds after which the worst adapted tet alone may end an adaptation:
 // the first keeps the input's faces between parts, the second cut crosses
 // them somewhere in most meshes (two cuts of one domain meet), the third
@@ -302,8 +302,12 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       Stopwatch step_clock;
       const double cut_seconds = move_to_parts(comm, part, weights, parts);
       const double move_seconds = step_clock.seconds() - cut_seconds;
-      const auto result =
-          adapt_part(comm, part, round == 0 && parts > 1 && !near_size ? first_round : settings, next_id);
+      // The last round a run allows, on a mesh adapted before, is undone on
+      // a part where it leaves a tet poorer than it was given (adapt_part):
+      // no round after it would adapt there again.
+      PartAdaptSettings this_round = round == 0 && parts > 1 && !near_size ? first_round : settings;
+      this_round.keep_worst = near_size && round > 0 && round + 1 == run.rounds;
+      const auto result = adapt_part(comm, part, this_round, next_id);
       const double adapt_seconds = step_clock.seconds() - cut_seconds - move_seconds;
       const double before = comm.sum(result.volume_before), after = comm.sum(result.volume_after);
       const std::int64_t rekept = round > 0 ? held_again(comm, frozen_before, result.held) : -1;
@@ -314,7 +318,8 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       const auto near = tets_near(part, frozen_before, kFocusLayers);
       part.focus.assign(near.begin(), near.end());
       const auto tets = spread(comm, std::int64_t(part.tets.size()));
-      const std::int64_t kept_out = comm.sum(result.kept_out), adapted = comm.sum(result.adapted);
+      const std::int64_t kept_out = comm.sum(result.kept_out), adapted = comm.sum(result.adapted),
+                         undone = comm.sum(std::int64_t(result.undone));
       // The quality of the tets adapted this round.
       const double edges = double(comm.sum(result.quality.edges));
       const double in_range = double(comm.sum(result.quality.edges_in_range)) / std::max(1.0, edges);
@@ -322,11 +327,12 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       const std::int64_t off_model = comm.sum(result.off_model);
       if (talk) {
         fmt::print(
-            "  {}round {}: {} tets ({} part{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
+            "  {}round {}: {} tets ({} part{}{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
             "adapted: in range {:5.1f}% min Q {:.3f} | {} vertices unfinished{} | volume change {:.2g} | "
             "cut {:.2f} s, move {:.2f} s, adapt {:.2f} s (rank 0), {:.2f} s in all\n",
             run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, parts,
-            parts == 1 ? "" : "s", tets.low, tets.high, adapted, kept_out, 100.0 * in_range, min_q, unfinished,
+            parts == 1 ? "" : "s", undone > 0 ? fmt::format(", {} undone", undone) : "", tets.low, tets.high, adapted,
+            kept_out, 100.0 * in_range, min_q, unfinished,
             off_model > 0 ? fmt::format(" ({} off the model)", off_model) : "",
             before > 0 ? std::abs(after - before) / before : 0.0, cut_seconds, move_seconds, adapt_seconds,
             round_clock.seconds());

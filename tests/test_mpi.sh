@@ -6,6 +6,7 @@
 # round trip (--rounds 0), an error on one rank (every rank exits 1, one
 # message, no output left behind), more ranks than the mesh has work for,
 # the boundary on a CAD model, two regions with the surface between them,
+# the last round undone on a part that it would leave poorer,
 # --metric-out, --keep-surface, --dry-run and --vtu.
 # Usage: tests/test_mpi.sh METRICA [CASE]   (CASE: adapt, repeat, roundtrip, errors, geometry, regions, options; all by default)
 set -euo pipefail
@@ -57,6 +58,20 @@ if [ "$only" = all ] || [ "$only" = adapt ]; then
     { cat "$dir/m3.txt"; fail "a metric file on 3 ranks failed"; }
   grep -q "round 1: .* (1 part," "$dir/m3.txt" || { cat "$dir/m3.txt"; fail "a metric file on 3 ranks: not one part first"; }
   "$metrica" check "$dir/m3.meshb" -q || fail "a metric file on 3 ranks: invalid output"
+fi
+
+# The last round a run allows is undone on a part where it would leave a
+# tet poorer than it was given: polar-1 on 3 ranks, 2 rounds, whose
+# second round does so on one part (serial: the same on every run); the
+# part keeps its tets and the output stays valid and conforming.
+if [ "$only" = all ] || [ "$only" = adapt ]; then
+  run 3 adapt "$dir/cube.meshb" --analytic polar-1 --iterations 2 --rounds 2 --concurrency serial \
+    -o "$dir/u3.meshb" >"$dir/u3.txt" 2>&1 || { cat "$dir/u3.txt"; fail "polar-1 on 3 ranks, 2 rounds, failed"; }
+  grep -q "iteration 2 round 2: .* parts, [0-9]* undone," "$dir/u3.txt" ||
+    { cat "$dir/u3.txt"; fail "polar-1 on 3 ranks, 2 rounds: no part undone (the case no longer reaches the undo)"; }
+  "$metrica" check "$dir/u3.meshb" -q || fail "polar-1 on 3 ranks with a part undone: invalid output"
+  minq=$("$metrica" quality "$dir/u3.meshb" --analytic polar-1 | sed -n 's/.*mean ratio *min \([0-9.]*\).*/\1/p')
+  awk -v q="$minq" 'BEGIN { exit !(q >= 0.2) }' || { cat "$dir/u3.txt"; fail "polar-1 on 3 ranks with a part undone: min Q $minq"; }
 fi
 
 # Past 50k tets per rank the cut works on clusters of tets, smoothed:

@@ -31,6 +31,10 @@ struct PartAdaptSettings {
   const CadModel* model = nullptr;
   // --keep-surface: the boundary and internal surfaces stay as they are.
   bool keep_surface = false;
+  // Undo the part's round when it leaves a tet poorer than the poorest it
+  // was given and below kPoorAtKeptFace (the last round on a mesh adapted
+  // before).
+  bool keep_worst = false;
 };
 
 // The quality of some tets in their metric: edges (once per piece they
@@ -62,6 +66,8 @@ struct PartAdaptResult {
   // Boundary vertices farther than kOnModel from their entity (with a
   // model), among the unfinished ones.
   std::int64_t off_model = 0;
+  // keep_worst undid the round on this part: its tets are as they came.
+  bool undone = false;
 };
 
 // How near its entity a boundary vertex must be (check --geometry's default).
