@@ -362,11 +362,11 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
     move_to_parts(comm, part, weights, comm.size());
   }
   // The quality of the whole output (the edges between parts counted on
-  // each side), measured before the file is written: a failure here
-  // leaves no output.
+  // each side), for the report (none with -q, as the single process),
+  // measured before the file is written: a failure here leaves no output.
   const auto tets = spread(comm, std::int64_t(part.tets.size()));
   QualityTally q;
-  if (run.rounds > 0) comm.step([&] { q = part_quality(part, settings); });
+  if (run.rounds > 0 && run.talk) comm.step([&] { q = part_quality(part, settings); });
   const double edges = double(comm.sum(q.edges));
   const double in_range = double(comm.sum(q.edges_in_range)) / std::max(1.0, edges);
   const double min_q = comm.min(q.min_quality);

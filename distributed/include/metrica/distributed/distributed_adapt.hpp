@@ -33,7 +33,7 @@ struct DistributedAdapt {
   // limit); `max_tets_reason` says where the limit comes from.
   double max_tets = 0;
   std::string max_tets_reason;
-  bool talk = true;  // rank 0 prints progress
+  bool talk = true;  // rank 0 prints progress, and the output's quality (measured only then)
 };
 
 // Runs on every rank of comm; throws ReportedFailure (every rank) after an
