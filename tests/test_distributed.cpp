@@ -16,7 +16,9 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <map>
+#include <numeric>
 #include <random>
 
 using namespace metrica;
@@ -117,34 +119,47 @@ TEST_SUITE("property") {
 TEST_SUITE("unit") {
   TEST_CASE("within a part, the tets across each face pair up both ways; the faces without one are its surface") {
     const BoxSpec spec{4, 3, 3, Point(0, 0, 0), Point(4, 3, 3)};
-    const Part part = part_of_box(spec, [](const Point& c) { return c.x() + 0.5 * c.y() < 2.6; });
-    const auto nb = local_neighbours(part, VertexIndex(part.vertex_ids));
-    REQUIRE(nb.across.size() == part.tets.size());
-    auto key = [&](std::size_t t, int f) {
-      const auto& v = part.tets[t];
-      return face_key(v[std::size_t(kTetFaces[f][0])], v[std::size_t(kTetFaces[f][1])],
-                      v[std::size_t(kTetFaces[f][2])]);
-    };
-    std::map<FaceKey, int> count;
-    for (std::size_t t = 0; t < part.tets.size(); ++t)
-      for (int f = 0; f < 4; ++f) ++count[key(t, f)];
-    std::size_t paired = 0;
-    for (std::size_t t = 0; t < part.tets.size(); ++t)
-      for (int f = 0; f < 4; ++f) {
-        const auto u = nb.across[t][std::size_t(f)];
-        if (u < 0) continue;
-        ++paired;
-        CHECK(count[key(t, f)] == 2);
-        int back = 0;
-        for (int g = 0; g < 4; ++g)
-          back += nb.across[std::size_t(u)][std::size_t(g)] == std::int32_t(t) && key(std::size_t(u), g) == key(t, f);
-        CHECK(back == 1);
+    // Global ids in the order of the part's vertices, then out of it (faces
+    // are paired at their lowest vertex in the part's own numbering).
+    for (const bool shuffled : {false, true}) {
+      CAPTURE(shuffled);
+      Part part = part_of_box(spec, [](const Point& c) { return c.x() + 0.5 * c.y() < 2.6; });
+      if (shuffled) {
+        std::vector<GlobalId> to(part.vertex_ids.size());
+        std::iota(to.begin(), to.end(), GlobalId(1000));
+        std::shuffle(to.begin(), to.end(), std::mt19937_64(3));
+        for (auto& g : part.vertex_ids) g = to[std::size_t(g)];
+        for (auto& t : part.tets)
+          for (auto& g : t) g = to[std::size_t(g)];
       }
-    std::size_t single = 0;
-    for (const auto& [k, n] : count) single += n == 1;
-    CHECK(nb.open.size() == single);
-    CHECK(paired + nb.open.size() == 4 * part.tets.size());
-    CHECK(single > part.shared_faces.size());  // the box's faces and those shared
+      const auto nb = local_neighbours(part, VertexIndex(part.vertex_ids));
+      REQUIRE(nb.across.size() == part.tets.size());
+      auto key = [&](std::size_t t, int f) {
+        const auto& v = part.tets[t];
+        return face_key(v[std::size_t(kTetFaces[f][0])], v[std::size_t(kTetFaces[f][1])],
+                        v[std::size_t(kTetFaces[f][2])]);
+      };
+      std::map<FaceKey, int> count;
+      for (std::size_t t = 0; t < part.tets.size(); ++t)
+        for (int f = 0; f < 4; ++f) ++count[key(t, f)];
+      std::size_t paired = 0;
+      for (std::size_t t = 0; t < part.tets.size(); ++t)
+        for (int f = 0; f < 4; ++f) {
+          const auto u = nb.across[t][std::size_t(f)];
+          if (u < 0) continue;
+          ++paired;
+          CHECK(count[key(t, f)] == 2);
+          int back = 0;
+          for (int g = 0; g < 4; ++g)
+            back += nb.across[std::size_t(u)][std::size_t(g)] == std::int32_t(t) && key(std::size_t(u), g) == key(t, f);
+          CHECK(back == 1);
+        }
+      std::size_t single = 0;
+      for (const auto& [k, n] : count) single += n == 1;
+      CHECK(nb.open.size() == single);
+      CHECK(paired + nb.open.size() == 4 * part.tets.size());
+      CHECK(single > part.shared_faces.size());  // the box's faces and those shared
+    }
   }
 
   TEST_CASE("a face of three tets in one part is an input error") {
