@@ -252,10 +252,10 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   // The first round of an adaptation on several parts, on a mesh far from
   // its predicted size, keeps the input's faces between them, coarse where
   // the metric asks for small tets; the next round adapts again around
-  // every tet it leaves poor. So it runs
-  // the single process's settings, and no repair rounds: they cannot lift
-  // the tets the kept faces hold (at 1M tets on 2 ranks the round took
-  // 7.7 s with 4 of them and one more cycle, 6.2 s without).
+  // every tet it leaves poor. So it runs the single process's settings and
+  // no repair rounds: they cannot lift the tets the kept faces hold (at 1M
+  // tets on 2 ranks the round took 7.7 s with four of them and the parts'
+  // settings, 6.4 s without).
   PartAdaptSettings first_round = settings;
   first_round.options = run.options;
   first_round.options.repair_rounds = 0;
