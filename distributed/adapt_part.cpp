@@ -5,6 +5,9 @@
 #include <metrica/geometry/association.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/metrics/metric_field.hpp>
+#include <metrica/metrics/space.hpp>
+#include <metrica/metrics/unit_band.hpp>
+#include <metrica/operators/edge_buckets.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
 #include <metrica/timer.hpp>
 
@@ -28,28 +31,36 @@ Bits bits_of(const Point& p) {
 
 // The quality of a mesh's tets and edges; with `unfinished`, each vertex
 // gets 1 when on an edge out of [kShortEdge, kLongEdge], 2 when on a tet
-// below kPoorTet, 4 when on a tet below kPoorAtKeptFace.
+// below kPoorTet, 4 when on a tet below kPoorAtKeptFace. The edges come
+// from the adaptation's edge buckets and are tested against the bands
+// rather than measured (most need no root or logarithm); the mean ratios
+// come from the quality cache when an adaptation in `space` left it
+// filled. Measuring every edge and tet after a part's first round took
+// 0.13 s of its 6.6 (1M tets on 2 ranks).
 QualityTally tally(const Mesh& mesh, std::string_view space, std::vector<std::uint8_t>* unfinished) {
-  QualityTally q;
-  const auto measures = quality_measures(mesh, space);
-  for (std::size_t e = 0; e < measures.edges.size(); ++e) {
-    const double l = measures.lengths[e];
-    q.edges_in_range += l >= std::sqrt(0.5) && l <= std::sqrt(2.0);
-    if (unfinished && (l < kShortEdge || l > kLongEdge))
-      for (VertexId v : measures.edges[e]) (*unfinished)[std::size_t(v)] |= 1;
-  }
-  q.edges = std::int64_t(measures.edges.size());
-  std::size_t k = 0;
-  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
-    if (!mesh.tet_alive(t)) continue;
-    const double r = measures.mean_ratios[k++];
-    q.min_quality = std::min(q.min_quality, r);
-    q.sum_quality += r;
-    if (unfinished && r < kPoorAtKeptFace)
-      for (VertexId v : mesh.tet(t)) (*unfinished)[std::size_t(v)] |= r < kPoorTet ? 6 : 4;
-  }
-  q.tets = std::int64_t(k);
-  return q;
+  return with_policy<Spaces>("metric space", space, [&]<class S>() {
+    QualityTally q;
+    const UnitBand finished{kShortEdge, kLongEdge};
+    for_each_mesh_edge_bucket<Serial>(mesh, 1, [&](std::size_t, VertexId a, std::span<const VertexId> upper) {
+      q.edges += std::int64_t(upper.size());
+      for (VertexId b : upper) {
+        q.edges_in_range += S::edge_length_in(mesh, a, b, kUnitBand);
+        if (unfinished && !S::edge_length_in(mesh, a, b, finished))
+          (*unfinished)[std::size_t(a)] |= 1, (*unfinished)[std::size_t(b)] |= 1;
+      }
+    });
+    const bool cached = mesh.quality_cache_space() == S::name;
+    for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+      if (!mesh.tet_alive(t)) continue;
+      const double r = cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t));
+      ++q.tets;
+      q.min_quality = std::min(q.min_quality, r);
+      q.sum_quality += r;
+      if (unfinished && r < kPoorAtKeptFace)
+        for (VertexId v : mesh.tet(t)) (*unfinished)[std::size_t(v)] |= r < kPoorTet ? 6 : 4;
+    }
+    return q;
+  });
 }
 
 bool holds(const std::vector<FaceKey>& sorted, const FaceKey& k) {

@@ -315,8 +315,6 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       // the next round adapts only around it: the rest is adapted already.
       frozen_before = unfinished_on_both_sides(comm, part, result.kept_vertices);
       const std::int64_t unfinished = comm.sum(std::int64_t(frozen_before.size()));
-      const auto near = tets_near(part, frozen_before, kFocusLayers);
-      part.focus.assign(near.begin(), near.end());
       const auto tets = spread(comm, std::int64_t(part.tets.size()));
       const std::int64_t kept_out = comm.sum(result.kept_out), adapted = comm.sum(result.adapted),
                          undone = comm.sum(std::int64_t(result.undone));
@@ -354,6 +352,10 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       last_parts = parts;
       const bool settled = round + 1 >= kFewestRounds || rekept == 0;
       if (parts == 1 || unfinished == 0 || (settled && min_q >= kPoorAtKeptFace && off_model == 0)) break;
+      if (round + 1 < run.rounds) {  // the next round's tets
+        const auto near = tets_near(part, frozen_before, kFocusLayers);
+        part.focus.assign(near.begin(), near.end());
+      }
     }
   // The output spread over every rank when the last round ran on fewer.
   if (run.rounds > 0 && last_parts < comm.size() && comm.sum(std::int64_t(part.tets.size())) >= comm.size()) {
