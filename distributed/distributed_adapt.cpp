@@ -141,6 +141,29 @@ std::vector<GlobalId> unfinished_on_both_sides(const Comm& comm, const Part& par
   return mine;
 }
 
+// Whether a part has one of `vertices` (sorted) on a face it shares with
+// another, on any rank.
+bool on_faces_between_parts(const Comm& comm, const Part& part, const std::vector<GlobalId>& vertices) {
+  std::int64_t found = 0;
+  for (const auto& f : part.shared_faces)
+    for (GlobalId g : f) found += std::binary_search(vertices.begin(), vertices.end(), g);
+  return comm.sum(found) > 0;
+}
+
+// The most tets a part may hold, against the mean, for a round to run
+// without a new cut.
+constexpr double kMostWithoutCut = 1.05;
+
+// The weight of the graph edges around what the last round left
+// unfinished when the mesh is cut in two (PartitionWeights::heavy else).
+// Two parts share one surface, which a new cut can pass beside (one part
+// holds it all); more parts' faces meet along lines that a new cut must
+// cross. At 100, the second cut at 4.3M tets on 2 ranks crossed the
+// first's faces and the round after it left a tet at 0.005 (four rounds,
+// 34.2 s); at 1000 it passes beside them (three, 31.4 s). At 1000 on 4
+// ranks all five rounds ran.
+constexpr std::int32_t kAvoidBetweenTwo = 1000;
+
 // Cuts the mesh into `parts` and moves the tets there; the seconds the
 // cut took.
 double move_to_parts(const Comm& comm, Part& part, const PartitionWeights& weights, int parts) {
@@ -282,6 +305,7 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
     move_to_parts(comm, part, weights, comm.size());
   }
   int last_parts = comm.size();
+  bool inside_parts = false;
   for (int it = 0; it < run.iterations && run.rounds > 0; ++it)
     for (int round = 0; round < run.rounds; ++round) {
       Stopwatch round_clock;
@@ -294,13 +318,18 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       weights.avoid = frozen_before;
       const double now = double(comm.sum(std::int64_t(part.tets.size())));
       const int parts = parts_for(comm.size(), now, predicted);
+      if (parts == 2) weights.heavy = kAvoidBetweenTwo;
       // On a mesh already near its size the tets count as they are: the
       // vertex formula of the metric volume overestimates it in tets
       // across a sharp layer (polar-1: parts 2x apart).
       const bool near_size = predicted > 0.5 * now && predicted < 2.0 * now;
       if (near_size) weights.tets.assign(part.tets.size(), 1);
+      // What the last round left unfinished lies inside parts, away from
+      // the faces between them, in parts still balanced: the next round
+      // adapts around it where it is.
+      const bool recut = round == 0 || !inside_parts || parts != last_parts;
       Stopwatch step_clock;
-      const double cut_seconds = move_to_parts(comm, part, weights, parts);
+      const double cut_seconds = recut ? move_to_parts(comm, part, weights, parts) : 0.0;
       const double move_seconds = step_clock.seconds() - cut_seconds;
       // The last round a run allows, on a mesh adapted before, is undone on
       // a part where it leaves a tet poorer than it was given (adapt_part):
@@ -327,12 +356,13 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
         fmt::print(
             "  {}round {}: {} tets ({} part{}{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
             "adapted: in range {:5.1f}% min Q {:.3f} | {} vertices unfinished{} | volume change {:.2g} | "
-            "cut {:.2f} s, move {:.2f} s, adapt {:.2f} s (rank 0), {:.2f} s in all\n",
+            "{}adapt {:.2f} s (rank 0), {:.2f} s in all\n",
             run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, parts,
             parts == 1 ? "" : "s", undone > 0 ? fmt::format(", {} undone", undone) : "", tets.low, tets.high, adapted,
             kept_out, 100.0 * in_range, min_q, unfinished,
             off_model > 0 ? fmt::format(" ({} off the model)", off_model) : "",
-            before > 0 ? std::abs(after - before) / before : 0.0, cut_seconds, move_seconds, adapt_seconds,
+            before > 0 ? std::abs(after - before) / before : 0.0,
+            recut ? fmt::format("cut {:.2f} s, move {:.2f} s, ", cut_seconds, move_seconds) : "no cut, ", adapt_seconds,
             round_clock.seconds());
         std::fflush(stdout);
       }
@@ -355,6 +385,8 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       if (round + 1 < run.rounds) {  // the next round's tets
         const auto near = tets_near(part, frozen_before, kFocusLayers);
         part.focus.assign(near.begin(), near.end());
+        inside_parts = !on_faces_between_parts(comm, part, frozen_before) &&
+                       double(tets.high) * parts <= kMostWithoutCut * double(tets.total);
       }
     }
   // The output spread over every rank when the last round ran on fewer.

@@ -6,7 +6,8 @@
 # round trip (--rounds 0), an error on one rank (every rank exits 1, one
 # message, no output left behind), more ranks than the mesh has work for,
 # the boundary on a CAD model, two regions with the surface between them,
-# the last round undone on a part that it would leave poorer,
+# the last round undone on a part that it would leave poorer, rounds
+# without a new cut,
 # --metric-out, --keep-surface, --dry-run and --vtu.
 # Usage: tests/test_mpi.sh METRICA [CASE]   (CASE: adapt, repeat, roundtrip, errors, geometry, regions, options; all by default)
 set -euo pipefail
@@ -166,6 +167,16 @@ if [ "$only" = all ] || [ "$only" = geometry ]; then
   [ "${from_file:-0}" -gt 1000 ] || { echo "$report"; fail "cube-cylinder on 2 ranks: the output carries no association"; }
   minq=$("$metrica" quality "$dir/cc.meshb" --analytic polar-2 | sed -n 's/.*mean ratio *min \([0-9.]*\).*/\1/p')
   awk -v q="$minq" 'BEGIN { exit !(q >= 0.3) }' || fail "cube-cylinder on 2 ranks: min Q $minq (want >= 0.3)"
+  # Five iterations of polar-1: some later rounds find what the round
+  # before left unfinished inside the parts and run without a new cut.
+  run 2 adapt "$data/cube-cylinder.meshb" --geometry "$data/cube-cylinder.step" --analytic polar-1 --iterations 5 \
+    --concurrency serial -o "$dir/cc5.meshb" >"$dir/cc5.txt" 2>&1 || { cat "$dir/cc5.txt"; fail "cube-cylinder, polar-1, 5 iterations on 2 ranks failed"; }
+  grep -q "round [0-9]*: .* no cut, adapt" "$dir/cc5.txt" ||
+    { cat "$dir/cc5.txt"; fail "cube-cylinder, polar-1, 5 iterations on 2 ranks: no round without a cut"; }
+  "$metrica" check "$dir/cc5.meshb" --geometry "$data/cube-cylinder.step" -q ||
+    fail "cube-cylinder, polar-1, 5 iterations on 2 ranks: invalid or off the model"
+  minq=$("$metrica" quality "$dir/cc5.meshb" --analytic polar-1 | sed -n 's/.*mean ratio *min \([0-9.]*\).*/\1/p')
+  awk -v q="$minq" 'BEGIN { exit !(q >= 0.3) }' || fail "cube-cylinder, polar-1, 5 iterations on 2 ranks: min Q $minq (want >= 0.3)"
   set +e
   msg=$(run 2 adapt "$data/cube-cylinder.meshb" --geometry "$data/cone-cone.step" --analytic polar-2 -o "$dir/cc-bad.meshb" 2>&1)
   code=$?
