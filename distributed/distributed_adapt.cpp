@@ -157,11 +157,10 @@ constexpr double kMostWithoutCut = 1.05;
 // The weight of the graph edges around what the last round left
 // unfinished when the mesh is cut in two (PartitionWeights::heavy else).
 // Two parts share one surface, which a new cut can pass beside (one part
-// holds it all); more parts' faces meet along lines that a new cut must
-// cross. At 100, the second cut at 4.3M tets on 2 ranks crossed the
-// first's faces and the round after it left a tet at 0.005 (four rounds,
-// 34.2 s); at 1000 it passes beside them (three, 31.4 s). At 1000 on 4
-// ranks all five rounds ran.
+// holds it all); where a cut crosses it the next round leaves its poorest
+// tets (4.3M tets on 2 ranks at 100: one at 0.005, four rounds; at 1000
+// three). More parts' faces meet along lines that any cut crosses, and
+// there the larger weight only made rounds poorer (docs/distributed.md).
 constexpr std::int32_t kAvoidBetweenTwo = 1000;
 
 // Cuts the mesh into `parts` and moves the tets there; the seconds the
