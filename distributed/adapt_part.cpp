@@ -131,7 +131,8 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   PartAdaptResult result;
   std::int64_t fresh = 0;
   Part adapted;
-  std::vector<std::uint32_t> fresh_unfinished;  // new vertices of poor tets (local numbers)
+  std::vector<std::uint32_t> fresh_unfinished;  // new vertices of tets below kPoorTet (local numbers)
+  std::vector<std::uint32_t> fresh_poor;        // new vertices of tets below kPoorAtKeptFace (local numbers)
   std::vector<bool> active;
   ActiveBounds bounds;
   std::vector<FaceKey> faces_kept;  // faces of the adapted mesh whose vertices were all kept
@@ -311,6 +312,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
         result.off_model = off_model_before;
         result.volume_after = result.volume_before;
         result.kept_vertices.insert(result.kept_vertices.end(), poor_before.begin(), poor_before.end());
+        result.poor_vertices = poor_before;
         changed = false;
         result.seconds = clock.seconds();
         return;
@@ -343,9 +345,11 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       if (it != kept.end() && it->first == b) {
         ids[v] = it->second;
         if (unfinished[std::size_t(live)]) result.kept_vertices.push_back(it->second);
+        if (unfinished[std::size_t(live)] & 6) result.poor_vertices.push_back(it->second);
       } else {
         ++fresh;
         if (unfinished[std::size_t(live)] & 2) fresh_unfinished.push_back(std::uint32_t(v));
+        if (unfinished[std::size_t(live)] & 6) fresh_poor.push_back(std::uint32_t(v));
       }
     }
     // The faces kept (their vertices all kept), to check them below.
@@ -379,6 +383,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
   for (auto& g : adapted.vertex_ids)
     if (g < 0) g = at++;
   for (auto v : fresh_unfinished) result.kept_vertices.push_back(adapted.vertex_ids[v]);
+  for (auto v : fresh_poor) result.poor_vertices.push_back(adapted.vertex_ids[v]);
   for (auto& t : adapted.tets)
     for (auto& v : t) v = adapted.vertex_ids[std::size_t(v)];
   for (auto& f : adapted.triangles)

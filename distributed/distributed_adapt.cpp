@@ -381,6 +381,10 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       last_parts = parts;
       const bool settled = round + 1 >= kFewestRounds || rekept == 0;
       if (parts == 1 || unfinished == 0 || (settled && min_q >= kPoorAtKeptFace && off_model == 0)) break;
+      // Once settled only the poor tets keep the adaptation from ending:
+      // the next round adapts around them alone (4.3M tets on 2 ranks: the
+      // third round around one sliver's vertices instead of 240).
+      if (settled) frozen_before = unfinished_on_both_sides(comm, part, result.poor_vertices);
       if (round + 1 < run.rounds) {  // the next round's tets
         const auto near = tets_near(part, frozen_before, kFocusLayers);
         part.focus.assign(near.begin(), near.end());

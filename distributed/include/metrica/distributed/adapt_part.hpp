@@ -59,6 +59,10 @@ struct PartAdaptResult {
   // a part adapted already (a later cut through finished mesh) leaves
   // little to do; a coarse one leaves long edges and poor tets.
   std::vector<GlobalId> kept_vertices;
+  // The vertices of the adapted tets below kPoorAtKeptFace and those left
+  // off the model: what keeps an adaptation from ending (its last rounds
+  // adapt only around them).
+  std::vector<GlobalId> poor_vertices;
   // Every vertex the round held as it was (sorted, once each): those of
   // the faces it kept and of the tets it kept out at pinches.
   std::vector<GlobalId> held;
