@@ -86,7 +86,7 @@ ActiveBounds active_bounds(const Part& part, const VertexIndex& index, const std
   const auto local = [&](GlobalId g) { return std::size_t(index.find(g)); };
   std::vector<bool> special(part.vertex_ids.size(), false), on_active(part.vertex_ids.size(), false);
   for (std::size_t t = 0; t < part.tets.size(); ++t)
-    for (GlobalId g : part.tets[t]) (active[t] ? on_active : special)[local(g)] = true;
+    for (auto v : part.tets[t]) (active[t] ? on_active : special)[v] = true;
   for (const auto& k : part.shared_faces)
     for (GlobalId g : k) special[local(g)] = true;
   for (const auto& k : part.triangles)
@@ -95,9 +95,10 @@ ActiveBounds active_bounds(const Part& part, const VertexIndex& index, const std
   for (std::size_t t = 0; t < part.tets.size(); ++t) {
     if (!active[t]) continue;
     const auto& v = part.tets[t];
-    for (const auto& f : kTetFaces) {
-      const GlobalId a = v[std::size_t(f[0])], c = v[std::size_t(f[1])], d = v[std::size_t(f[2])];
-      if (special[local(a)] && special[local(c)] && special[local(d)]) faces.push_back(face_key(a, c, d));
+    for (int f = 0; f < 4; ++f) {
+      const auto& c = kTetFaces[f];
+      if (special[v[std::size_t(c[0])]] && special[v[std::size_t(c[1])]] && special[v[std::size_t(c[2])]])
+        faces.push_back(global_face(part, t, f));
     }
   }
   std::sort(faces.begin(), faces.end());
@@ -106,10 +107,11 @@ ActiveBounds active_bounds(const Part& part, const VertexIndex& index, const std
   for (std::size_t t = 0; t < part.tets.size(); ++t) {
     if (active[t]) continue;
     const auto& v = part.tets[t];
-    for (const auto& f : kTetFaces) {
-      const GlobalId a = v[std::size_t(f[0])], c = v[std::size_t(f[1])], d = v[std::size_t(f[2])];
-      if (!on_active[local(a)] || !on_active[local(c)] || !on_active[local(d)]) continue;
-      const auto key = face_key(a, c, d);
+    for (int f = 0; f < 4; ++f) {
+      const auto& c = kTetFaces[f];
+      if (!on_active[v[std::size_t(c[0])]] || !on_active[v[std::size_t(c[1])]] || !on_active[v[std::size_t(c[2])]])
+        continue;
+      const auto key = global_face(part, t, f);
       if (holds(faces, key)) b.frozen.push_back(key);
     }
   }
@@ -147,8 +149,9 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     for (std::size_t t = 0; t < part.tets.size(); ++t)
       if (wanted[t] && !active[t]) {
         ++result.kept_out;
-        result.kept_vertices.insert(result.kept_vertices.end(), part.tets[t].begin(), part.tets[t].end());
-        result.held.insert(result.held.end(), part.tets[t].begin(), part.tets[t].end());
+        const auto g = global_tet(part, t);
+        result.kept_vertices.insert(result.kept_vertices.end(), g.begin(), g.end());
+        result.held.insert(result.held.end(), g.begin(), g.end());
       }
     // The part's records as they came in, until the active tets' go.
     std::optional<VertexIndex> index(std::in_place, part.vertex_ids);
@@ -162,8 +165,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     std::vector<std::int64_t> local(part.vertex_ids.size(), -1);
     std::vector<std::uint32_t> global_of;  // local -> part vertex
     io::MeshData data;
-    auto number = [&](GlobalId g) {
-      const auto v = std::size_t(index->find(g));
+    auto number_local = [&](std::size_t v) {
       if (local[v] < 0) {
         local[v] = std::int64_t(global_of.size());
         global_of.push_back(std::uint32_t(v));
@@ -171,11 +173,12 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       }
       return VertexId(local[v]);
     };
+    auto number = [&](GlobalId g) { return number_local(std::size_t(index->find(g))); };
     for (std::size_t t = 0; t < part.tets.size(); ++t) {
       if (!active[t]) continue;
       ++result.adapted;
       TetVertices l;
-      for (int c = 0; c < 4; ++c) l[std::size_t(c)] = number(part.tets[t][std::size_t(c)]);
+      for (int c = 0; c < 4; ++c) l[std::size_t(c)] = number_local(part.tets[t][std::size_t(c)]);
       data.tets.push_back(l);
       data.tet_refs.push_back(part.tet_refs[t]);
     }
@@ -221,7 +224,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       part.focus.clear();
       std::vector<bool> used(part.vertex_ids.size(), false);
       for (const auto& t : part.tets)
-        for (GlobalId g : t) used[std::size_t(index->find(g))] = true;
+        for (auto v : t) used[v] = true;
       keep_vertices(part, used);
       std::vector<bool> untouched(part.triangles.size());
       for (std::size_t i = 0; i < untouched.size(); ++i) untouched[i] = !bounds.triangle_active[i];
@@ -358,11 +361,9 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
         faces_kept.push_back(face_key(ids[l[0]], ids[l[1]], ids[l[2]]));
     adapted.vertex_ids = std::move(ids);
     adapted.points = std::move(out.vertices);
-    // Local numbers for now (turned into global ids below), then the
-    // tets kept out with their global ids and the vertices only they hold.
+    // Numbered as in `adapted` (placed after the part's own vertices below).
     adapted.tets.reserve(out.tets.size());
-    for (const auto& l : out.tets)
-      adapted.tets.push_back({GlobalId(l[0]), GlobalId(l[1]), GlobalId(l[2]), GlobalId(l[3])});
+    for (const auto& l : out.tets) adapted.tets.push_back({l[0], l[1], l[2], l[3]});
     out.tets = {};
     adapted.tet_refs = std::move(out.tet_refs);
     for (std::size_t f = 0; f < out.triangles.size(); ++f) {
@@ -384,18 +385,27 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     if (g < 0) g = at++;
   for (auto v : fresh_unfinished) result.kept_vertices.push_back(adapted.vertex_ids[v]);
   for (auto v : fresh_poor) result.poor_vertices.push_back(adapted.vertex_ids[v]);
-  for (auto& t : adapted.tets)
-    for (auto& v : t) v = adapted.vertex_ids[std::size_t(v)];
   for (auto& f : adapted.triangles)
     for (auto& v : f) v = adapted.vertex_ids[std::size_t(v)];
   // The tets the round kept, the vertices only they hold and their
   // triangles stay in the part, the adapted ones join them (the kept
-  // faces' vertices come back with the adapted tets).
+  // faces' vertices come back with the adapted tets: the kept tets name
+  // those copies, after the part's own vertices).
   {
     const VertexIndex have(adapted.vertex_ids);
-    std::vector<bool> apart(part.vertex_ids.size());
-    for (std::size_t v = 0; v < apart.size(); ++v) apart[v] = have.find(part.vertex_ids[v]) < 0;
-    keep_vertices(part, apart);
+    const std::size_t nv = part.vertex_ids.size();
+    std::vector<bool> apart(nv);
+    std::vector<std::uint32_t> place(nv);
+    std::size_t own = 0;
+    for (std::size_t v = 0; v < nv; ++v) apart[v] = have.find(part.vertex_ids[v]) < 0, own += apart[v];
+    std::uint32_t next = 0;
+    for (std::size_t v = 0; v < nv; ++v)
+      place[v] = apart[v] ? next++ : std::uint32_t(own + std::size_t(have.find(part.vertex_ids[v])));
+    for (auto& t : part.tets)
+      for (auto& v : t) v = place[v];
+    keep_vertex_records(part, apart);
+    for (auto& t : adapted.tets)
+      for (auto& v : t) v += std::uint32_t(own);
   }
   const auto append = [](auto& to, auto& from) {
     to.reserve(to.size() + from.size());  // once, to the size (a doubling would hold both copies)
@@ -425,15 +435,13 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
 
 QualityTally part_quality(const Part& part, const PartAdaptSettings& settings) {
   QualityTally all;
-  const VertexIndex index(part.vertex_ids);
   std::vector<std::int64_t> local(part.vertex_ids.size(), -1);
   for (std::size_t begin = 0; begin < part.tets.size(); begin += kQualityPieceTets) {
     const std::size_t end = std::min(part.tets.size(), begin + kQualityPieceTets);
     io::MeshData data;
     std::vector<Sym6> metrics;
     std::vector<std::size_t> numbered;
-    const auto number = [&](GlobalId g) {
-      const auto v = std::size_t(index.find(g));
+    const auto number = [&](std::size_t v) {
       if (local[v] < 0) {
         local[v] = std::int64_t(data.vertices.size());
         numbered.push_back(v);

@@ -48,15 +48,13 @@ int parts_for(int ranks, double tets, double predicted) {
 
 std::vector<std::int32_t> predicted_tets(const Comm& comm, const Part& part, const MetricFunction* exact,
                                          double& predicted_total) {
-  const VertexIndex index(part.vertex_ids);
   std::vector<double> root(part.vertex_ids.size());
   for (std::size_t v = 0; v < root.size(); ++v)
     root[v] = std::sqrt(std::max(0.0, det(exact ? (*exact)(part.points[v]) : part.metrics[v])));
   std::vector<double> predicted(part.tets.size());
   double sum = 0;
   for (std::size_t t = 0; t < part.tets.size(); ++t) {
-    std::size_t v[4];
-    for (int c = 0; c < 4; ++c) v[c] = std::size_t(index.find(part.tets[t][std::size_t(c)]));
+    const auto& v = part.tets[t];
     const Point &a = part.points[v[0]], &b = part.points[v[1]], &c = part.points[v[2]], &d = part.points[v[3]];
     const double volume = std::abs((b - a).dot((c - a).cross(d - a))) / 6.0;
     predicted[t] = volume * (root[v[0]] + root[v[1]] + root[v[2]] + root[v[3]]) / 4.0;
@@ -80,11 +78,10 @@ double predicted_output(const Comm& comm, const Part& part, const MetricFunction
     predicted_tets(comm, part, exact, predicted);
     return predicted;
   }
-  const VertexIndex index(part.vertex_ids);
   const int order = sample_order(double(tets));
   double c = 0;
   for (const auto& t : part.tets) {
-    const auto p = [&](int k) { return part.points[std::size_t(index.find(t[std::size_t(k)]))]; };
+    const auto p = [&](int k) { return part.points[t[std::size_t(k)]]; };
     c += sampled_tet_complexity(p(0), p(1), p(2), p(3), *exact, order);
   }
   return kTetsPerMetricVolume * comm.sum(c);
@@ -92,13 +89,9 @@ double predicted_output(const Comm& comm, const Part& part, const MetricFunction
 
 // The volume of the part's tets.
 double part_volume(const Part& part) {
-  const VertexIndex index(part.vertex_ids);
   double sum = 0;
   for (const auto& t : part.tets) {
-    const Point& a = part.points[std::size_t(index.find(t[0]))];
-    const Point& b = part.points[std::size_t(index.find(t[1]))];
-    const Point& c = part.points[std::size_t(index.find(t[2]))];
-    const Point& d = part.points[std::size_t(index.find(t[3]))];
+    const Point &a = part.points[t[0]], &b = part.points[t[1]], &c = part.points[t[2]], &d = part.points[t[3]];
     sum += (b - a).dot((c - a).cross(d - a)) / 6.0;
   }
   return sum;
@@ -167,7 +160,7 @@ constexpr std::int32_t kAvoidBetweenTwo = 1000;
 // cut took.
 double move_to_parts(const Comm& comm, Part& part, const PartitionWeights& weights, int parts) {
   Stopwatch clock;
-  TetNeighbours nb = neighbours(comm, part, VertexIndex(part.vertex_ids));
+  TetNeighbours nb = neighbours(comm, part);
   const auto dest = partition(comm, part, nb, weights, parts);
   const double cut_seconds = clock.seconds();
   part = migrate(comm, std::move(part), std::move(nb), dest);

@@ -70,7 +70,7 @@ Arrived deliver(const Comm& comm, Outgoing& out, bool geo) {
 
 // The tets leaving for other ranks (all but those for rank `stay`), each
 // rank's vertices sent once with them.
-void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int>& dest, int stay, Outgoing& out) {
+void pack_tets(const Part& part, const std::vector<int>& dest, int stay, Outgoing& out) {
   auto& tets_out = out.tets;
   auto& verts_out = out.verts;
   const auto n = tets_out.size();
@@ -87,10 +87,8 @@ void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int
   for (std::size_t q = 0; q < n; ++q) {
     std::size_t verts = 0;
     for (auto t : by_rank[q])
-      for (GlobalId g : part.tets[t]) {
-        const auto v = std::size_t(index.find(g));
+      for (auto v : part.tets[t])
         if (sent_to[v] != int(q)) sent_to[v] = int(q), ++verts;
-      }
     tets_out[q].reserve(by_rank[q].size());
     verts_out[q].reserve(verts);
     if (!part.geo.empty()) out.geo[q].reserve(verts);
@@ -101,12 +99,12 @@ void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int
     for (auto t : by_rank[q]) {
       TetRecord r{{}, part.tet_refs[t], part.focus.empty() ? -1 : int(part.focus[t])};
       for (int c = 0; c < 4; ++c) {
-        const GlobalId g = part.tets[t][std::size_t(c)];
-        const auto v = std::size_t(index.find(g));
+        const auto v = part.tets[t][std::size_t(c)];
         if (sent_to[v] != int(q)) {
           sent_to[v] = int(q);
           slot[v] = std::uint32_t(verts_out[q].size());
-          verts_out[q].push_back({g, coords(part.points[v]), part.metrics.empty() ? Sym6{} : part.metrics[v]});
+          verts_out[q].push_back(
+              {part.vertex_ids[v], coords(part.points[v]), part.metrics.empty() ? Sym6{} : part.metrics[v]});
           if (!part.geo.empty()) out.geo[q].push_back(part.geo[v]);
         }
         r.v[std::size_t(c)] = slot[v];
@@ -115,68 +113,69 @@ void pack_tets(const Part& part, const VertexIndex& index, const std::vector<int
     }
 }
 
-// f(record, its vertices' global ids) for each tet received, in order:
-// a record names its vertices in the list the same rank sent.
-template <class F>
-void for_each_received(const Arrived& in, F&& f) {
+// Appends what arrived to `out`: each vertex `out` does not hold yet,
+// once (several ranks may send the same; the first sender's copy), then
+// the tets with their refs and focus, a record's vertices named in the
+// list the same rank sent. The arrays grow once, to their size (a
+// doubling would hold both copies); `in` is emptied.
+void append_arrived(Arrived& in, bool metric, bool focus, bool geo, Part& out) {
+  const auto& verts = in.verts;
+  std::vector<std::uint32_t> local(verts.size());  // of each vertex received
+  {
+    const VertexIndex held(out.vertex_ids);
+    std::vector<std::uint32_t> order(verts.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return verts[a].id < verts[b].id; });
+    out.vertex_ids.reserve(out.vertex_ids.size() + verts.size());
+    out.points.reserve(out.points.size() + verts.size());
+    if (metric) out.metrics.reserve(out.metrics.size() + verts.size());
+    if (geo) out.geo.reserve(out.geo.size() + verts.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const auto& r = verts[order[k]];
+      if (k > 0 && verts[order[k - 1]].id == r.id) {
+        local[order[k]] = local[order[k - 1]];
+        continue;
+      }
+      if (const auto h = held.find(r.id); h >= 0) {
+        local[order[k]] = std::uint32_t(h);
+        continue;
+      }
+      local[order[k]] = std::uint32_t(out.vertex_ids.size());
+      out.vertex_ids.push_back(r.id);
+      out.points.push_back(point(r.p));
+      if (metric) out.metrics.push_back(r.m);
+      if (geo) out.geo.push_back(in.geo[order[k]]);
+    }
+  }
+  in.verts = {};
+  in.geo = {};
+  out.tets.reserve(out.tets.size() + in.tets.size());
+  out.tet_refs.reserve(out.tet_refs.size() + in.tets.size());
+  if (focus) out.focus.reserve(out.focus.size() + in.tets.size());
   std::size_t t = 0, base = 0;
   for (std::size_t s = 0; s < in.tets_from.size(); ++s) {
     for (std::int64_t i = 0; i < in.tets_from[s]; ++i, ++t) {
       const auto& r = in.tets[t];
-      f(r, std::array<GlobalId, 4>{in.verts[base + r.v[0]].id, in.verts[base + r.v[1]].id, in.verts[base + r.v[2]].id,
-                                   in.verts[base + r.v[3]].id});
+      out.tets.push_back({local[base + r.v[0]], local[base + r.v[1]], local[base + r.v[2]], local[base + r.v[3]]});
+      out.tet_refs.push_back(r.ref);
+      if (focus) out.focus.push_back(r.focus > 0 ? 1 : 0);
     }
     base += std::size_t(in.verts_from[s]);
   }
-}
-
-// Appends what arrived to `out`: the tets with their refs and focus, then
-// each vertex `out` does not hold yet, once (several ranks may send the
-// same; the first sender's copy). The arrays grow once, to their size (a
-// doubling would hold both copies); `in` is emptied.
-void append_arrived(Arrived& in, bool metric, bool focus, bool geo, Part& out) {
-  out.tets.reserve(out.tets.size() + in.tets.size());
-  out.tet_refs.reserve(out.tet_refs.size() + in.tets.size());
-  if (focus) out.focus.reserve(out.focus.size() + in.tets.size());
-  for_each_received(in, [&](const TetRecord& r, const std::array<GlobalId, 4>& v) {
-    out.tets.push_back(v);
-    out.tet_refs.push_back(r.ref);
-    if (focus) out.focus.push_back(r.focus > 0 ? 1 : 0);
-  });
   in.tets = {};
-  const auto& verts = in.verts;
-  const VertexIndex held(out.vertex_ids);
-  std::vector<std::uint32_t> order(verts.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return verts[a].id < verts[b].id; });
-  out.vertex_ids.reserve(out.vertex_ids.size() + verts.size());
-  out.points.reserve(out.points.size() + verts.size());
-  if (metric) out.metrics.reserve(out.metrics.size() + verts.size());
-  if (geo) out.geo.reserve(out.geo.size() + verts.size());
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const auto& r = verts[order[k]];
-    if ((k > 0 && verts[order[k - 1]].id == r.id) || held.find(r.id) >= 0) continue;
-    out.vertex_ids.push_back(r.id);
-    out.points.push_back(point(r.p));
-    if (metric) out.metrics.push_back(r.m);
-    if (geo) out.geo.push_back(in.geo[order[k]]);
-  }
-  in.verts = {};
-  in.geo = {};
 }
 
 // A part as read (triangles anywhere, faces between ranks unknown): every
 // face meets its tets and triangles at the rank its key hashes to.
-Part migrate_by_rendezvous(const Comm& comm, const Part& part, const VertexIndex& index, const std::vector<int>& dest) {
+Part migrate_by_rendezvous(const Comm& comm, const Part& part, const std::vector<int>& dest) {
   const auto n = std::size_t(comm.size());
   Outgoing travelling(n);
-  pack_tets(part, index, dest, -1, travelling);
+  pack_tets(part, dest, -1, travelling);
   std::vector<std::vector<FaceRecord>> faces_out(n);
   for (std::size_t t = 0; t < part.tets.size(); ++t)
-    for (const auto& f : kTetFaces) {
-      const auto& v = part.tets[t];
-      const auto key = face_key(v[f[0]], v[f[1]], v[f[2]]);
+    for (int f = 0; f < 4; ++f) {
+      const auto key = global_face(part, t, f);
       faces_out[std::size_t(owner_of(key, comm.size()))].push_back({key, 0, dest[t]});
     }
   for (std::size_t i = 0; i < part.triangles.size(); ++i) {
@@ -255,8 +254,7 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
   std::vector<std::pair<FaceKey, std::int32_t>> shared;  // the faces between ranks of the tets that stay
   std::vector<bool> triangle_stays(part.triangles.size(), false);
   {
-    const VertexIndex index(part.vertex_ids);
-    if (comm.max(std::int64_t(part.faces_known ? 0 : 1)) > 0) return migrate_by_rendezvous(comm, part, index, dest);
+    if (comm.max(std::int64_t(part.faces_known ? 0 : 1)) > 0) return migrate_by_rendezvous(comm, part, dest);
     // The new ranks of the tets across the faces between ranks.
     const auto remote_dest = values_across(comm, nb, dest);
     // Per face of tet t, the new rank across it when that is not t's.
@@ -273,14 +271,12 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
       }
       return a;
     };
-    pack_tets(part, index, dest, me, travelling);
+    pack_tets(part, dest, me, travelling);
     for (std::size_t t = 0; t < part.tets.size(); ++t) {
       const auto a = across(t);
-      const auto& v = part.tets[t];
       for (int f = 0; f < 4; ++f)
         if (a[std::size_t(f)] >= 0) {
-          const auto& c = kTetFaces[f];
-          const auto key = face_key(v[std::size_t(c[0])], v[std::size_t(c[1])], v[std::size_t(c[2])]);
+          const auto key = global_face(part, t, f);
           if (dest[t] == me)
             shared.emplace_back(key, a[std::size_t(f)]);
           else
@@ -297,9 +293,8 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
     std::sort(keys.begin(), keys.end());
     std::vector<bool> placed(keys.size(), false);
     for (std::size_t t = 0; t < part.tets.size() && !keys.empty(); ++t) {
-      const auto& v = part.tets[t];
-      for (const auto& f : kTetFaces) {
-        const auto key = face_key(v[std::size_t(f[0])], v[std::size_t(f[1])], v[std::size_t(f[2])]);
+      for (int f = 0; f < 4; ++f) {
+        const auto key = global_face(part, t, f);
         auto it = std::lower_bound(keys.begin(), keys.end(), std::pair<FaceKey, std::uint32_t>{key, 0});
         for (; it != keys.end() && it->first == key; ++it) {
           const auto i = it->second;
@@ -324,10 +319,9 @@ Part migrate(const Comm& comm, Part part, TetNeighbours nb, const std::vector<in
     for (std::size_t t = 0; t < stays.size(); ++t) stays[t] = dest[t] == me;
     keep_tets(part, stays);
     if (focus) part.focus.resize(part.tets.size(), 0);
-    const VertexIndex index(part.vertex_ids);
     std::vector<bool> used(part.vertex_ids.size(), false);
     for (const auto& t : part.tets)
-      for (GlobalId g : t) used[std::size_t(index.find(g))] = true;
+      for (auto v : t) used[v] = true;
     keep_vertices(part, used);
     keep_triangles(part, triangle_stays);
   }

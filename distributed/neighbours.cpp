@@ -34,37 +34,25 @@ struct ValueAcross {
 
 }  // namespace
 
-TetsAround::TetsAround(const Part& part, const VertexIndex& index) : first(part.vertex_ids.size() + 1, 0) {
-  // The tets in local numbers while the rows are made (freed on return).
-  std::vector<std::array<std::uint32_t, 4>> local(part.tets.size());
-  for (std::size_t t = 0; t < part.tets.size(); ++t)
-    for (int c = 0; c < 4; ++c) {
-      local[t][std::size_t(c)] = std::uint32_t(index.find(part.tets[t][std::size_t(c)]));
-      ++first[local[t][std::size_t(c)] + 1];
-    }
+TetsAround::TetsAround(const Part& part) : first(part.vertex_ids.size() + 1, 0) {
+  for (const auto& t : part.tets)
+    for (auto v : t) ++first[v + 1];
   for (std::size_t v = 0; v + 1 < first.size(); ++v) first[v + 1] += first[v];
   around.resize(first.back());
   auto fill = first;
-  for (std::size_t t = 0; t < local.size(); ++t)
-    for (auto v : local[t]) around[fill[v]++] = std::uint32_t(t);
+  for (std::size_t t = 0; t < part.tets.size(); ++t)
+    for (auto v : part.tets[t]) around[fill[v]++] = std::uint32_t(t);
 }
 
-LocalNeighbours local_neighbours(const Part& part, const VertexIndex& index) {
+LocalNeighbours local_neighbours(const Part& part) {
   LocalNeighbours nb;
   const std::size_t nt = part.tets.size(), nv = part.vertex_ids.size();
   // Each face is paired at its lowest vertex (local numbers), among the
   // tets listed there: a tet is listed under its two lowest vertices, the
-  // lowest of each of its faces (8 bytes a tet). A face then costs its
-  // tet's lookups and a sort of a few dozen sides, not a scan of the tets
-  // around one of its vertices (the cut's largest cost at 4.3M tets on 2
-  // ranks: 1.25 s a cut, 0.95 s now). The tets are looked up again rather
-  // than copied in local numbers: the copy, 16 bytes a tet, raised the
-  // largest rank's peak at 4.3M tets on 4 ranks by 7 MiB.
-  const auto local_of = [&](std::size_t t) {
-    std::array<std::uint32_t, 4> l;
-    for (int c = 0; c < 4; ++c) l[std::size_t(c)] = std::uint32_t(index.find(part.tets[t][std::size_t(c)]));
-    return l;
-  };
+  // lowest of each of its faces (8 bytes a tet). A face then costs a sort
+  // of a few dozen sides, not a scan of the tets around one of its
+  // vertices.
+  const auto local_of = [&](std::size_t t) -> const LocalTet& { return part.tets[t]; };
   std::vector<std::uint32_t> first(nv + 1, 0);
   const auto lowest_two = [](const std::array<std::uint32_t, 4>& l) {
     std::uint32_t a = std::min(l[0], l[1]), b = std::max(l[0], l[1]);
@@ -137,18 +125,16 @@ LocalNeighbours local_neighbours(const Part& part, const VertexIndex& index) {
   return nb;
 }
 
-TetNeighbours neighbours(const Comm& comm, const Part& part, const VertexIndex& index) {
+TetNeighbours neighbours(const Comm& comm, const Part& part) {
   const auto n = std::size_t(comm.size());
   TetNeighbours nb;
   nb.first = comm.exclusive_scan(std::int64_t(part.tets.size()));
   std::vector<std::vector<OpenFace>> out(n);
   comm.step([&] {
-    auto local = local_neighbours(part, index);
+    auto local = local_neighbours(part);
     nb.local = std::move(local.across);
     for (const auto& [t, f] : local.open) {
-      const auto& g = part.tets[t];
-      const auto& c = kTetFaces[f];
-      const auto key = face_key(g[std::size_t(c[0])], g[std::size_t(c[1])], g[std::size_t(c[2])]);
+      const auto key = global_face(part, t, f);
       out[std::size_t(owner_of(key, comm.size()))].push_back(
           {key, nb.first + GlobalId(t), std::int32_t(f), std::int32_t(comm.rank())});
     }

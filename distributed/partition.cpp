@@ -96,10 +96,12 @@ std::vector<int> partition(const Comm& comm, const Part& part, const TetNeighbou
   std::vector<bool> heavy(count, false);
   std::vector<std::int32_t> heavy_across, cluster_across;
   {
+    std::vector<bool> avoided(part.vertex_ids.size());
+    for (std::size_t v = 0; v < avoided.size(); ++v)
+      avoided[v] = std::binary_search(weights.avoid.begin(), weights.avoid.end(), part.vertex_ids[v]);
     std::vector<std::int32_t> values(count);
     for (std::size_t t = 0; t < count; ++t) {
-      for (GlobalId g : part.tets[t])
-        heavy[t] = heavy[t] || std::binary_search(weights.avoid.begin(), weights.avoid.end(), g);
+      for (auto v : part.tets[t]) heavy[t] = heavy[t] || avoided[v];
       values[t] = heavy[t];
     }
     heavy_across = values_across(comm, nb, values);

@@ -38,7 +38,7 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
   const VertexIndex index(part.vertex_ids);
   const std::size_t nv = part.vertex_ids.size(), nt = part.tets.size();
   std::vector<bool> active = wanted.empty() ? std::vector<bool>(nt, true) : std::move(wanted);
-  const TetsAround tets_around(part, index);
+  const TetsAround tets_around(part);
   const auto& first = tets_around.first;
   const auto& around = tets_around.around;
   // The vertices to look at: those of faces not between two active tets
@@ -51,14 +51,21 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
     std::vector<bool> in_active(nv, false);
     for (std::size_t t = 0; t < nt; ++t)
       if (active[t])
-        for (GlobalId g : part.tets[t]) in_active[std::size_t(index.find(g))] = true;
+        for (auto v : part.tets[t]) in_active[v] = true;
     for (std::size_t t = 0; t < nt; ++t)
       if (!active[t])
-        for (GlobalId g : part.tets[t])
-          if (in_active[std::size_t(index.find(g))]) watch.push_back(std::uint32_t(index.find(g)));
+        for (auto v : part.tets[t])
+          if (in_active[v]) watch.push_back(v);
   }
   std::vector<std::uint32_t> shell;
-  std::vector<FaceKey> faces, boundary;
+  // Faces by their sorted local vertices (nothing leaves this function).
+  using Key = std::array<std::uint32_t, 3>;
+  const auto key_of = [](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    Key k{a, b, c};
+    std::sort(k.begin(), k.end());
+    return k;
+  };
+  std::vector<Key> faces, boundary;
   for (int sweep = 0; !watch.empty(); ++sweep) {
     std::sort(watch.begin(), watch.end());
     watch.erase(std::unique(watch.begin(), watch.end()), watch.end());
@@ -68,7 +75,7 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
       for (auto i = first[v]; i < first[v + 1]; ++i)
         if (active[around[i]]) shell.push_back(around[i]);
       if (shell.empty()) continue;
-      const GlobalId g = part.vertex_ids[v];
+      const std::uint32_t g = v;
       const int k = int(shell.size());
       // The active tets around v in one piece (joined by faces)...
       bool pinched = groups(k, [&](int a, int b) {
@@ -80,7 +87,7 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
         for (auto t : shell) {
           const auto& tv = part.tets[t];
           for (const auto& f : kTetFaces) {
-            const auto key = face_key(tv[std::size_t(f[0])], tv[std::size_t(f[1])], tv[std::size_t(f[2])]);
+            const auto key = key_of(tv[std::size_t(f[0])], tv[std::size_t(f[1])], tv[std::size_t(f[2])]);
             if (std::find(key.begin(), key.end(), g) != key.end()) faces.push_back(key);
           }
         }
@@ -99,7 +106,7 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
       // ... and each edge from v in one piece too.
       if (!pinched) {
         for (const auto& f : boundary) {
-          for (GlobalId w : f) {
+          for (std::uint32_t w : f) {
             if (w == g || pinched) continue;
             std::vector<std::uint32_t> edge;
             for (auto t : shell)
@@ -114,7 +121,7 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
       if (!pinched) continue;
       for (auto t : shell) {
         active[t] = false;
-        for (GlobalId u : part.tets[t]) dropped.push_back(std::uint32_t(index.find(u)));
+        for (auto u : part.tets[t]) dropped.push_back(u);
       }
     }
     // The vertices of the tets kept out now border them: look again.
@@ -124,9 +131,8 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
 }
 
 std::vector<bool> tets_near(const Part& part, const std::vector<GlobalId>& near, int layers) {
-  const VertexIndex index(part.vertex_ids);
   const std::size_t nv = part.vertex_ids.size(), nt = part.tets.size();
-  const TetsAround tets_around(part, index);
+  const TetsAround tets_around(part);
   const auto& first = tets_around.first;
   const auto& around = tets_around.around;
   std::vector<int> depth(nv, -1);
@@ -138,15 +144,14 @@ std::vector<bool> tets_near(const Part& part, const std::vector<GlobalId>& near,
     grown.clear();
     for (auto v : front)
       for (auto i = first[v]; i < first[v + 1]; ++i)
-        for (GlobalId g : part.tets[around[i]]) {
-          const auto u = std::size_t(index.find(g));
+        for (auto u : part.tets[around[i]]) {
           if (depth[u] < 0) depth[u] = layer, grown.push_back(std::uint32_t(u));
         }
     front.swap(grown);
   }
   std::vector<bool> in(nt, false);
   for (std::size_t t = 0; t < nt; ++t)
-    for (GlobalId g : part.tets[t]) in[t] = in[t] || depth[std::size_t(index.find(g))] >= 0;
+    for (auto v : part.tets[t]) in[t] = in[t] || depth[v] >= 0;
   return in;
 }
 

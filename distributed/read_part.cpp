@@ -149,8 +149,9 @@ struct Slices {
   std::vector<Point> points;
   std::vector<Sym6> metrics;
   GlobalId first_vertex = 0;
-  std::vector<std::int64_t> vertex_starts;  // first vertex of every rank's slice, and the count last
-  Part part;                                // tets and triangles of the slice
+  std::vector<std::int64_t> vertex_starts;    // first vertex of every rank's slice, and the count last
+  Part part;                                  // tet refs and triangles of the slice
+  std::vector<std::array<GlobalId, 4>> tets;  // the slice's tets, by global ids until the part has its vertices
   // The input's association records of the slice (any vertex; with a model).
   std::vector<FileRecord> records;
 };
@@ -198,7 +199,7 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
         t[c] = read_integer(p + c * I, I) - 1;
         check_vertex(t[c], kv.count, path, "tetrahedron");
       }
-      s.part.tets.push_back(t);
+      s.tets.push_back(t);
       s.part.tet_refs.push_back(int(read_integer(p + 4 * I, I)));
     }
   }
@@ -328,7 +329,7 @@ Slices read_on_rank0(const Comm& comm, const std::string& path, const std::strin
     s.points.push_back(point(r.p));
     if (!metric_path.empty()) s.metrics.push_back(r.m);
   }
-  for (const auto& t : tets_in) s.part.tets.push_back(t.v), s.part.tet_refs.push_back(t.ref);
+  for (const auto& t : tets_in) s.tets.push_back(t.v), s.part.tet_refs.push_back(t.ref);
   for (const auto& t : tris_in) s.part.triangles.push_back(t.v), s.part.triangle_refs.push_back(t.ref);
   return s;
 }
@@ -427,7 +428,7 @@ Part read_part(const Comm& comm, const std::string& mesh_path, const std::string
   // The vertices of the slice's tets, from the ranks that read them.
   const auto n = std::size_t(comm.size());
   std::vector<GlobalId> wanted;
-  for (const auto& t : s.part.tets) wanted.insert(wanted.end(), t.begin(), t.end());
+  for (const auto& t : s.tets) wanted.insert(wanted.end(), t.begin(), t.end());
   std::sort(wanted.begin(), wanted.end());
   wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
   std::vector<std::vector<GlobalId>> ask(n);
@@ -467,6 +468,13 @@ Part read_part(const Comm& comm, const std::string& mesh_path, const std::string
       if (associate) part.geo.push_back(geo_got[at]);
       ++at;
     }
+  const VertexIndex index(part.vertex_ids);
+  part.tets.reserve(s.tets.size());
+  for (const auto& t : s.tets) {
+    LocalTet l;
+    for (int c = 0; c < 4; ++c) l[std::size_t(c)] = std::uint32_t(index.find(t[std::size_t(c)]));
+    part.tets.push_back(l);
+  }
   return part;
 }
 

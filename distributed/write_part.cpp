@@ -293,7 +293,7 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
     }
     Rows t(I, 8);
     for (std::size_t i = 0; i < part.tets.size(); ++i) {
-      for (GlobalId g : part.tets[i]) t.integer(number[std::size_t(index.find(g))]);
+      for (auto l : part.tets[i]) t.integer(number[l]);
       t.integer(part.tet_refs[i]);
     }
     write_at(file, rows_at(kTetrahedra, first_tet), t.bytes());
@@ -353,7 +353,6 @@ StagedFile write_part_metric(const Comm& comm, const VertexNumbering& numbering,
 StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumbering& numbering,
                           const std::string& path) {
   const int me = comm.rank();
-  const VertexIndex index(part.vertex_ids);
   const auto tets = std::int64_t(part.tets.size());
   const std::int64_t total_tets = comm.sum(tets), first_tet = comm.exclusive_scan(tets);
   const auto nv = std::uint64_t(numbering.total), nt = std::uint64_t(total_tets);
@@ -403,8 +402,8 @@ StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumber
     write_at(out.file(), block_at(0, 24 * std::uint64_t(numbering.first)), points);
     std::string connectivity, offsets, types(part.tets.size(), char(10)), refs;  // 10: VTK_TETRA
     for (std::size_t t = 0; t < part.tets.size(); ++t) {
-      for (GlobalId g : part.tets[t]) {
-        const std::int64_t k = numbering.number[std::size_t(index.find(g))] - 1;
+      for (auto v : part.tets[t]) {
+        const std::int64_t k = numbering.number[v] - 1;
         connectivity.append(reinterpret_cast<const char*>(&k), 8);
       }
       const std::int64_t end = 4 * (first_tet + std::int64_t(t) + 1);

@@ -20,7 +20,7 @@ namespace metrica::distributed {
 // v are around[first[v] .. first[v + 1]).
 struct TetsAround {
   std::vector<std::uint32_t> first, around;
-  TetsAround(const Part& part, const VertexIndex& index);
+  explicit TetsAround(const Part& part);
 };
 
 // A face whose tet across lies on another rank.
@@ -39,7 +39,7 @@ struct LocalNeighbours {
   std::vector<std::array<std::int32_t, 4>> across;
   std::vector<std::pair<std::uint32_t, std::int32_t>> open;  // (tet, face)
 };
-LocalNeighbours local_neighbours(const Part& part, const VertexIndex& index);
+LocalNeighbours local_neighbours(const Part& part);
 
 struct TetNeighbours {
   GlobalId first = 0;                              // global index of local tet 0 (an exclusive scan of the parts' tets)
@@ -58,7 +58,7 @@ inline std::pair<std::size_t, std::size_t> remote_faces(const TetNeighbours& nb,
 
 // Every rank calls it. Throws (on every rank) when a face has more than
 // two tets.
-TetNeighbours neighbours(const Comm& comm, const Part& part, const VertexIndex& index);
+TetNeighbours neighbours(const Comm& comm, const Part& part);
 
 // For each remote face of `nb`, the value the rank across has for its tet
 // (per_tet[t] there). Every rank calls it.

@@ -1,8 +1,11 @@
 // One rank's part of a distributed mesh: its tets, the vertices they use
-// and the boundary and internal-surface triangles on their faces, all
-// named by 64-bit global vertex ids. A vertex on the boundary between two
-// parts is held by both with the same global id and coordinates; the faces
-// between parts are listed with the rank across them.
+// and the boundary and internal-surface triangles on their faces. Each
+// vertex has a 64-bit global id; the tets name their vertices by local
+// index (their places in the part's arrays: every pass over the tets
+// reads them directly), the triangles and the faces between parts by
+// global id. A vertex on the boundary between two parts is held by both
+// with the same global id and coordinates; the faces between parts are
+// listed with the rank across them.
 #pragma once
 
 #include <metrica/ids.hpp>
@@ -60,6 +63,9 @@ inline std::uint64_t face_hash(const FaceKey& k) {
 }
 inline int owner_of(const FaceKey& k, int ranks) { return int(face_hash(k) % std::uint64_t(ranks)); }
 
+// A tet by the local indices of its vertices.
+using LocalTet = std::array<std::uint32_t, 4>;
+
 struct Part {
   std::vector<GlobalId> vertex_ids;  // global id of each local vertex
   std::vector<Point> points;
@@ -67,7 +73,7 @@ struct Part {
   // Per local vertex, its CAD entity and parameters (invalid inside the
   // domain); empty without a model.
   std::vector<GeoParam> geo;
-  std::vector<std::array<GlobalId, 4>> tets;
+  std::vector<LocalTet> tets;  // local vertex indices
   std::vector<int> tet_refs;
   // Per tet, whether the round adapts it (empty: all); travels with it.
   std::vector<std::uint8_t> focus;
@@ -99,11 +105,35 @@ inline void keep_tets(Part& part, const std::vector<bool>& keep) {
   keep_only(part.tet_refs, keep);
   keep_only(part.focus, keep);
 }
-inline void keep_vertices(Part& part, const std::vector<bool>& keep) {
+// The vertex records alone: the tets' indices are the caller's to renumber.
+inline void keep_vertex_records(Part& part, const std::vector<bool>& keep) {
   keep_only(part.vertex_ids, keep);
   keep_only(part.points, keep);
   keep_only(part.metrics, keep);
   keep_only(part.geo, keep);
+}
+// The vertices the tets use must all be kept; their indices follow.
+inline void keep_vertices(Part& part, const std::vector<bool>& keep) {
+  std::vector<std::uint32_t> place(keep.size(), 0);
+  std::uint32_t next = 0;
+  for (std::size_t v = 0; v < keep.size(); ++v)
+    if (keep[v]) place[v] = next++;
+  for (auto& t : part.tets)
+    for (auto& v : t) v = place[v];
+  keep_vertex_records(part, keep);
+}
+
+// The global ids of tet t's vertices; of a face of it (kTetFaces[f]) as a key.
+inline std::array<GlobalId, 4> global_tet(const Part& part, std::size_t t) {
+  const auto& l = part.tets[t];
+  const auto& g = part.vertex_ids;
+  return {g[l[0]], g[l[1]], g[l[2]], g[l[3]]};
+}
+inline FaceKey global_face(const Part& part, std::size_t t, int f) {
+  const auto& l = part.tets[t];
+  const auto& c = kTetFaces[f];
+  const auto& g = part.vertex_ids;
+  return face_key(g[l[std::size_t(c[0])]], g[l[std::size_t(c[1])]], g[l[std::size_t(c[2])]]);
 }
 inline void keep_triangles(Part& part, const std::vector<bool>& keep) {
   keep_only(part.triangles, keep);
