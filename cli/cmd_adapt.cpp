@@ -129,7 +129,7 @@ void declare_options(Options& o) {
           "tets, off-size edges at kept faces) and its round adapts only around it; the rounds end when "
           "nothing is left or, from the third on, no tet adapted has mean ratio below 0.5 "
           "(docs/distributed.md); 0: cut, move and write without adapting");
-  o.output_option("metric-out", "also write the metric at the output's vertices (.sol, .solb; .solb under mpirun)",
+  o.output_option("metric-out", "also write the metric at the output's vertices (.sol, .solb)",
                   {io::FileFormat::sol, io::FileFormat::solb});
   o.output_option("vtu", "also write the adapted mesh for ParaView (.vtu)", {io::FileFormat::vtu});
   o.format_version("libMeshb version to write (default: the input's)");
@@ -218,9 +218,11 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
   distributed::DistributedAdapt run;
   run.input = o.get<std::string>("input");
   run.output = o.get<std::string>("output");
-  if (io::format_of(run.output) != io::FileFormat::meshb)
-    throw UsageError(
-        fmt::format("adapt: under mpirun the output is one binary .meshb written by all ranks (got {})", run.output));
+  if (io::format_of(run.output) != io::FileFormat::meshb && io::format_of(run.output) != io::FileFormat::mesh)
+    throw UsageError(fmt::format(
+        "adapt: under mpirun the output is one .meshb or .mesh written by all ranks (got {}; metrica convert "
+        "writes the other formats)",
+        run.output));
   if (o.has("metric")) {
     run.metric = o.get<std::string>("metric");
     if (io::format_of(run.metric) != io::FileFormat::solb && io::format_of(run.metric) != io::FileFormat::sol)
@@ -229,9 +231,9 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
   if (o.has("geometry")) run.geometry = o.get<std::string>("geometry");
   if (o.has("metric-out")) {
     run.metric_out = o.get<std::string>("metric-out");
-    if (io::format_of(run.metric_out) != io::FileFormat::solb)
-      throw UsageError(fmt::format("adapt: under mpirun --metric-out is one binary .solb written by all ranks (got {})",
-                                   run.metric_out));
+    if (io::format_of(run.metric_out) != io::FileFormat::solb && io::format_of(run.metric_out) != io::FileFormat::sol)
+      throw UsageError(fmt::format(
+          "adapt: under mpirun --metric-out is one .solb or .sol written by all ranks (got {})", run.metric_out));
   }
   if (o.has("vtu")) run.vtu = o.get<std::string>("vtu");
   run.keep_surface = o.has("keep-surface");

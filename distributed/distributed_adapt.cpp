@@ -8,6 +8,7 @@
 #include <metrica/distributed/write_part.hpp>
 #include <metrica/error.hpp>
 #include <metrica/geometry/association.hpp>
+#include <metrica/io/file_format.hpp>
 #include <metrica/metrics/complexity.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
@@ -429,12 +430,17 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   const VertexNumbering numbering = number_vertices(comm, part);
   WrittenCounts written;
   StagedOutputs outputs(comm);
-  outputs.add(write_part(comm, part, numbering, run.output, run.version, model.get(), &written));
-  if (!run.metric_out.empty())
-    outputs.add(write_part_metric(
-        comm, numbering,
-        [&](std::size_t v) { return settings.exact ? (*settings.exact)(part.points[v]) : part.metrics[v]; },
-        run.metric_out, written.version));
+  const bool text = io::format_of(run.output) == io::FileFormat::mesh;
+  outputs.add(text ? write_part_text(comm, part, numbering, run.output, run.version, model.get(), &written)
+                   : write_part(comm, part, numbering, run.output, run.version, model.get(), &written));
+  if (!run.metric_out.empty()) {
+    const auto metric_of = [&](std::size_t v) {
+      return settings.exact ? (*settings.exact)(part.points[v]) : part.metrics[v];
+    };
+    outputs.add(io::format_of(run.metric_out) == io::FileFormat::sol
+                    ? write_part_metric_text(comm, numbering, metric_of, run.metric_out, written.version)
+                    : write_part_metric(comm, numbering, metric_of, run.metric_out, written.version));
+  }
   if (!run.vtu.empty()) outputs.add(write_part_vtu(comm, part, numbering, run.vtu));
   outputs.commit();
   if (talk) {

@@ -4,6 +4,7 @@
 #include <metrica/io/meshb_keywords.hpp>
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include <array>
 #include <cmath>
@@ -171,14 +172,11 @@ VertexNumbering number_vertices(const Comm& comm, const Part& part) {
   return out;
 }
 
-StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering& numbering, const std::string& path,
-                      int version, const CadModel* model, WrittenCounts* counts) {
-  const int me = comm.rank();
-  const VertexIndex index(part.vertex_ids);
-  const auto& owner = numbering.owner;
-  const auto& number = numbering.number;
-  const std::int64_t first_vertex = numbering.first;
-  // A triangle on a face between parts is written by the lower rank.
+namespace {
+
+// The part's triangles this rank writes: one on a face between parts is
+// written by the lower rank.
+std::vector<std::uint32_t> triangles_written(const Part& part, int me) {
   std::vector<std::pair<FaceKey, int>> across;
   for (std::size_t i = 0; i < part.shared_faces.size(); ++i)
     across.emplace_back(part.shared_faces[i], part.shared_with[i]);
@@ -190,25 +188,52 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
     if (it != across.end() && it->first == key && it->second < me) continue;
     triangles.push_back(std::uint32_t(i));
   }
+  return triangles;
+}
 
-  // The CAD association of the vertices this rank writes, numbered among
-  // them, with what refine and Feflo.a also read (complete_geometry_records).
+// The CAD association of the vertices this rank writes, numbered among
+// them, with what refine and Feflo.a also read (complete_geometry_records).
+io::MeshData geometry_records(const Part& part, const VertexNumbering& numbering, int me, const CadModel* model) {
   io::MeshData records;
-  if (model != nullptr && !part.geo.empty()) {
-    VertexId k = 0;
-    for (std::size_t v = 0; v < owner.size(); ++v) {
-      if (owner[v] != me) continue;
-      const GeoParam& g = part.geo[v];
-      if (g.valid()) records.on_geometry[std::size_t(g.dim)].push_back({k, g.tag, g.u, g.v, 0.0});
-      ++k;
-    }
-    complete_geometry_records(records, *model);
+  if (model == nullptr || part.geo.empty()) return records;
+  VertexId k = 0;
+  for (std::size_t v = 0; v < numbering.owner.size(); ++v) {
+    if (numbering.owner[v] != me) continue;
+    const GeoParam& g = part.geo[v];
+    if (g.valid()) records.on_geometry[std::size_t(g.dim)].push_back({k, g.tag, g.u, g.v, 0.0});
+    ++k;
   }
+  complete_geometry_records(records, *model);
+  return records;
+}
 
+// What this rank writes besides its vertices and tets, and the counts of
+// the whole file.
+struct Written {
+  std::vector<std::uint32_t> triangles;
+  io::MeshData records;
   WrittenCounts total;
-  total.vertices = numbering.total;
-  total.triangles = comm.sum(std::int64_t(triangles.size()));
-  total.tets = comm.sum(std::int64_t(part.tets.size()));
+};
+Written written_by(const Comm& comm, const Part& part, const VertexNumbering& numbering, const CadModel* model) {
+  Written w;
+  w.triangles = triangles_written(part, comm.rank());
+  w.records = geometry_records(part, numbering, comm.rank(), model);
+  w.total.vertices = numbering.total;
+  w.total.triangles = comm.sum(std::int64_t(w.triangles.size()));
+  w.total.tets = comm.sum(std::int64_t(part.tets.size()));
+  return w;
+}
+
+}  // namespace
+
+StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering& numbering, const std::string& path,
+                      int version, const CadModel* model, WrittenCounts* counts) {
+  const int me = comm.rank();
+  const VertexIndex index(part.vertex_ids);
+  const auto& owner = numbering.owner;
+  const auto& number = numbering.number;
+  const std::int64_t first_vertex = numbering.first;
+  auto [triangles, records, total] = written_by(comm, part, numbering, model);
   const std::int64_t first_triangle = comm.exclusive_scan(std::int64_t(triangles.size()));
   const std::int64_t first_tet = comm.exclusive_scan(std::int64_t(part.tets.size()));
   std::array<std::int64_t, 3> on_total{}, on_first{};
@@ -310,6 +335,104 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
       write_at(file, rows_at(kVerticesOnGeometricVertices + d, on_first[std::size_t(d)]), g.bytes());
     }
   });
+  if (counts != nullptr) *counts = total;
+  return out.close();
+}
+
+namespace {
+
+// Text placed in one shared file by all ranks in turn: rank 0's keyword
+// lines, then each keyword's rows, each rank's after those of the ranks
+// before it (an exclusive scan of their byte counts). Every rank knows
+// where the next text goes.
+class TextPlacer {
+ public:
+  TextPlacer(const Comm& comm, MPI_File file) : comm_(comm), file_(file) {}
+  void head(const std::string& text) {
+    comm_.step([&] {
+      if (comm_.rank() == 0) write_at(file_, at_, text);
+    });
+    at_ += text.size();
+  }
+  void rows(const fmt::memory_buffer& text) {
+    const auto mine = std::int64_t(text.size());
+    const auto before = std::uint64_t(comm_.exclusive_scan(mine));
+    const auto all = std::uint64_t(comm_.sum(mine));
+    comm_.step([&] { write_at(file_, at_ + before, std::string(text.data(), text.size())); });
+    at_ += all;
+  }
+
+ private:
+  const Comm& comm_;
+  MPI_File file_;
+  std::uint64_t at_ = 0;
+};
+
+}  // namespace
+
+StagedFile write_part_text(const Comm& comm, const Part& part, const VertexNumbering& numbering,
+                           const std::string& path, int version, const CadModel* model, WrittenCounts* counts) {
+  const int me = comm.rank();
+  const VertexIndex index(part.vertex_ids);
+  auto [triangles, records, total] = written_by(comm, part, numbering, model);
+  total.version = version == 0 ? 2 : version;
+  using namespace io::meshb;
+  SharedFile out(comm, path);
+  TextPlacer place(comm, out.file());
+  const auto keyword = [](int code, std::int64_t rows) {
+    return fmt::format("\n{}\n{}\n", io::meshb::keyword_name(code), rows);
+  };
+  fmt::memory_buffer text;
+  const auto to = [&] { return std::back_inserter(text); };
+  place.head(fmt::format("MeshVersionFormatted {}\n\nDimension 3\n", total.version));
+  if (total.vertices > 0) {
+    place.head(keyword(kVertices, total.vertices));
+    comm.step([&] {
+      for (std::size_t v = 0; v < numbering.owner.size(); ++v) {
+        if (numbering.owner[v] != me) continue;
+        const auto& p = part.points[v];
+        if (!p.allFinite()) throw IoError(fmt::format("{}: a vertex is not finite; nothing written", path));
+        fmt::format_to(to(), "{} {} {} 0\n", p.x(), p.y(), p.z());
+      }
+    });
+    place.rows(text);
+    text.clear();
+  }
+  if (total.triangles > 0) {
+    place.head(keyword(kTriangles, total.triangles));
+    for (auto i : triangles) {
+      const auto& f = part.triangles[i];
+      const auto n = [&](int c) { return numbering.number[std::size_t(index.find(f[std::size_t(c)]))]; };
+      fmt::format_to(to(), "{} {} {} {}\n", n(0), n(1), n(2), part.triangle_refs[i]);
+    }
+    place.rows(text);
+    text.clear();
+  }
+  if (total.tets > 0) {
+    place.head(keyword(kTetrahedra, total.tets));
+    for (std::size_t t = 0; t < part.tets.size(); ++t) {
+      const auto& l = part.tets[t];
+      const auto& n = numbering.number;
+      fmt::format_to(to(), "{} {} {} {} {}\n", n[l[0]], n[l[1]], n[l[2]], n[l[3]], part.tet_refs[t]);
+    }
+    place.rows(text);
+    text.clear();
+  }
+  for (int d = 0; d < 3; ++d) {
+    const auto& list = records.on_geometry[std::size_t(d)];
+    const std::int64_t rows = comm.sum(std::int64_t(list.size()));
+    if (rows == 0) continue;
+    place.head(keyword(kVerticesOnGeometricVertices + d, rows));
+    for (const auto& r : list) {
+      fmt::format_to(to(), "{} {}", numbering.first + std::int64_t(r.vertex) + 1, r.entity);
+      if (d == 1) fmt::format_to(to(), " {} {}", r.u, r.dist);
+      if (d == 2) fmt::format_to(to(), " {} {} {}", r.u, r.v, r.dist);
+      text.push_back('\n');
+    }
+    place.rows(text);
+    text.clear();
+  }
+  place.head("\nEnd\n");
   if (counts != nullptr) *counts = total;
   return out.close();
 }
@@ -417,6 +540,34 @@ StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumber
     write_at(out.file(), block_at(3, first), types);
     write_at(out.file(), block_at(4, 4 * first), refs);
   });
+  return out.close();
+}
+
+}  // namespace metrica::distributed
+
+namespace metrica::distributed {
+
+StagedFile write_part_metric_text(const Comm& comm, const VertexNumbering& numbering,
+                                  const std::function<Sym6(std::size_t)>& metric_of, const std::string& path,
+                                  int version) {
+  const int me = comm.rank();
+  SharedFile out(comm, path);
+  TextPlacer place(comm, out.file());
+  place.head(fmt::format("MeshVersionFormatted {}\n\nDimension 3\n\n{}\n{}\n1 {}\n", version,
+                         io::meshb::keyword_name(io::meshb::kSolAtVertices), numbering.total,
+                         int(io::SolType::sym_matrix)));
+  fmt::memory_buffer text;
+  comm.step([&] {
+    for (std::size_t v = 0; v < numbering.owner.size(); ++v) {
+      if (numbering.owner[v] != me) continue;
+      const Sym6 m = metric_of(v);
+      for (double x : m)
+        if (!std::isfinite(x)) throw IoError(fmt::format("{}: a non-finite metric entry; nothing written", path));
+      fmt::format_to(std::back_inserter(text), "{} {} {} {} {} {}\n", m[0], m[1], m[2], m[3], m[4], m[5]);
+    }
+  });
+  place.rows(text);
+  place.head("\nEnd\n");
   return out.close();
 }
 

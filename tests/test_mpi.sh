@@ -8,7 +8,7 @@
 # the boundary on a CAD model, two regions with the surface between them,
 # the last round undone on a part that it would leave poorer, rounds
 # without a new cut,
-# --metric-out, --keep-surface, --dry-run and --vtu.
+# ASCII outputs, --metric-out, --keep-surface, --dry-run and --vtu.
 # Usage: tests/test_mpi.sh METRICA [CASE]   (CASE: adapt, repeat, roundtrip, errors, geometry, regions, options; all by default)
 set -euo pipefail
 metrica="$1"
@@ -93,9 +93,16 @@ fi
 
 # The same output to the bit for a given N (serial concurrency).
 if [ "$only" = all ] || [ "$only" = repeat ]; then
-  run 2 adapt "$dir/cube.meshb" --analytic polar-1 -o "$dir/r1.meshb" --concurrency serial -q
+  run 2 adapt "$dir/cube.meshb" --analytic polar-1 -o "$dir/r1.meshb" --metric-out "$dir/r1.solb" --concurrency serial -q
   run 2 adapt "$dir/cube.meshb" --analytic polar-1 -o "$dir/r2.meshb" --concurrency serial -q
   cmp "$dir/r1.meshb" "$dir/r2.meshb" || fail "two serial runs on 2 ranks differ"
+  # The ASCII outputs, written by all ranks: the text the single process
+  # writes for the same mesh and metric.
+  run 2 adapt "$dir/cube.meshb" --analytic polar-1 -o "$dir/r3.mesh" --metric-out "$dir/r3.sol" --concurrency serial -q
+  "$metrica" convert "$dir/r1.meshb" "$dir/r1.mesh" -q
+  "$metrica" convert "$dir/r1.solb" "$dir/r1.sol" -q
+  cmp "$dir/r1.mesh" "$dir/r3.mesh" || fail "the .mesh of 2 ranks is not the .meshb's text"
+  cmp "$dir/r1.sol" "$dir/r3.sol" || fail "the .sol of 2 ranks is not the .solb's text"
 fi
 
 # Read in slices, cut, move and write in parallel: the same mesh back.
@@ -143,10 +150,10 @@ PY
   grep -q "round 1: .* (1 part," "$dir/tiny.txt" || { cat "$dir/tiny.txt"; fail "6 tets on 3 ranks: not one part first"; }
   "$metrica" check "$dir/tiny-out.meshb" -q || fail "6 tets on 3 ranks: invalid output"
   set +e
-  msg=$(run 2 adapt "$dir/cube.meshb" --analytic linear -o "$dir/cube.mesh" 2>&1)
+  msg=$(run 2 adapt "$dir/cube.meshb" --analytic linear -o "$dir/cube.su2" 2>&1)
   code=$?
   set -e
-  [ "$code" -eq 2 ] || fail "an ASCII output under mpirun: exit $code (want 2): $msg"
+  [ "$code" -eq 2 ] || fail "an .su2 output under mpirun: exit $code (want 2): $msg"
   ls "$dir" | grep -q tmp && fail "a temporary file was left: $(ls "$dir")"
 fi
 # On the CAD model (cube-cylinder, UGAWG's STEP file): every boundary
@@ -269,7 +276,7 @@ PY
   set -e
   [ "$code" -eq 1 ] && grep -q "the limit is 1e+03 tets" <<<"$msg" || fail "--max-tets 1000 on 2 ranks: exit $code: $msg"
   [ ! -e "$dir/big.meshb" ] || fail "--max-tets on 2 ranks left an output"
-  for bad in "--metric-out $dir/m.sol"; do
+  for bad in "--metric-out $dir/m.meshb"; do
     set +e
     # shellcheck disable=SC2086 # the option and its value
     msg=$(run 2 adapt "$dir/cube.meshb" --analytic linear -o "$dir/r.meshb" $bad 2>&1)

@@ -1,5 +1,5 @@
-// Writing a distributed mesh into one binary .meshb (and its metric as
-// one .solb, its tets as one .vtu): vertices numbered
+// Writing a distributed mesh into one .meshb or .mesh (and its metric as
+// one .solb or .sol, its tets as one .vtu): vertices numbered
 // globally (a vertex held by several parts is written by the lowest rank
 // holding it), each rank's rows placed at offsets from exclusive scans,
 // written with MPI-IO into temporary files that rank 0 renames together
@@ -77,6 +77,15 @@ class StagedOutputs {
 StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering& numbering, const std::string& path,
                       int version, const CadModel* model, WrittenCounts* counts);
 
+// The same as one ASCII .mesh (the single process's text; `version` 0
+// writes 2):
+// each rank formats its rows of each keyword and writes them after those
+// of the ranks before it (an exclusive scan of their byte counts), rank 0
+// the keyword lines between them. A rank holds the text of one keyword
+// of its part at a time.
+StagedFile write_part_text(const Comm& comm, const Part& part, const VertexNumbering& numbering,
+                           const std::string& path, int version, const CadModel* model, WrittenCounts* counts);
+
 // The mesh's tets for ParaView as one .vtu (the single process's arrays:
 // points, tets, their refs as the cell field "ref"), its data appended raw
 // after the XML so that each rank's rows go at offsets from scans.
@@ -88,5 +97,9 @@ StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumber
 // the local vertices this rank writes. `version` as the mesh's (2 to 4).
 StagedFile write_part_metric(const Comm& comm, const VertexNumbering& numbering,
                              const std::function<Sym6(std::size_t)>& metric_of, const std::string& path, int version);
+// The same as one ASCII .sol.
+StagedFile write_part_metric_text(const Comm& comm, const VertexNumbering& numbering,
+                                  const std::function<Sym6(std::size_t)>& metric_of, const std::string& path,
+                                  int version);
 
 }  // namespace metrica::distributed
