@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <string_view>
 #include <unistd.h>
 
 namespace metrica::distributed {
@@ -51,7 +52,7 @@ class Rows {
   std::string out_;
 };
 
-void write_at(MPI_File file, std::uint64_t at, const std::string& bytes) {
+void write_at(MPI_File file, std::uint64_t at, std::string_view bytes) {
   constexpr std::size_t kPiece = std::size_t{1} << 30;
   for (std::size_t off = 0; off < bytes.size(); off += kPiece) {
     const int n = int(std::min(kPiece, bytes.size() - off));
@@ -358,7 +359,7 @@ class TextPlacer {
     const auto mine = std::int64_t(text.size());
     const auto before = std::uint64_t(comm_.exclusive_scan(mine));
     const auto all = std::uint64_t(comm_.sum(mine));
-    comm_.step([&] { write_at(file_, at_ + before, std::string(text.data(), text.size())); });
+    comm_.step([&] { write_at(file_, at_ + before, std::string_view(text.data(), text.size())); });
     at_ += all;
   }
 
