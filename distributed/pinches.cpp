@@ -75,7 +75,6 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
       for (auto i = first[v]; i < first[v + 1]; ++i)
         if (active[around[i]]) shell.push_back(around[i]);
       if (shell.empty()) continue;
-      const std::uint32_t g = v;
       const int k = int(shell.size());
       // The active tets around v in one piece (joined by faces)...
       bool pinched = groups(k, [&](int a, int b) {
@@ -88,7 +87,7 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
           const auto& tv = part.tets[t];
           for (const auto& f : kTetFaces) {
             const auto key = key_of(tv[std::size_t(f[0])], tv[std::size_t(f[1])], tv[std::size_t(f[2])]);
-            if (std::find(key.begin(), key.end(), g) != key.end()) faces.push_back(key);
+            if (std::find(key.begin(), key.end(), v) != key.end()) faces.push_back(key);
           }
         }
         std::sort(faces.begin(), faces.end());
@@ -107,7 +106,7 @@ std::vector<bool> adaptable_tets(const Part& part, std::vector<bool> wanted) {
       if (!pinched) {
         for (const auto& f : boundary) {
           for (std::uint32_t w : f) {
-            if (w == g || pinched) continue;
+            if (w == v || pinched) continue;
             std::vector<std::uint32_t> edge;
             for (auto t : shell)
               if (std::find(part.tets[t].begin(), part.tets[t].end(), w) != part.tets[t].end()) edge.push_back(t);
