@@ -474,6 +474,30 @@ StagedFile write_part_metric(const Comm& comm, const VertexNumbering& numbering,
   return out.close();
 }
 
+StagedFile write_part_metric_text(const Comm& comm, const VertexNumbering& numbering,
+                                  const std::function<Sym6(std::size_t)>& metric_of, const std::string& path,
+                                  int version) {
+  const int me = comm.rank();
+  SharedFile out(comm, path);
+  TextPlacer place(comm, out.file());
+  place.head(fmt::format("MeshVersionFormatted {}\n\nDimension 3\n\n{}\n{}\n1 {}\n", version,
+                         io::meshb::keyword_name(io::meshb::kSolAtVertices), numbering.total,
+                         int(io::SolType::sym_matrix)));
+  fmt::memory_buffer text;
+  comm.step([&] {
+    for (std::size_t v = 0; v < numbering.owner.size(); ++v) {
+      if (numbering.owner[v] != me) continue;
+      const Sym6 m = metric_of(v);
+      for (double x : m)
+        if (!std::isfinite(x)) throw IoError(fmt::format("{}: a non-finite metric entry; nothing written", path));
+      fmt::format_to(std::back_inserter(text), "{} {} {} {} {} {}\n", m[0], m[1], m[2], m[3], m[4], m[5]);
+    }
+  });
+  place.rows(text);
+  place.head("\nEnd\n");
+  return out.close();
+}
+
 StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumbering& numbering,
                           const std::string& path) {
   const int me = comm.rank();
@@ -541,34 +565,6 @@ StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumber
     write_at(out.file(), block_at(3, first), types);
     write_at(out.file(), block_at(4, 4 * first), refs);
   });
-  return out.close();
-}
-
-}  // namespace metrica::distributed
-
-namespace metrica::distributed {
-
-StagedFile write_part_metric_text(const Comm& comm, const VertexNumbering& numbering,
-                                  const std::function<Sym6(std::size_t)>& metric_of, const std::string& path,
-                                  int version) {
-  const int me = comm.rank();
-  SharedFile out(comm, path);
-  TextPlacer place(comm, out.file());
-  place.head(fmt::format("MeshVersionFormatted {}\n\nDimension 3\n\n{}\n{}\n1 {}\n", version,
-                         io::meshb::keyword_name(io::meshb::kSolAtVertices), numbering.total,
-                         int(io::SolType::sym_matrix)));
-  fmt::memory_buffer text;
-  comm.step([&] {
-    for (std::size_t v = 0; v < numbering.owner.size(); ++v) {
-      if (numbering.owner[v] != me) continue;
-      const Sym6 m = metric_of(v);
-      for (double x : m)
-        if (!std::isfinite(x)) throw IoError(fmt::format("{}: a non-finite metric entry; nothing written", path));
-      fmt::format_to(std::back_inserter(text), "{} {} {} {} {} {}\n", m[0], m[1], m[2], m[3], m[4], m[5]);
-    }
-  });
-  place.rows(text);
-  place.head("\nEnd\n");
   return out.close();
 }
 
