@@ -100,6 +100,52 @@ TEST_SUITE("property") {
     }
   }
 
+  TEST_CASE("keeping a part's tets and the vertices they use leaves each tet its global ids and points") {
+    const BoxSpec spec{3, 3, 3, Point(0, 0, 0), Point(3, 3, 3)};
+    for (const bool shuffled : {false, true}) {
+      CAPTURE(shuffled);
+      Part part = part_of_box(spec, [](const Point&) { return true; });
+      if (shuffled) {  // global ids unlike the local order
+        auto r = test::rng(50);
+        std::shuffle(part.vertex_ids.begin(), part.vertex_ids.end(), r);
+      }
+      auto r = test::rng(51);
+      std::vector<bool> stays(part.tets.size());
+      for (std::size_t t = 0; t < stays.size(); ++t) {  // the tets of one side, less some
+        const auto& l = part.tets[t];
+        const double x = (part.points[l[0]] + part.points[l[1]] + part.points[l[2]] + part.points[l[3]]).x() / 4;
+        stays[t] = x < 1.6 && r() % 3 != 0;
+      }
+      std::vector<std::array<GlobalId, 4>> ids;
+      std::vector<std::array<Point, 4>> points;
+      for (std::size_t t = 0; t < stays.size(); ++t)
+        if (stays[t]) {
+          ids.push_back(global_tet(part, t));
+          const auto& l = part.tets[t];
+          points.push_back({part.points[l[0]], part.points[l[1]], part.points[l[2]], part.points[l[3]]});
+        }
+      keep_tets(part, stays);
+      std::vector<bool> used(part.vertex_ids.size(), false);
+      for (const auto& t : part.tets)
+        for (auto v : t) used[v] = true;
+      const auto kept = std::size_t(std::count(used.begin(), used.end(), true));
+      REQUIRE(kept < used.size());  // some vertices go
+      keep_vertices(part, used);
+      REQUIRE(part.vertex_ids.size() == kept);
+      REQUIRE(part.points.size() == kept);
+      REQUIRE(part.tets.size() == ids.size());
+      for (std::size_t t = 0; t < part.tets.size(); ++t) {
+        CHECK(global_tet(part, t) == ids[t]);
+        for (int c = 0; c < 4; ++c) CHECK(part.points[part.tets[t][std::size_t(c)]] == points[t][std::size_t(c)]);
+        for (int f = 0; f < 4; ++f) {
+          const auto& k = kTetFaces[f];
+          CHECK(global_face(part, t, f) ==
+                face_key(ids[t][std::size_t(k[0])], ids[t][std::size_t(k[1])], ids[t][std::size_t(k[2])]));
+        }
+      }
+    }
+  }
+
   TEST_CASE("the rendezvous rank of a face is the same for any order of its vertices and in range") {
     auto r = test::rng(49);
     std::uniform_int_distribution<GlobalId> id(0, 1'000'000);
