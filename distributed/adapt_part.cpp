@@ -395,12 +395,13 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     const VertexIndex have(adapted.vertex_ids);
     const std::size_t nv = part.vertex_ids.size();
     std::vector<bool> apart(nv);
-    std::vector<std::uint32_t> place(nv);
+    std::vector<std::int64_t> copy(nv);  // the vertex's place in `adapted`, -1: none
     std::size_t own = 0;
-    for (std::size_t v = 0; v < nv; ++v) apart[v] = have.find(part.vertex_ids[v]) < 0, own += apart[v];
-    std::uint32_t next = 0;
     for (std::size_t v = 0; v < nv; ++v)
-      place[v] = apart[v] ? next++ : std::uint32_t(own + std::size_t(have.find(part.vertex_ids[v])));
+      copy[v] = have.find(part.vertex_ids[v]), apart[v] = copy[v] < 0, own += apart[v];
+    std::vector<std::uint32_t> place(nv);
+    std::uint32_t next = 0;
+    for (std::size_t v = 0; v < nv; ++v) place[v] = apart[v] ? next++ : std::uint32_t(own + std::size_t(copy[v]));
     for (auto& t : part.tets)
       for (auto& v : t) v = place[v];
     keep_vertex_records(part, apart);

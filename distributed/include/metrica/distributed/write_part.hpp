@@ -78,11 +78,10 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
                       int version, const CadModel* model, WrittenCounts* counts);
 
 // The same as one ASCII .mesh (the single process's text; `version` 0
-// writes 2):
-// each rank formats its rows of each keyword and writes them after those
-// of the ranks before it (an exclusive scan of their byte counts), rank 0
-// the keyword lines between them. A rank holds the text of one keyword
-// of its part at a time.
+// writes 2): each rank formats its rows of each keyword and writes them
+// after those of the ranks before it (an exclusive scan of their byte
+// counts), rank 0 the keyword lines between them. A rank holds the text
+// of one keyword of its part at a time.
 StagedFile write_part_text(const Comm& comm, const Part& part, const VertexNumbering& numbering,
                            const std::string& path, int version, const CadModel* model, WrittenCounts* counts);
 
