@@ -28,7 +28,7 @@ template <class MetricOf>
 double complexity_sum(const std::vector<double>& dual_volume, MetricOf&& metric_of) {
   double c = 0.0;
   for (std::size_t i = 0; i < dual_volume.size(); ++i)
-    if (dual_volume[i] > 0.0) c += std::sqrt(determinant(metric_of(i))) * dual_volume[i];
+    if (dual_volume[i] > 0.0) c += std::sqrt(spd_determinant(metric_of(i))) * dual_volume[i];
   return c;
 }
 }  // namespace
@@ -63,7 +63,7 @@ double sampled_tet_complexity(const Point& a, const Point& b, const Point& d, co
       for (int l = 0; i + j + l <= m; ++l) {
         const int r = m - i - j - l;
         const Point p = (double(i) * a + double(j) * b + double(l) * d + double(r) * e) / double(m);
-        sum += std::sqrt(std::max(0.0, determinant(metric(p))));
+        sum += std::sqrt(spd_determinant(metric(p)));
         ++count;
       }
   return tet_volume(a, b, d, e) * sum / count;

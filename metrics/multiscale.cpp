@@ -31,8 +31,13 @@ void check_options(const MultiscaleOptions& o) {
     throw InputError(fmt::format("the gradation must be >= 1 (got {})", o.gradation_options.beta));
 }
 
-// M_i = det|H_i|^(-1/(2p+3)) |H_i| (before the constant D_N).
-std::vector<Sym6> unscaled_metric(const Mesh& mesh, const std::vector<Sym6>& hessian, double norm) {
+// M_i = det|H_i|^(-1/(2p+3)) |H_i| (before the constant D_N), with the
+// determinant the product of the eigenvalues (a rotated Hessian of rank one
+// or two, a planar or cylindrical front, cancels in its entries). The
+// anisotropy bound does not depend on the scale, so it acts here, before
+// the first scaling; the size bounds act after it.
+std::vector<Sym6> unscaled_metric(const Mesh& mesh, const std::vector<Sym6>& hessian, double norm,
+                                  double max_anisotropy) {
   std::vector<Eigen3> eig(hessian.size());
   double largest = 0.0;
   for (std::size_t v = 0; v < hessian.size(); ++v) {
@@ -49,6 +54,7 @@ std::vector<Sym6> unscaled_metric(const Mesh& mesh, const std::vector<Sym6>& hes
   for (std::size_t v = 0; v < hessian.size(); ++v) {
     if (!mesh.vertex_alive(static_cast<VertexId>(v))) continue;
     Eigen::Vector3d l = eig[v].values.cwiseMax(floor);
+    l = l.cwiseMax(l.maxCoeff() / (max_anisotropy * max_anisotropy));
     l *= std::pow(l.prod(), exponent);
     metric[v] = to_sym6(eig[v].vectors * l.asDiagonal() * eig[v].vectors.transpose());
   }
@@ -112,7 +118,7 @@ std::vector<Sym6> multiscale_metric_from_hessian(const Mesh& mesh, std::vector<S
   if (hessian.size() != mesh.vertex_capacity())
     throw InputError(
         fmt::format("Hessian field of {} tensors for {} vertex ids", hessian.size(), mesh.vertex_capacity()));
-  auto metric = unscaled_metric(mesh, hessian, o.norm);
+  auto metric = unscaled_metric(mesh, hessian, o.norm, o.bounds.max_anisotropy);
   MultiscaleReport r;
   relax_to_complexity(mesh, metric, o, r);
   r.total_seconds = clock.seconds();
@@ -150,7 +156,7 @@ std::vector<Sym6> multiscale_metric(const Mesh& mesh, const std::vector<std::vec
       log::warn("multiscale: field {} of {} has a zero Hessian (linear or constant): left out", k + 1, fields.size());
       continue;
     }
-    auto mk = unscaled_metric(mesh, *hessian, o.norm);
+    auto mk = unscaled_metric(mesh, *hessian, o.norm, o.bounds.max_anisotropy);
     scale_to_complexity(mk, dual, o.complexity);
     if (used++ == 0) {
       metric = std::move(mk);

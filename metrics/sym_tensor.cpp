@@ -23,6 +23,14 @@ bool is_spd(const Sym6& m) {
   return eigen_decomposition(m).values[0] > 0.0;
 }
 
+double spd_determinant(const Sym6& m) {
+  const double det = determinant(m);
+  const double hadamard = m[0] * m[2] * m[5];
+  if (det > 1e-6 * hadamard) return det;
+  const Eigen::Vector3d l = eigen_decomposition(m).values.cwiseMax(0.0);
+  return l.prod();
+}
+
 Sym6 spd_log(const Sym6& m) {
   const auto e = eigen_decomposition(m);
   return to_sym6(e.vectors * e.values.array().log().matrix().asDiagonal() * e.vectors.transpose());

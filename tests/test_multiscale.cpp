@@ -53,6 +53,32 @@ std::vector<bool> deep_interior(const Mesh& mesh, const BoxSpec& b) {
   return deep;
 }
 
+// The complexity from each tensor's eigenvalues (not from its entries):
+// the check of a field whose tensors are far from isotropic.
+double eigen_complexity(const Mesh& mesh, const std::vector<Sym6>& m) {
+  const auto dual = dual_volumes(mesh);
+  double c = 0.0;
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+    if (mesh.vertex_alive(v)) c += std::sqrt(eigen_decomposition(m[v]).values.cwiseMax(0.0).prod()) * dual[v];
+  return c;
+}
+
+Matrix3 random_rotation(std::mt19937_64& r) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double q3 = u(r), q2 = u(r), q1 = u(r), q0 = u(r);
+  return Eigen::Quaterniond(Eigen::Vector4d(q0, q1, q2, q3).normalized()).toRotationMatrix();
+}
+
+// Every tensor finite and SPD, the complexity the target to 1e-6.
+void check_front_metric(const Mesh& mesh, const std::vector<Sym6>& m, double target) {
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    if (!mesh.vertex_alive(v)) continue;
+    REQUIRE(is_spd(m[v]));
+  }
+  CHECK(std::abs(eigen_complexity(mesh, m) / target - 1.0) < 1e-6);
+  CHECK(std::abs(complexity(mesh, m) / target - 1.0) < 1e-6);
+}
+
 }  // namespace
 
 TEST_SUITE("unit") {
@@ -95,6 +121,46 @@ TEST_SUITE("unit") {
 }
 
 TEST_SUITE("property") {
+  TEST_CASE("multiscale metrics of rotated rank-1 and rank-2 Hessians and of planar and cylindrical fronts") {
+    // A Hessian of rank one or two along random axes (a planar or a
+    // cylindrical front): its determinant from the entries cancels to zero
+    // or below; the metric must still be finite and SPD and hit its target.
+    const Mesh mesh = make_box({.nx = 6, .ny = 6, .nz = 6});
+    auto r = test::rng(67);
+    std::uniform_real_distribution<double> e(0.0, 1.0);
+    MultiscaleOptions o;
+    o.complexity = 2000.0;
+    o.gradation = false;
+    o.complexity_tolerance = 1e-9;
+    o.max_relaxations = 60;
+    for (int trial = 0; trial < 40; ++trial) {
+      const int rank = 1 + trial % 2;
+      CAPTURE(trial);
+      std::vector<Sym6> hessian(mesh.vertex_capacity());
+      for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+        const Matrix3 q = random_rotation(r);
+        const Eigen::Vector3d l(std::pow(10.0, 6 * e(r) - 3), rank == 2 ? std::pow(10.0, 6 * e(r) - 3) : 0.0, 0.0);
+        hessian[v] = to_sym6(q * l.asDiagonal() * q.transpose());
+      }
+      o.bounds = trial % 4 < 2 ? MetricBounds{} : MetricBounds{.hmin = 1e-3, .hmax = 0.5, .max_anisotropy = 100};
+      const auto m = multiscale_metric_from_hessian(mesh, hessian, o);
+      check_front_metric(mesh, m, o.complexity);
+    }
+    // The fields themselves: tanh(10 (n.x - c)) and tanh(10 (|x - a|_perp - r)).
+    const auto pts = points_of(mesh);
+    for (int trial = 0; trial < 6; ++trial) {
+      const Eigen::Vector3d n = random_rotation(r).col(0);
+      std::vector<double> u(pts.size());
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        const Eigen::Vector3d d = pts[i] - Point(0.5, 0.5, 0.5);
+        u[i] = trial % 2 == 0 ? std::tanh(10.0 * n.dot(d)) : std::tanh(10.0 * ((d - n.dot(d) * n).norm() - 0.3));
+      }
+      CAPTURE(trial);
+      o.bounds = {};
+      check_front_metric(mesh, multiscale_metric(mesh, u, o), o.complexity);
+    }
+  }
+
   TEST_CASE("recovered gradient of a linear field is exact and Hessian of a quadratic is exact inside") {
     const BoxSpec spec{.nx = 6, .ny = 5, .nz = 7, .lo = Point(-1, 0, 0.5), .hi = Point(1, 1, 2)};
     const Mesh mesh = make_box(spec);
@@ -335,6 +401,22 @@ TEST_SUITE("property") {
 }
 
 TEST_SUITE("regression") {
+  TEST_CASE("the multiscale metric of the planar front tanh(10 (x + y + z - 1.5)) on the 9x9x9 cube") {
+    // Its Hessian is of rank one along (1, 1, 1): the entries' determinant
+    // cancelled below zero and the complexity came out NaN ("zero
+    // complexity") before any bound could act.
+    const Mesh mesh = make_box({.nx = 8, .ny = 8, .nz = 8});
+    const auto pts = points_of(mesh);
+    std::vector<double> u(pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) u[i] = std::tanh(10.0 * (pts[i].sum() - 1.5));
+    MultiscaleOptions o;
+    o.complexity = 2000.0;
+    MultiscaleReport report;
+    const auto m = multiscale_metric(mesh, u, o, &report);
+    CHECK(report.complexity == doctest::Approx(2000.0).epsilon(o.complexity_tolerance));
+    CHECK_NOTHROW(check_metric_field(m, "multiscale"));
+  }
+
   TEST_CASE("multiscale metric rejects bad input with clear errors") {
     const Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
     const auto pts = points_of(mesh);

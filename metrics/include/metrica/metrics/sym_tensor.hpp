@@ -74,6 +74,12 @@ Sym6 log_euclidean_mean(std::span<const Sym6> metrics, std::span<const double> w
 
 inline double determinant(const Sym6& m) { return to_matrix(m).determinant(); }
 
+// det M of a tensor meant to be SPD, from its entries unless they cancel
+// (a rotated, nearly rank-deficient M: the entries' determinant falls far
+// below the product of the diagonal, Hadamard's bound, and may come out
+// negative), then from its eigenvalues, clamped at 0.
+double spd_determinant(const Sym6& m);
+
 // The adjugate of m (det(m) m^-1, symmetric), in the same storage.
 inline Sym6 adjugate(const Sym6& m) {
   return {m[2] * m[5] - m[4] * m[4], m[3] * m[4] - m[1] * m[5], m[0] * m[5] - m[3] * m[3],
