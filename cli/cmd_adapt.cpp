@@ -9,6 +9,7 @@
 #include <metrica/log.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
+#include <metrica/metrics/background_metric.hpp>
 #include <metrica/metrics/complexity.hpp>
 #include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/metric_field.hpp>
@@ -85,6 +86,12 @@ void declare_options(Options& o) {
       "adapted mesh (.mesh, .meshb, .msh, .vtu, .su2)",
       {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::msh, io::FileFormat::vtu, io::FileFormat::su2});
   o.metric_source("metric at the input's vertices (.sol, .solb)");
+  o.add()("interpolate-from", po::value<std::string>()->default_value("background")->value_name("FROM"),
+          "with -m, where a new or moved vertex takes its metric: background (the input mesh and its "
+          "metric, kept for the whole run: the log-Euclidean interpolation of the field you gave, at the "
+          "vertex's position) or parents (interpolated by --space from the vertices it is made from; a moved "
+          "vertex keeps its metric). The closing report and --metric-out are in the background field "
+          "either way");
   o.add()("iterations", po::value<int>()->default_value(1)->value_name("N"),
           "adaptations in a row, the metric re-evaluated between them (--analytic only)")(
       "space", po::value<std::string>()->default_value(policies.space)->value_name("S"),
@@ -328,6 +335,12 @@ int run_adapt(const std::vector<std::string>& args) {
   const std::size_t input_vertices = loaded.data.vertices.size();
   const int input_version = loaded.data.version;
   loaded.data = io::MeshData{};
+  const std::string interpolate_from = o.get<std::string>("interpolate-from");
+  if (interpolate_from != "background" && interpolate_from != "parents")
+    throw UsageError(fmt::format("adapt: --interpolate-from is background or parents (got '{}')", interpolate_from));
+  // A metric file's field, kept on the input mesh (built once the field is
+  // assigned, before any work).
+  std::unique_ptr<BackgroundMetric> background;
   MetricFunction exact;
   if (analytic) {
     if (bounds.active())
@@ -354,6 +367,10 @@ int run_adapt(const std::vector<std::string>& args) {
       }
     }
     assign_metric(mesh, field);
+    if (!analytic && it == 0) {
+      background = std::make_unique<BackgroundMetric>(mesh);
+      if (interpolate_from == "background") inputs.background = background.get();
+    }
     if (talk)
       fmt::print("{}adapting {} vertices, {} tets ({} space, {} predicates, {} points, {})\n",
                  iterations > 1 ? fmt::format("iteration {}: ", it + 1) : "", count_text(mesh.num_vertices()),
@@ -372,13 +389,22 @@ int run_adapt(const std::vector<std::string>& args) {
     if (talk && (!serial || log::level() >= log::Level::verbose)) print_operator_stats(report, serial, thread_count());
   }
   const PartRunner sweeps = sweep_runner(mesh.tet_capacity(), serial);
+  if (background) {
+    // The report and --metric-out in the field the user gave: the
+    // background at every output vertex.
+    const std::size_t outside = background->assign(mesh);
+    if (talk && outside > 0)
+      fmt::print("{} of {} output vertices outside the input mesh: the nearest input tet's metric, clamped\n",
+                 count_text(outside), count_text(mesh.num_vertices()));
+  }
   check_adapted(mesh, model.get(), volume, adapted_volume_tolerance(iterations, ao.volume_budget), sweeps, talk);
   write_outputs(o, mesh, model.get(), output, input_version, sweeps);
   if (talk) {
     fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());
     // quality_report throws on a non-finite value: the run then fails and
     // its staged outputs are dropped. The quality cache holds the mean
-    // ratios of this space: adapt kept it.
+    // ratios of this space: adapt kept it (a background's assign cleared
+    // it, and the report fills it again).
     fmt::print("{}", format_report(quality_report(mesh, policies.space, {.run = sweeps, .cached_quality = true})));
   }
   return kOk;

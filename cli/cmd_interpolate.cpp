@@ -19,15 +19,17 @@ int run_interpolate(const std::vector<std::string>& args) {
             "source's tets), and takes the P1 (barycentric)\n"
             "interpolant there. Target vertices outside the source mesh (a curved boundary discretised\n"
             "differently) take the value at the closest point of the closest tet found; they are counted.\n"
-            "Every field of the file moves, component by component, and the output keeps its fields\n"
-            "(e.g. a velocity vector and a pressure scalar). Tensor fields are refused: a metric is\n"
-            "transferred by adapt --metric-out, in its own space.\n\n"
-            "Example:\n"
-            "  metrica interpolate old.meshb --field old.solb --to adapted.meshb -o restart.solb");
+            "Every field of the file moves and the output keeps its fields (e.g. a velocity vector and a\n"
+            "pressure scalar): scalars and vectors component by component; symmetric tensors (a metric)\n"
+            "log-Euclidean, exp of the interpolant of log M, so that a metric stays positive definite and\n"
+            "its sizes are averaged geometrically. Full (non-symmetric) matrices are refused.\n\n"
+            "Examples:\n"
+            "  metrica interpolate old.meshb --field old.solb --to adapted.meshb -o restart.solb\n"
+            "  metrica interpolate solver.meshb --field metric.solb --to start.meshb -o start-metric.solb");
   o.input("source mesh (.mesh, .meshb, .msh)");
   o.output("interpolated field (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
   o.add()("field", po::value<std::string>()->value_name("FILE"),
-          "scalar and vector fields at the source's vertices (.sol, .solb)")(
+          "scalar, vector and symmetric tensor fields at the source's vertices (.sol, .solb)")(
       "to", po::value<std::string>()->value_name("MESH"), "target mesh (.mesh, .meshb, .msh)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the source mesh (-i)");
@@ -37,18 +39,15 @@ int run_interpolate(const std::vector<std::string>& args) {
   Stopwatch clock;
   const auto from = load_mesh(input);
   const auto field = io::read_sol(field_path);
-  const auto values = solution_values_from_sol(field, from.data.vertices.size(), field_path);
+  solution_values_from_sol(field, from.data.vertices.size(), field_path);
   const auto to = load_mesh(to_path);
   if (o.dry_run()) return kOk;
   std::size_t outside = 0;
   const int width = field.stride();
-  const auto out = interpolate_vertex_values(from.mesh, values, width, to.mesh, &outside);
-  io::SolData sol;
+  io::SolData sol = transfer_solution(from.mesh, field, to.mesh, field_path, &outside);
   sol.version = to.data.version;
   sol.count = to.data.vertices.size();
-  sol.types = field.types;
-  sol.values.assign(out.begin(),
-                    out.begin() + static_cast<std::ptrdiff_t>(sol.count * static_cast<std::size_t>(width)));
+  sol.values.resize(sol.count * static_cast<std::size_t>(width));
   io::write_sol(output, sol, 0, sweep_runner(sol.count));
   if (log::level() >= log::Level::normal)
     fmt::print("wrote {}: {} vertices x {} values ({} outside the source mesh, clamped) in {:.2f} s\n", output,

@@ -187,6 +187,7 @@ void Mesh::compact(const PartRunner& given) {
   permute_to(log_metric_, new_vertex, nv, run);
   permute_to(vertex_stamp_, new_vertex, nv, run);
   permute_to(geo_, new_vertex, nv, run);
+  permute_to(background_, new_vertex, nv, run);
   run(parts, [&](std::size_t p) {
     const auto [first, last] = part_slice(nv, parts, p);
     for (std::size_t v = first; v < last; ++v) vert2tet_[v] = vert2tet_[v] < tcap ? new_tet[vert2tet_[v]] : kNoId;

@@ -40,6 +40,7 @@ void Mesh::reserve(std::size_t vertices, std::size_t tets) {
     log_metric_.reserve(vertices);
   }
   if (has_geo_params()) geo_.reserve(vertices);
+  if (has_background_tets()) background_.reserve(vertices);
   tets_.reserve(tets);
   tet2tets_.reserve(tets);
   tet_ref_.reserve(tets);
@@ -60,6 +61,7 @@ void Mesh::init_vertex(VertexId v, const Point& p, int ref) {
     log_metric_[v] = Sym6{};
   }
   if (has_geo_params()) geo_[v] = GeoParam{};
+  if (has_background_tets()) background_[v] = kNoId;
 }
 
 VertexId Mesh::add_vertex(const Point& p, int ref) {
@@ -88,6 +90,7 @@ VertexId Mesh::add_vertex(const Point& p, int ref) {
     log_metric_.push_back(Sym6{});
   }
   if (has_geo_params()) geo_.push_back(GeoParam{});
+  if (has_background_tets()) background_.push_back(kNoId);
   return v;
 }
 
@@ -148,6 +151,12 @@ void Mesh::set_internal_surface_id(TetId t, int face, SurfaceId id) {
     internal_.assign(tets_.size(), std::array<SurfaceId, 4>{});
   }
   internal_[t][face] = id;
+}
+
+void Mesh::drop_metric() {
+  metric_ = {};
+  log_metric_ = {};
+  tet_quality_ = {};
 }
 
 void Mesh::set_metric(VertexId v, const Sym6& m, const Sym6& log_m) {
@@ -227,6 +236,7 @@ DeadRoom Mesh::add_dead_room(std::size_t vertex_room, std::size_t tet_room, cons
     extend_array(log_metric_, v_size, v_cap, run);
   }
   if (has_geo_params()) grow_array(geo_, v_size, GeoParam{}, v_cap, run);
+  if (has_background_tets()) grow_array(background_, v_size, kNoId, v_cap, run);
   grow_array(tets_, t_size, TetVertices{kNoId, kNoId, kNoId, kNoId}, t_cap, run);
   extend_array(tet2tets_, t_size, t_cap, run);
   extend_array(tet_ref_, t_size, t_cap, run);

@@ -1,9 +1,11 @@
 #include <metrica/error.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/sym_tensor.hpp>
+#include <metrica/point_location.hpp>
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace metrica {
@@ -119,11 +121,55 @@ std::vector<double> component(const io::SolData& sol, std::size_t k, int c) {
 std::vector<double> solution_values_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source) {
   check_count(sol, vertices, source);
   for (std::size_t k = 0; k < sol.types.size(); ++k)
-    if (sol.types[k] != io::SolType::scalar && sol.types[k] != io::SolType::vector)
-      throw InputError(fmt::format("{}: field {} is a {} (only scalar and vector fields are solutions to transfer)",
-                                   source, k + 1, io::to_string(sol.types[k])));
+    if (sol.types[k] == io::SolType::matrix)
+      throw InputError(fmt::format(
+          "{}: field {} is a {} (scalar, vector and symmetric matrix fields are solutions to transfer)", source,
+          k + 1, io::to_string(sol.types[k])));
   check_finite_values(sol.values, sol.stride(), source);
+  const auto stride = static_cast<std::size_t>(sol.stride());
+  for (std::size_t k = 0; k < sol.types.size(); ++k) {
+    if (sol.types[k] != io::SolType::sym_matrix) continue;
+    const auto at = static_cast<std::size_t>(sol.offset(k));
+    for (std::size_t v = 0; v < sol.count; ++v) {
+      Sym6 m;
+      std::copy_n(sol.values.begin() + static_cast<std::ptrdiff_t>(v * stride + at), 6, m.begin());
+      if (!is_spd(m))
+        throw InputError(fmt::format("{}: field {} at vertex {} is not symmetric positive definite", source, k + 1,
+                                     v + 1));
+    }
+  }
   return sol.values;
+}
+
+io::SolData transfer_solution(const Mesh& from, const io::SolData& sol, const Mesh& to, const std::string& source,
+                              std::size_t* outside) {
+  std::vector<double> values = solution_values_from_sol(sol, from.vertex_capacity(), source);
+  const auto stride = static_cast<std::size_t>(sol.stride());
+  // Each tensor field's entry (offset) whose values are taken to and from
+  // the log space around the P1 interpolation.
+  std::vector<std::size_t> tensors;
+  for (std::size_t k = 0; k < sol.types.size(); ++k)
+    if (sol.types[k] == io::SolType::sym_matrix) tensors.push_back(static_cast<std::size_t>(sol.offset(k)));
+  auto map = [stride, &tensors](std::vector<double>& x, Sym6 (*f)(const Sym6&)) {
+    for (std::size_t at : tensors)
+      for (std::size_t v = 0; v < x.size() / stride; ++v) {
+        const auto first = x.begin() + static_cast<std::ptrdiff_t>(v * stride + at);
+        Sym6 m;
+        std::copy_n(first, 6, m.begin());
+        m = f(m);
+        std::copy(m.begin(), m.end(), first);
+      }
+  };
+  map(values, spd_log);
+  std::vector<double> out = interpolate_vertex_values(from, values, static_cast<int>(stride), to, outside);
+  out.resize(to.vertex_capacity() * stride);
+  io::SolData moved;
+  moved.types = sol.types;
+  moved.count = to.vertex_capacity();
+  // A dead vertex of `to` has zeros (its log): exp gives I, never written.
+  map(out, spd_exp);
+  moved.values = std::move(out);
+  return moved;
 }
 
 std::vector<FieldItem> parse_field_selection(const std::string& selection) {

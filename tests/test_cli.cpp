@@ -4,6 +4,8 @@
 #include "test_support.hpp"
 
 #include <metrica/io/meshb.hpp>
+#include <metrica/metrics/metric_field.hpp>
+#include <metrica/metrics/sym_tensor.hpp>
 
 #include <doctest/doctest.h>
 
@@ -205,6 +207,19 @@ TEST_SUITE("regression") {
     CHECK(metrica_cli("check " + (dir / "a.meshb")).code == 0);
     const auto q = metrica_cli("quality " + (dir / "a.meshb") + " -m " + (dir / "a.solb"));
     CHECK(q.code == 0);
+    // The report is in the field given: the input metric on the input mesh,
+    // as quality measures it with --metric-mesh (and --metric-out is it).
+    const auto user = metrica_cli("quality " + (dir / "a.meshb") + " -m " + (dir / "m.solb") + " --metric-mesh " +
+                                  (dir / "c.meshb"));
+    REQUIRE(user.code == 0);
+    auto in_range = [](const Run& x) {
+      const auto at = x.output.find("edges in [1/sqrt2, sqrt2]");
+      return at == std::string::npos ? std::string("none") : x.output.substr(at, x.output.find('\n', at) - at);
+    };
+    CHECK(in_range(user) == in_range(r));
+    CHECK(in_range(user) == in_range(q));
+    CHECK(metrica_cli("quality " + (dir / "a.meshb") + " --analytic linear --metric-mesh " + (dir / "c.meshb")).code ==
+          2);
     CHECK(std::filesystem::exists(dir / "a.vtu"));
     // The UGAWG loop form: analytic metric, two iterations.
     const auto l = metrica_cli("adapt " + (dir / "c.meshb") + " --analytic polar-1 --iterations 2 --cycles 2 " +
@@ -269,13 +284,41 @@ TEST_SUITE("regression") {
     REQUIRE(
         metrica_cli("metric " + (dir / "run/loop-01.meshb") + " --field tanh3 --complexity 500 -o " + (dir / "m1.solb"))
             .code == 0);
-    const auto bad = metrica_cli("interpolate " + (dir / "run/loop-01.meshb") + " --field " + (dir / "m1.solb") +
-                                 " --to " + (dir / "run/loop-02.meshb") + " -o " + (dir / "f2.solb"));
-    CHECK(bad.code == 1);  // a metric is not a scalar field: a clear error
-    CHECK_FALSE(std::filesystem::exists(dir / "f2.solb"));
-    // A linear scalar field moves exactly.
     const auto m1 = io::read_meshb(dir / "run/loop-01.meshb");
     const auto m2 = io::read_meshb(dir / "run/loop-02.meshb");
+    // A metric moves log-Euclidean: M = exp(L(x)) with L linear in x moves
+    // exactly, and stays SPD.
+    auto log_linear = [](const Point& p) {
+      return spd_exp({1.0 + p.x(), 0.3 * p.y(), 2.0 - p.z(), 0.2 * p.x() - 0.1, 0.5 * p.z(), 3.0 * p.y()});
+    };
+    REQUIRE(metrica_cli("interpolate " + (dir / "run/loop-01.meshb") + " --field " + (dir / "m1.solb") + " --to " +
+                        (dir / "run/loop-02.meshb") + " -o " + (dir / "m2.solb"))
+                .code == 0);
+    CHECK(io::read_sol(dir / "m2.solb").types == std::vector<io::SolType>{io::SolType::sym_matrix});
+    io::write_sol(dir / "e1.solb", metric_field_to_sol([&] {
+                    std::vector<Sym6> e;
+                    for (const auto& p : m1.vertices) e.push_back(log_linear(p));
+                    return e;
+                  }()));
+    const auto moved_metric = metrica_cli("interpolate " + (dir / "run/loop-01.meshb") + " --field " +
+                                          (dir / "e1.solb") + " --to " + (dir / "run/loop-02.meshb") + " -o " +
+                                          (dir / "e2.sol"));
+    INFO(moved_metric.output);
+    REQUIRE(moved_metric.code == 0);
+    const auto moved_e = metric_field_from_sol(io::read_sol(dir / "e2.sol"), m2.vertices.size(), "e2.sol");
+    double metric_worst = 0;
+    for (std::size_t i = 0; i < moved_e.size(); ++i)
+      metric_worst = std::max(metric_worst, test::rel_diff(moved_e[i], log_linear(m2.vertices[i])));
+    CHECK(metric_worst < 1e-8);
+    // A tensor that is not SPD is refused, nothing written.
+    io::SolData bad_metric = metric_field_to_sol(std::vector<Sym6>(m1.vertices.size(), Sym6{1, 0, -1, 0, 0, 1}));
+    io::write_sol(dir / "bad.solb", bad_metric);
+    const auto bad = metrica_cli("interpolate " + (dir / "run/loop-01.meshb") + " --field " + (dir / "bad.solb") +
+                                 " --to " + (dir / "run/loop-02.meshb") + " -o " + (dir / "f2.solb"));
+    CHECK(bad.code == 1);
+    CHECK(has(bad, "not symmetric positive definite"));
+    CHECK_FALSE(std::filesystem::exists(dir / "f2.solb"));
+    // A linear scalar field moves exactly.
     auto linear = [](const Point& p) { return 1.0 + p.x() - 2.0 * p.y() + 3.0 * p.z(); };
     io::SolData f1;
     f1.count = m1.vertices.size();
@@ -350,6 +393,22 @@ TEST_SUITE("regression") {
                         " --fields=" + selection + " -o " + (dir / "x.solb"))
                 .code == 2);
     CHECK_FALSE(std::filesystem::exists(dir / "x.solb"));
+  }
+
+  TEST_CASE("metric of the planar front tanh(10 (x + y + z - 1.5)) on the 9x9x9 cube: a rotated rank-1 Hessian") {
+    test::TempDir dir;
+    REQUIRE(metrica_cli("cube --n 8 -o " + (dir / "c.meshb")).code == 0);
+    const auto c = io::read_meshb(dir / "c.meshb");
+    io::SolData f;
+    f.count = c.vertices.size();
+    f.types = {io::SolType::scalar};
+    for (const auto& p : c.vertices) f.values.push_back(std::tanh(10.0 * (p.sum() - 1.5)));
+    io::write_sol(dir / "f.sol", f);
+    const auto r = metrica_cli("metric " + (dir / "c.meshb") + " --field-file " + (dir / "f.sol") +
+                               " --complexity 2000 -o " + (dir / "m.solb"));
+    INFO(r.output);
+    REQUIRE(r.code == 0);
+    CHECK(metric_field_from_sol(io::read_sol(dir / "m.solb"), c.vertices.size(), "m.solb").size() == f.count);
   }
 
   TEST_CASE("adapt on bad input: exit 1 with the reason - nothing written") {

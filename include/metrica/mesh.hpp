@@ -124,6 +124,24 @@ class Mesh {
   }
   void set_geo_param(VertexId v, const GeoParam& g) { geo_[v] = g; }
 
+  // The tet of a background mesh (the user's metric on the input mesh,
+  // metrics/background_metric.hpp) where each vertex's metric was sampled:
+  // where the walk for a vertex made from it starts. Empty until enabled;
+  // kNoId for a vertex not sampled there.
+  bool has_background_tets() const { return !background_.empty(); }
+  TetId background_tet(VertexId v) const { return background_.empty() ? kNoId : background_[v]; }
+  // Allocates the array (every vertex kNoId); outside parallel passes.
+  void enable_background_tets() {
+    if (background_.empty()) background_.assign(points_.size(), kNoId);
+  }
+  void set_background_tet(VertexId v, TetId t) {
+    if (!background_.empty()) background_[v] = t;
+  }
+  // Frees the metric arrays and the quality cache: a mesh kept for its
+  // points and cells alone (a background's). Its quality cache is not
+  // asked again.
+  void drop_metric();
+
   // --- tets --------------------------------------------------------------
   const TetVertices& tet(TetId t) const { return tets_[t]; }
   int tet_ref(TetId t) const { return tet_ref_[t]; }
@@ -318,6 +336,7 @@ class Mesh {
   MeshArray<Sym6> log_metric_;
   MeshArray<Epoch> vertex_stamp_;
   MeshArray<GeoParam> geo_;
+  MeshArray<TetId> background_;  // empty: no background
 
   MeshArray<TetVertices> tets_;
   MeshArray<std::array<FaceRef, 4>> tet2tets_;

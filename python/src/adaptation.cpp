@@ -10,6 +10,7 @@
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/metric_field.hpp>
+#include <metrica/metrics/background_metric.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
@@ -205,10 +206,18 @@ void write_field(const std::string& path, const py::array& values, int version, 
   io::write_sol(path, sol, version);
 }
 
-py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space, bool measures) {
+py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space, bool measures,
+                 const py::object& metric_mesh) {
   if (metric.is_none()) throw InputError("quality: give the metric, an (n, 6) array");
   Mesh mesh = m.mesh();
-  assign_metric(mesh, metric_by_id(mesh, metric));
+  if (metric_mesh.is_none()) {
+    assign_metric(mesh, metric_by_id(mesh, metric));
+  } else {
+    // The metric at the vertices of another mesh, interpolated
+    // log-Euclidean at this one's.
+    const Mesh& on = metric_mesh.cast<const PyMesh&>().mesh();
+    BackgroundMetric(on, metric_by_id(on, metric)).assign(mesh);
+  }
   py::dict out = quality_dict(quality_report(mesh, space));
   if (!measures) return out;
   const QualityMeasures q = quality_measures(mesh, space);
@@ -273,6 +282,8 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
   } else {
     given = metric_by_id(mesh, call.metric, "metric", false);
   }
+  // An array's field stays, on the input mesh, the background of the run.
+  std::unique_ptr<BackgroundMetric> background;
   py::list cycles;
   inputs.on_cycle = cycle_callback(cycles, call.on_cycle);
   OperatorReport ops;
@@ -286,10 +297,16 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
       clamp_metrics(field, bounds);
       check_metric_field(field, kind ? fmt::format("metric '{}'", call.analytic) : std::string("metric"));
       assign_metric(mesh, field);
+      if (!kind && it == 0) {
+        background = std::make_unique<BackgroundMetric>(mesh);
+        inputs.background = background.get();
+      }
       const AdaptReport report = adapt_by_name(mesh, ao, policies, inputs);
       ops += report.ops;
       seconds += report.seconds;
     }
+    // The report (and the metric of the returned mesh) in the field given.
+    if (background) background->assign(mesh);
     require_adapted(mesh, model.get(), volume, adapted_volume_tolerance(call.iterations, ao.volume_budget));
     q = quality_report(mesh, policies.space, {.cached_quality = true});
   } catch (const PythonError&) {

@@ -23,7 +23,8 @@ void write_field(const std::string& path, const py::array& values, int version, 
 // with `measures`, the measures too: "edge_ends" (k, 2) vertex indices,
 // "edge_lengths" (k,), "mean_ratios" (one per tet, in the order of
 // mesh.tets).
-py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space, bool measures);
+py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space, bool measures,
+                 const py::object& metric_mesh);
 
 // What adapt() is told: the metric (an (n, 6) array, or an analytic name
 // re-evaluated between iterations), the policies by name, the options of

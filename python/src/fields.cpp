@@ -3,6 +3,7 @@
 #include <metrica/error.hpp>
 #include <metrica/metrics/analytic_field.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
+#include <metrica/metrics/background_metric.hpp>
 #include <metrica/metrics/complexity.hpp>
 #include <metrica/metrics/interpolation_error.hpp>
 #include <metrica/metrics/intersection.hpp>
@@ -177,7 +178,17 @@ double complexity(const PyMesh& m, const py::object& metric) {
   return metrica::complexity(m.mesh(), metric_by_id(m.mesh(), metric));
 }
 
-py::array_t<double> interpolate(const PyMesh& from, const py::object& field, const PyMesh& to) {
+py::array_t<double> interpolate(const PyMesh& from, const py::object& field, const PyMesh& to, bool metric) {
+  if (metric) {
+    // Log-Euclidean: the tensors' logarithms moved, then exponentiated.
+    const BackgroundMetric moved(from.mesh(), metric_by_id(from.mesh(), field, "field"));
+    Mesh target = to.mesh();
+    moved.assign(target);
+    std::vector<Sym6> by_id(target.vertex_capacity(), isotropic_metric(1.0));
+    for (VertexId v = 0; v < target.vertex_capacity(); ++v)
+      if (target.vertex_alive(v)) by_id[v] = target.metric(v);
+    return metric_array(target, by_id);
+  }
   const std::size_t width = width_of(field, "field");
   const std::vector<double> values = values_by_id(from.mesh(), field, width, "field");
   const std::vector<double> out =

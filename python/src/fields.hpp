@@ -48,7 +48,7 @@ double complexity(const PyMesh& m, const py::object& metric);
 
 // The P1 interpolant of `field` ((n,) or (n, k) on `from`) at the vertices
 // of `to`.
-py::array_t<double> interpolate(const PyMesh& from, const py::object& field, const PyMesh& to);
+py::array_t<double> interpolate(const PyMesh& from, const py::object& field, const PyMesh& to, bool metric);
 
 // The L2 error of the P1 field `values` against the analytic field
 // `exact`, or (with `reference`) against the reference mesh's field

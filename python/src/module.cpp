@@ -100,15 +100,17 @@ PYBIND11_MODULE(_metrica, m) {
         "bounded and graded: (n, 6).");
   m.def("intersect", &intersect, py::arg("a"), py::arg("b"), "The metric intersection of two (n, 6) fields.");
   m.def("complexity", &complexity, py::arg("mesh"), py::arg("metric"), "The complexity of an (n, 6) metric.");
-  m.def("interpolate", &interpolate, py::arg("mesh"), py::arg("field"), py::arg("to_mesh"),
-        "The P1 interpolant of a field (n,) or (n, k) on `mesh` at the vertices of `to_mesh`.");
+  m.def("interpolate", &interpolate, py::arg("mesh"), py::arg("field"), py::arg("to_mesh"), py::arg("metric") = false,
+        "The P1 interpolant of a field (n,) or (n, k) on `mesh` at the vertices of `to_mesh`; with metric=True "
+        "the field is (n, 6) symmetric tensors, moved log-Euclidean (exp of the interpolant of log M).");
   m.def("error", &l2_error, py::arg("mesh"), py::arg("values"), py::arg("exact") = py::none(),
         py::arg("reference") = py::none(), py::arg("reference_values") = py::none(),
         "The L2 error of a P1 field against an analytic field (exact=name), or against a reference mesh's field.");
   m.def("quality", &quality, py::arg("mesh"), py::arg("metric"), py::arg("space") = "log-euclidean",
-        py::arg("measures") = true,
+        py::arg("measures") = true, py::arg("metric_mesh") = py::none(),
         "The UGAWG quality report of the mesh in the metric, as a dict; with measures, also \"edge_ends\" "
-        "(k, 2), \"edge_lengths\" (k,) and \"mean_ratios\" (one per tet, in the order of mesh.tets).");
+        "(k, 2), \"edge_lengths\" (k,) and \"mean_ratios\" (one per tet, in the order of mesh.tets). With "
+        "metric_mesh, the metric is given at that mesh's vertices and interpolated log-Euclidean at this one's.");
   m.def(
       "_adapt",
       [](const PyMesh& x, py::object metric, std::string analytic, int iterations, int threads, std::string concurrency,

@@ -219,6 +219,46 @@ def test_interpolation_and_error(tmp_path):
     assert against_fine > 0
 
 
+def test_the_multiscale_metric_of_a_planar_front_across_the_axes(tmp_path):
+    # tanh(10 (x + y + z - 1.5)): its Hessian is of rank one along (1, 1, 1).
+    mesh = metrica.read(cube(tmp_path, 8))
+    u = np.tanh(10 * (mesh.points.sum(axis=1) - 1.5))
+    metric = metrica.multiscale_metric(mesh, u, complexity=2000)
+    assert np.all(np.isfinite(metric))
+    assert metrica.complexity(mesh, metric) == pytest.approx(2000, rel=0.01)
+
+
+def test_a_metric_array_is_the_background_of_the_run_and_the_report_is_in_it(tmp_path):
+    coarse = metrica.read(cube(tmp_path, 3))
+    metric = metrica.analytic_metric(coarse, "linear", hmin=0.05)
+    adapted, report = metrica.adapt(coarse, metric, concurrency="serial", cycles=4)
+    # Measured in the array given (on the mesh it was given on), the report's
+    # figures again.
+    q = metrica.quality(adapted, metric, metric_mesh=coarse, measures=False)
+    assert q["unit_length_share"] == pytest.approx(report["quality"]["unit_length_share"], abs=1e-12)
+    assert q["mean_ratio"]["min"] == pytest.approx(report["quality"]["mean_ratio"]["min"], abs=1e-12)
+    # The metric moves log-Euclidean: exp of a linear log field exactly.
+    def log_linear(p):
+        x, y, z = p[:, 0], p[:, 1], p[:, 2]
+        return np.stack([1 + x, 0.3 * y, 2 - z, 0.2 * x - 0.1, 0.5 * z, 3 * y], axis=1)
+
+    def spd_exp(logs):
+        out = []
+        for l in logs:
+            m = np.array([[l[0], l[1], l[3]], [l[1], l[2], l[4]], [l[3], l[4], l[5]]])
+            w, v = np.linalg.eigh(m)
+            e = v @ np.diag(np.exp(w)) @ v.T
+            out.append([e[0, 0], e[0, 1], e[1, 1], e[0, 2], e[1, 2], e[2, 2]])
+        return np.array(out)
+
+    moved = metrica.interpolate(coarse, spd_exp(log_linear(coarse.points)), adapted, metric=True)
+    assert moved.shape == (adapted.num_vertices, 6)
+    expected = spd_exp(log_linear(adapted.points))
+    assert np.abs(moved - expected).max() < 1e-8 * np.abs(expected).max()
+    with pytest.raises(metrica.InputError):
+        metrica.interpolate(coarse, -metric, adapted, metric=True)
+
+
 def test_meshio_round_trip(tmp_path):
     meshio = pytest.importorskip("meshio")
     mesh = metrica.read(cube(tmp_path))

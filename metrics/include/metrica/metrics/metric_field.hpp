@@ -22,10 +22,21 @@ std::vector<Sym6> metric_field_from_sol(const io::SolData& sol, std::size_t vert
 std::vector<double> scalar_field_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source);
 io::SolData scalar_field_to_sol(const std::vector<double>& values);
 
-// Every value of a solution of scalar and vector fields, vertex-major as
-// stored (SolData::values), checked: count, finite values. InputError for a
-// tensor field (a metric is not a solution to interpolate linearly).
+// Every value of a solution of scalar, vector and symmetric tensor fields,
+// vertex-major as stored (SolData::values), checked: count, finite values,
+// each symmetric tensor positive definite (a metric). InputError for a
+// full (non-symmetric) matrix field.
 std::vector<double> solution_values_from_sol(const io::SolData& sol, std::size_t vertices, const std::string& source);
+
+// The fields of `sol` (at the vertices of `from`) moved to the vertices of
+// `to`, each vertex of `to` located in `from`: scalars and vectors by
+// their P1 interpolant, component by component; symmetric tensors
+// (metrics) log-Euclidean, exp of the P1 interpolant of log M (an SPD
+// tensor, its determinant interpolated geometrically). The checks of
+// solution_values_from_sol; `outside` counts the vertices of `to` outside
+// `from` (clamped).
+io::SolData transfer_solution(const Mesh& from, const io::SolData& sol, const Mesh& to, const std::string& source,
+                              std::size_t* outside = nullptr);
 
 // Scalar fields chosen from a solution by a comma-separated selection, for a
 // multiscale metric of several variables:

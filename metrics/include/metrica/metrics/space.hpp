@@ -24,10 +24,18 @@
 
 namespace metrica {
 
-// A metric to store at a (new) vertex: M and log M.
+// A metric to store at a (new) vertex: M and log M, and the background
+// tet it was sampled in (background_metric.hpp; kNoId: not sampled).
 struct VertexMetric {
   Sym6 m{}, log_m{};
+  TetId background = kNoId;
 };
+
+// Stores m at v (and its background tet, when the mesh keeps them).
+inline void set_vertex_metric(Mesh& mesh, VertexId v, const VertexMetric& m) {
+  mesh.set_metric(v, m.m, m.log_m);
+  if (m.background != kNoId) mesh.set_background_tet(v, m.background);
+}
 
 template <class S>
 concept MetricSpace = requires(const Mesh& mesh, VertexId a, const TetVertices& t, const TetPoints& p,

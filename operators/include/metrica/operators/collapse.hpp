@@ -304,7 +304,7 @@ inline void apply_collapse(Mesh& mesh, const CollapsePlan& plan, CollapseScratch
   mesh.remove_vertex(plan.from);
   if (plan.moved) {
     mesh.point(plan.to) = plan.at;
-    mesh.set_metric(plan.to, plan.metric.m, plan.metric.log_m);
+    set_vertex_metric(mesh, plan.to, plan.metric);
     for (TetId t : s.ball_b)
       if (mesh.tet_alive(t)) mesh.touch_tet(t);  // dragged along
   }

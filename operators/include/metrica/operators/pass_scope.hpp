@@ -13,9 +13,9 @@ namespace metrica {
 struct OutOfBandEdges;  // edge_queue.hpp
 
 struct PassScope {
-  // When set, new and moved vertices take this metric instead of an
-  // interpolated one.
-  const MetricFunction* metric = nullptr;
+  // When set (an analytic metric or a background), new and moved vertices
+  // take the metric at their position instead of an interpolated one.
+  MetricSource metric;
   // Only the items whose cavity changed since this epoch are tried (0:
   // all): an operation whose decision reads only its cavity would refuse
   // an unchanged one again.

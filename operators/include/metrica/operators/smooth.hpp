@@ -462,15 +462,15 @@ bool boundary_trials_on_model(const Mesh& mesh, VertexId v, SmoothScratch& s, co
 }
 
 // Apply: v moves to the plan's point (and takes the metric there when an
-// analytic metric is given).
+// analytic metric or a background is given).
 inline void apply_smoothing(Mesh& mesh, VertexId v, const SmoothPlan& plan, const SmoothScratch& s,
                             const SmoothOptions& o) {
   mesh.point(v) = plan.to;
   if (plan.geo.valid()) mesh.set_geo_param(v, plan.geo);
   for (TetId t : s.ball) mesh.touch_tet(t);
-  if (o.scope.metric != nullptr && *o.scope.metric) {
-    const Sym6 m = (*o.scope.metric)(plan.to);
-    mesh.set_metric(v, m, spd_log(m));
+  if (o.scope.metric) {
+    const std::array<VertexId, 1> self{v};
+    set_vertex_metric(mesh, v, o.scope.metric.at(mesh, plan.to, self));
   }
 }
 

@@ -94,7 +94,7 @@ inline VertexId split_cell(Mesh& mesh, TetId t, int face, const Point& p, const 
   const std::array<TetId, 1> old{t};
   if (!plan_cavity(mesh, old, view(s.children), s.plan, kNoId, kNoId, surface))
     throw std::logic_error("split_cell: a 1-4 or 1-3 split that does not plan");
-  mesh.set_metric(v, m.m, m.log_m);
+  set_vertex_metric(mesh, v, m);
   apply_cavity(mesh, old, view(s.children), s.plan, mesh.tet_ref(t), s.created);
   mesh.set_vertex_class(v, face >= 0 ? VertexClass::surface : VertexClass::interior);
   return v;

@@ -72,7 +72,7 @@ bool split_accepted(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b
 inline VertexId split_edge(Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p,
                            const VertexMetric& m) {
   const VertexId n = mesh.add_vertex(p);
-  mesh.set_metric(n, m.m, m.log_m);
+  set_vertex_metric(mesh, n, m);
   boost::container::small_vector<TetId, 64> twin(shell.tets.size());
   auto twin_of = [&](TetId t) {
     for (std::size_t k = 0; k < shell.tets.size(); ++k)

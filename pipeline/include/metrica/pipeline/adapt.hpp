@@ -102,9 +102,13 @@ struct AdaptOptions : PipelineRules {
 // What an adaptation works with besides its settings (AdaptOptions holds
 // settings only).
 struct AdaptInputs {
-  // When set, new and moved vertices take this metric (analytic cases);
-  // else the Space interpolates the vertices' metrics.
+  // When set, new and moved vertices take this metric (analytic cases).
   const MetricFunction* metric = nullptr;
+  // Else, when set, they take this background's (the user's field on the
+  // mesh it was given on: a metric from a file or arrays); else the Space
+  // interpolates the vertices' metrics.
+  const BackgroundMetric* background = nullptr;
+  MetricSource source() const { return metric != nullptr && *metric ? MetricSource(metric) : background; }
   // When set, boundary vertices are placed on this model (CadGeometry:
   // adapt_by_name chooses it); the mesh must be associated with it
   // (geometry/association.hpp).
@@ -360,7 +364,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
 // given, or made from inputs.model (geometry_of).
 template <MetricSpace S, Precision P, Concurrency C, Geometry G>
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& inputs, const G& geometry) {
-  Adapter<S, P, C, G> a(mesh, inputs.metric, geometry);
+  Adapter<S, P, C, G> a(mesh, inputs.source(), geometry);
   a.set_volume_budget(options.volume_budget);
   a.on_cycle = inputs.on_cycle;
   return run_pipeline(a, standard_pipeline<Adapter<S, P, C, G>>(options));

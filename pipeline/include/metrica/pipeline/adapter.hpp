@@ -140,12 +140,14 @@ class Adapter {
   using Concurrency = C;
   using Geometry = G;
 
-  // `metric`: when set, new and moved vertices take it (else the Space
-  // interpolates). `geometry`: where boundary vertices go. The quality
-  // cache is cleared: the metric or the Space may have changed since it
-  // was filled.
-  explicit Adapter(Mesh& mesh, const MetricFunction* metric = nullptr, const G& geometry = {})
+  // `metric`: when set (an analytic metric or a background), new and
+  // moved vertices take it (else the Space interpolates); a background is
+  // attached to the mesh (each vertex's background tet). `geometry`: where
+  // boundary vertices go. The quality cache is cleared: the metric or the
+  // Space may have changed since it was filled.
+  explicit Adapter(Mesh& mesh, MetricSource metric = {}, const G& geometry = {})
       : mesh_(mesh), metric_(metric), geometry_(geometry) {
+    if (metric_.background != nullptr) metric_.background->attach(mesh_);
     mesh_.clear_quality_cache(S::name);
     set_volume_budget(kDefaultVolumeBudget);
   }
@@ -160,7 +162,7 @@ class Adapter {
 
   Mesh& mesh() { return mesh_; }
   const Mesh& mesh() const { return mesh_; }
-  const MetricFunction* metric() const { return metric_; }
+  const MetricSource& metric() const { return metric_; }
   const G& geometry() const { return geometry_; }
 
   // Epochs of the incremental passes, by stage name: the epoch at which
@@ -227,7 +229,7 @@ class Adapter {
   template <Operation Op>
   OperatorStats run(Op op, std::span<const typename Op::Item> items) {
     if constexpr (requires { op.options.scope.metric; })
-      if (op.options.scope.metric == nullptr) op.options.scope.metric = metric_;
+      if (!op.options.scope.metric) op.options.scope.metric = metric_;
     if constexpr (requires { op.geometry; }) {
       static_assert(std::same_as<std::remove_cvref_t<decltype(op.geometry)>, G>,
                     "the operation's Geometry must be the adapter's");
@@ -329,7 +331,7 @@ class Adapter {
   }
 
   Mesh& mesh_;
-  const MetricFunction* metric_;
+  MetricSource metric_;
   G geometry_;
   VolumeBudget volume_budget_;
   std::map<std::string, Mesh::Epoch, std::less<>> epochs_;
