@@ -13,6 +13,7 @@
 
 #include <fmt/core.h>
 
+#include <memory>
 #include <optional>
 #include <set>
 
@@ -183,6 +184,9 @@ py::tuple run_with(const PyMesh& m, const PipelineCall& call) {
   }
   check_metric_field(field, "metric");
   assign_metric(mesh, field);
+  // An array's field stays, on the input mesh, the background of the run.
+  std::unique_ptr<BackgroundMetric> background;
+  if (!exact) background = std::make_unique<BackgroundMetric>(mesh);
   py::list cycles;
   const auto callback = cycle_callback(cycles, call.on_cycle);
   AdaptReport report;
@@ -190,10 +194,11 @@ py::tuple run_with(const PyMesh& m, const PipelineCall& call) {
   try {
     py::gil_scoped_release no_gil;
     const FreedMemoryKeptForRun memory;  // as the command's (allocator.hpp)
-    A adapter(mesh, exact ? &exact : nullptr);
+    A adapter(mesh, exact ? MetricSource(&exact) : MetricSource(background.get()));
     adapter.set_volume_budget(AdaptOptions{}.volume_budget);
     adapter.on_cycle = callback;
     report = metrica::run_pipeline(adapter, p);
+    if (background) background->assign(mesh);  // the report in the field given
     require_adapted(mesh, nullptr, volume, adapted_volume_tolerance(1, AdaptOptions{}.volume_budget));
     q = quality_report(mesh, LogEuclidean::name, {.cached_quality = true});
   } catch (const PythonError&) {
