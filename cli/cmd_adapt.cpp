@@ -244,6 +244,7 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
   }
   if (o.has("vtu")) run.vtu = o.get<std::string>("vtu");
   run.keep_surface = o.has("keep-surface");
+  run.background = o.get<std::string>("interpolate-from") == "background";
   // The ranks on one node share its memory (nodes taken alike).
   run.max_tets = o.has("max-tets") ? o.positive("max-tets")
                                    : double(default_max_tets()) * distributed::MpiRuntime::size() /
@@ -316,6 +317,9 @@ int run_adapt(const std::vector<std::string>& args) {
   AdaptInputs inputs;
   const MetricBounds bounds = o.size_bounds();
   const auto analytic = o.named("analytic", analytic_metric_from_name);
+  const std::string interpolate_from = o.get<std::string>("interpolate-from");
+  if (interpolate_from != "background" && interpolate_from != "parents")
+    throw UsageError(fmt::format("adapt: --interpolate-from is background or parents (got '{}')", interpolate_from));
 #ifdef METRICA_HAS_MPI
   if (distributed::MpiRuntime::size() > 1) return run_distributed(o, ao, policies, analytic, bounds, iterations);
 #endif
@@ -335,9 +339,6 @@ int run_adapt(const std::vector<std::string>& args) {
   const std::size_t input_vertices = loaded.data.vertices.size();
   const int input_version = loaded.data.version;
   loaded.data = io::MeshData{};
-  const std::string interpolate_from = o.get<std::string>("interpolate-from");
-  if (interpolate_from != "background" && interpolate_from != "parents")
-    throw UsageError(fmt::format("adapt: --interpolate-from is background or parents (got '{}')", interpolate_from));
   // A metric file's field, kept on the input mesh (built once the field is
   // assigned, before any work).
   std::unique_ptr<BackgroundMetric> background;

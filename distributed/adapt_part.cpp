@@ -280,6 +280,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     }
     AdaptInputs inputs;
     inputs.metric = settings.exact;
+    inputs.background = settings.background;
     inputs.model = settings.model;
     adapt_by_name(mesh, settings.options, settings.policies, inputs);
     // The passes' freed blocks back to the kernel before the file content

@@ -9,6 +9,9 @@
 #include <metrica/error.hpp>
 #include <metrica/geometry/association.hpp>
 #include <metrica/io/file_format.hpp>
+#include <metrica/io/meshb.hpp>
+#include <metrica/mesh_build.hpp>
+#include <metrica/metrics/background_metric.hpp>
 #include <metrica/metrics/complexity.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
@@ -19,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 namespace metrica::distributed {
 
@@ -251,7 +255,24 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       return b.active() ? clamp_metric(evaluate(kind, p), b) : evaluate(kind, p);
     };
 
+  // A metric file's field stays the background of the whole run, as in one
+  // process: every rank holds the input mesh and its metric whole (a
+  // rank's slice alone would leave the vertices a later round brings it
+  // outside), so this costs each rank the input's size.
+  std::unique_ptr<BackgroundMetric> background;
+  if (!run.metric.empty() && run.background && !run.dry_run && run.rounds > 0)
+    comm.step([&] {
+      const io::MeshData data = io::read_mesh_file(run.input);
+      BuildOptions bo;
+      bo.source = run.input;
+      const Mesh whole = build_mesh(data, bo);
+      auto field = metric_field_from_sol(io::read_sol(run.metric), data.vertices.size(), run.metric);
+      clamp_metrics(field, run.bounds);
+      background = std::make_unique<BackgroundMetric>(whole, field);
+    });
+
   PartAdaptSettings settings;
+  settings.background = background.get();
   settings.options = run.options;
   // A part's poorest tets lie against the faces it keeps, and what its
   // quality phase leaves there the next round adapts again: more sweeps

@@ -55,10 +55,15 @@ fi
 # every rank still takes part in every exchange.
 if [ "$only" = all ] || [ "$only" = adapt ]; then
   "$metrica" metric "$dir/cube.meshb" --analytic linear -o "$dir/m.solb" -q
-  run 3 adapt "$dir/cube.meshb" -m "$dir/m.solb" -o "$dir/m3.meshb" >"$dir/m3.txt" 2>&1 ||
+  run 3 adapt "$dir/cube.meshb" -m "$dir/m.solb" -o "$dir/m3.meshb" --metric-out "$dir/m3.solb" >"$dir/m3.txt" 2>&1 ||
     { cat "$dir/m3.txt"; fail "a metric file on 3 ranks failed"; }
   grep -q "round 1: .* (1 part," "$dir/m3.txt" || { cat "$dir/m3.txt"; fail "a metric file on 3 ranks: not one part first"; }
   "$metrica" check "$dir/m3.meshb" -q || fail "a metric file on 3 ranks: invalid output"
+  # The metric written is the field given (the input's metric on the input
+  # mesh) at the output's vertices: both measure the output alike.
+  own=$("$metrica" quality "$dir/m3.meshb" -m "$dir/m3.solb" | grep 'edges in \[')
+  given=$("$metrica" quality "$dir/m3.meshb" -m "$dir/m.solb" --metric-mesh "$dir/cube.meshb" | grep 'edges in \[')
+  [ "$own" = "$given" ] || fail "a metric file on 3 ranks: the metric written is not the field given ($own / $given)"
 fi
 
 # The last round a run allows is undone on a part where it would leave a

@@ -23,8 +23,11 @@ inline constexpr SurfaceId kPartFaceId = kMaxSurfaceId - 1;
 struct PartAdaptSettings {
   AdaptOptions options;
   PolicyChoice policies;
-  // The analytic metric (new vertices take it); none: the part's metrics.
+  // The analytic metric (new vertices take it); else the metric file's
+  // field on the input mesh (new and moved vertices take it there); none:
+  // interpolated from the part's metrics.
   const MetricFunction* exact = nullptr;
+  const BackgroundMetric* background = nullptr;
   // The id of boundary faces no input triangle covers (the same on all ranks).
   SurfaceId default_surface_id = 1;
   // The CAD model the boundary lies on (Part::geo); none: the input's facets.

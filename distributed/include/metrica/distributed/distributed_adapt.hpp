@@ -17,6 +17,7 @@ namespace metrica::distributed {
 struct DistributedAdapt {
   std::string input, output;
   std::string metric;    // a .sol/.solb at the input's vertices, or empty with `analytic`
+  bool background = true;  // with `metric`: new and moved vertices take it on the input mesh (else from parents)
   std::string geometry;  // the CAD model the boundary lies on (every rank opens it), or empty
   std::optional<AnalyticMetric> analytic;
   MetricBounds bounds;
