@@ -153,10 +153,16 @@ void Mesh::set_internal_surface_id(TetId t, int face, SurfaceId id) {
   internal_[t][face] = id;
 }
 
-void Mesh::drop_metric() {
-  metric_ = {};
-  log_metric_ = {};
-  tet_quality_ = {};
+Mesh Mesh::location_copy() const {
+  Mesh m;
+  m.points_ = points_;
+  m.vert2tet_ = vert2tet_;
+  m.vertex_flags_ = vertex_flags_;
+  m.tets_ = tets_;
+  m.tet2tets_ = tet2tets_;
+  m.live_vertices_ = live_vertices_;
+  m.live_tets_ = live_tets_;
+  return m;
 }
 
 void Mesh::set_metric(VertexId v, const Sym6& m, const Sym6& log_m) {

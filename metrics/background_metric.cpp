@@ -8,13 +8,6 @@ namespace metrica {
 
 namespace {
 
-// The background's own copy: its cells and points, no metric.
-Mesh geometry_copy(const Mesh& mesh) {
-  Mesh copy = mesh;
-  copy.drop_metric();
-  return copy;
-}
-
 std::vector<Sym6> logarithms(const Mesh& mesh, std::span<const Sym6> metric) {
   if (metric.size() != mesh.vertex_capacity())
     throw InputError(fmt::format("background metric: {} tensors for a mesh of {} vertex ids", metric.size(),
@@ -41,10 +34,10 @@ std::vector<Sym6> own_logarithms(const Mesh& mesh) {
 }  // namespace
 
 BackgroundMetric::BackgroundMetric(const Mesh& mesh, std::span<const Sym6> metric)
-    : mesh_(geometry_copy(mesh)), log_metric_(logarithms(mesh, metric)), locator_(mesh_) {}
+    : mesh_(mesh.location_copy()), log_metric_(logarithms(mesh, metric)), locator_(mesh_) {}
 
 BackgroundMetric::BackgroundMetric(const Mesh& mesh)
-    : mesh_(geometry_copy(mesh)), log_metric_(own_logarithms(mesh)), locator_(mesh_) {}
+    : mesh_(mesh.location_copy()), log_metric_(own_logarithms(mesh)), locator_(mesh_) {}
 
 BackgroundMetric::Sample BackgroundMetric::at(const Point& p, TetId start) const {
   const Location loc = locator_.locate(p, start);

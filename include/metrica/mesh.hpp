@@ -137,10 +137,11 @@ class Mesh {
   void set_background_tet(VertexId v, TetId t) {
     if (!background_.empty()) background_[v] = t;
   }
-  // Frees the metric arrays and the quality cache: a mesh kept for its
-  // points and cells alone (a background's). Its quality cache is not
-  // asked again.
-  void drop_metric();
+  // A copy that holds only what point location reads (point_location.hpp):
+  // the points, the vertices' flags and tet hints, the tets and their
+  // neighbours (a background's, metrics/background_metric.hpp: 32 bytes a
+  // tet and 29 a vertex). Nothing else may be asked of it.
+  Mesh location_copy() const;
 
   // --- tets --------------------------------------------------------------
   const TetVertices& tet(TetId t) const { return tets_[t]; }
