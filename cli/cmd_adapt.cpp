@@ -397,6 +397,7 @@ int run_adapt(const std::vector<std::string>& args) {
     if (talk && outside > 0)
       fmt::print("{} of {} output vertices outside the input mesh: the nearest input tet's metric, clamped\n",
                  count_text(outside), count_text(mesh.num_vertices()));
+    background.reset();  // not beside the writers' copy of the mesh
   }
   check_adapted(mesh, model.get(), volume, adapted_volume_tolerance(iterations, ao.volume_budget), sweeps, talk);
   write_outputs(o, mesh, model.get(), output, input_version, sweeps);

@@ -242,7 +242,7 @@ DeadRoom Mesh::add_dead_room(std::size_t vertex_room, std::size_t tet_room, cons
     extend_array(log_metric_, v_size, v_cap, run);
   }
   if (has_geo_params()) grow_array(geo_, v_size, GeoParam{}, v_cap, run);
-  if (has_background_tets()) grow_array(background_, v_size, kNoId, v_cap, run);
+  if (has_background_tets()) extend_array(background_, v_size, v_cap, run);  // add_vertex writes it
   grow_array(tets_, t_size, TetVertices{kNoId, kNoId, kNoId, kNoId}, t_cap, run);
   extend_array(tet2tets_, t_size, t_cap, run);
   extend_array(tet_ref_, t_size, t_cap, run);

@@ -1,4 +1,5 @@
 #include <metrica/error.hpp>
+#include <metrica/metrics/background_metric.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/multiscale.hpp>
 #include <metrica/pipeline/adaptive_loop.hpp>
@@ -38,7 +39,11 @@ std::vector<LoopRow> adaptive_loop(Mesh& mesh, const LoopOptions& o) {
     assign_metric(mesh, multiscale_metric(mesh, u, ms));
     Mesh previous;
     if (o.interpolate) previous = mesh;
-    const AdaptReport report = adapt_by_name(mesh, o.adapt, {.concurrency = o.concurrency}, {.model = o.model});
+    // This iteration's metric stays, on this mesh, the background of its
+    // adaptation (docs/architecture.md).
+    const BackgroundMetric background(mesh);
+    const AdaptReport report =
+        adapt_by_name(mesh, o.adapt, {.concurrency = o.concurrency}, {.background = &background, .model = o.model});
     row.seconds = clock.seconds();
     row.vertices = mesh.num_vertices();
     row.tets = mesh.num_tets();
