@@ -157,6 +157,9 @@ bool ball_positive_at(const Mesh& mesh, VertexId v, const TetList& ball, const P
 struct SmoothPlan {
   Point to;
   GeoParam geo;  // on a model: the parameters of `to`
+  // With a background: v's metric at `to`, sampled when decided.
+  VertexMetric metric{};
+  bool sampled = false;
 };
 
 template <Geometry G>
@@ -400,10 +403,27 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   auto admissible = [&](const Point& p) {
     return out_of_range(p) <= bad_old && ball_positive_at<P>(mesh, v, s.ball, p);
   };
+  Decision<SmoothPlan> d = Refusal::rejected;
   if constexpr (CriterionTraits<Criterion>::score_is_mean_ratio_cubed)
-    return detail::best_trial_by_mean_ratio(mesh, v, s, secondary, admissible);
+    d = detail::best_trial_by_mean_ratio(mesh, v, s, secondary, admissible);
   else
-    return detail::best_trial_by_criterion(mesh, v, s, secondary, Acceptance<S, Criterion>(o.shape_floor), admissible);
+    d = detail::best_trial_by_criterion(mesh, v, s, secondary, Acceptance<S, Criterion>(o.shape_floor), admissible);
+  // With a background, v's metric at the chosen point is sampled here, once
+  // (the apply stores it), and the move may not leave more of v's edges
+  // outside the unit band in that metric than there were: the trials were
+  // measured in v's metric where it stands, which a field given on a coarse
+  // mesh may change much over the move. (An analytic metric is evaluated at
+  // the apply, as the UGAWG reference outputs were made.)
+  if (!d || o.scope.metric.background == nullptr) return d;
+  SmoothPlan plan = d.plan();
+  const std::array<VertexId, 1> self{v};
+  plan.metric = o.scope.metric.at(mesh, plan.to, self);
+  plan.sampled = true;
+  int n = 0;
+  for (VertexId u : s.neighbours)
+    n += !ugawg_length_in(kUnitBand, mesh.point(u) - plan.to, plan.metric.m, S::vertex_metric(mesh, u));
+  if (n > bad_old) return Refusal::rejected;
+  return plan;
 }
 
 // The trials of boundary vertex v on the model (s.trials and their
@@ -468,7 +488,9 @@ inline void apply_smoothing(Mesh& mesh, VertexId v, const SmoothPlan& plan, cons
   mesh.point(v) = plan.to;
   if (plan.geo.valid()) mesh.set_geo_param(v, plan.geo);
   for (TetId t : s.ball) mesh.touch_tet(t);
-  if (o.scope.metric) {
+  if (plan.sampled) {
+    set_vertex_metric(mesh, v, plan.metric);
+  } else if (o.scope.metric) {
     const std::array<VertexId, 1> self{v};
     set_vertex_metric(mesh, v, o.scope.metric.at(mesh, plan.to, self));
   }
