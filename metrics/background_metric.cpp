@@ -52,7 +52,7 @@ void BackgroundMetric::attach(Mesh& mesh) const {
   mesh.enable_background_tets();
   TetId previous = kNoId;
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
-    if (!mesh.vertex_alive(v) || mesh.background_tet(v) != kNoId) continue;
+    if (!mesh.vertex_alive(v)) continue;
     const bool same = v < mesh_.vertex_capacity() && mesh_.vertex_alive(v) && mesh_.point(v) == mesh.point(v) &&
                       mesh_.vert2tet(v) != kNoId;
     const TetId t = same ? mesh_.vert2tet(v) : locator_.locate(mesh.point(v), previous).tet;

@@ -43,10 +43,10 @@ class BackgroundMetric {
   Sample at(const Point& p, TetId start = kNoId) const;
 
   // Makes `mesh` ready to take metrics from here (its metrics are left as
-  // they are): its background tets are enabled, and each vertex without
-  // one gets the tet holding it (its own incident tet for a vertex where
-  // the background has one at the same point: the mesh the background was
-  // made from). Outside parallel passes.
+  // they are): its background tets are enabled and each vertex gets the
+  // tet holding it (its own incident tet for a vertex where the background
+  // has one at the same point: the mesh the background was made from),
+  // whatever tets of another background it held. Outside parallel passes.
   void attach(Mesh& mesh) const;
 
   // Every live vertex of `mesh` takes the background's metric at its
