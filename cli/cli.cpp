@@ -181,7 +181,19 @@ void Options::metric_source(const char* file_what) {
       "analytic", po::value<std::string>()->value_name("NAME"), "analytic metric: linear, polar-1, polar-2");
 }
 
-LoadedMesh load_mesh(const std::string& path, Valid valid) {
+std::optional<double> ridge_angle(const Options& o) {
+  if (o.has("geometry")) {
+    // On a model its surfaces are the mesh's ids, its curves the ridges.
+    if (o.has("ridge-angle"))
+      throw UsageError(fmt::format("{}: --ridge-angle and --geometry: on a model the ridges are its curves",
+                                   o.command()));
+    return 180.0;
+  }
+  if (!o.has("ridge-angle")) return std::nullopt;
+  return o.in_range("ridge-angle", 0.0, 180.0);
+}
+
+LoadedMesh load_mesh(const std::string& path, Valid valid, std::optional<double> ridge_angle) {
   LoadedMesh out;
   Stopwatch clock;
   out.data = io::read_mesh_file(path);
@@ -191,6 +203,10 @@ LoadedMesh load_mesh(const std::string& path, Valid valid) {
   BuildOptions opt;
   opt.source = path;
   opt.require_boundary_triangles = valid == Valid::required;
+  if (ridge_angle) {
+    opt.ridge_angle = *ridge_angle;
+    opt.split_every_surface = true;
+  }
   out.mesh = build_mesh(out.data, opt);
   out.build_seconds = clock.seconds();
   log::info("read {} in {:.3f} s, built adjacency in {:.3f} s", path, out.read_seconds, out.build_seconds);

@@ -149,7 +149,13 @@ struct LoadedMesh {
   double read_seconds = 0, build_seconds = 0;
 };
 enum class Valid { required, not_required };
-LoadedMesh load_mesh(const std::string& path, Valid valid = Valid::required);
+// `ridge_angle`: every surface split at that angle (surface_angles.hpp);
+// without it, only a boundary without ids, or of one id, at 45 degrees.
+LoadedMesh load_mesh(const std::string& path, Valid valid = Valid::required,
+                     std::optional<double> ridge_angle = std::nullopt);
+// --ridge-angle, checked (0 to 180 degrees), when given; with --geometry
+// 180 (the ids are the model's surfaces; both together: UsageError).
+std::optional<double> ridge_angle(const Options& o);
 
 // --max-tets: the most tetrahedra a run may be asked to make. Its default
 // is what 90% of the machine's memory holds at kBytesPerTet: the peak of
@@ -168,8 +174,11 @@ void max_tets_option(Options& o);
 double check_predicted_size(const Options& o, double complexity, const std::string& what);
 
 // --geometry FILE: opens the CAD model and associates the mesh's boundary
-// vertices with it (InputError when they do not match).
-std::unique_ptr<CadModel> open_geometry(const std::string& path, Mesh& mesh, const io::MeshData* input);
+// vertices with it (InputError when they do not match), then says how far
+// the input is from it, whose recorded parameters were not taken, and (when
+// `adapting`) that the vertices off it go onto it in the first stage.
+std::unique_ptr<CadModel> open_geometry(const std::string& path, Mesh& mesh, const io::MeshData* input,
+                                        bool adapting = false);
 // One line: how far the boundary vertices are from their entities.
 std::string model_distance_text(const Mesh& mesh, const CadModel& model);
 

@@ -129,7 +129,12 @@ void declare_options(Options& o) {
       "CAD model the boundary lies on (.step .stp .iges .igs .brep .geo): new boundary vertices go on it")(
       "keep-surface",
       "keep the boundary and the internal surfaces exactly as they are (no vertex moved, added or removed on "
-      "them, no face flipped) and adapt the volume only");
+      "them, no face flipped) and adapt the volume only")(
+      "ridge-angle", po::value<double>()->value_name("DEG"),
+      "split every surface into surfaces at the edges where the boundary turns by more than DEG degrees "
+      "(those edges become ridges, where ridges meet corners); 180 splits nothing. Without it, only a "
+      "boundary given without surface ids (a mesh of points and tets) or with one id for all of it is "
+      "split so, at 45 degrees");
   o.add()("rounds", po::value<int>()->default_value(5)->value_name("N"),
           "under mpirun: at most N cuts of the mesh per adaptation; each rank adapts its part with the faces "
           "between parts kept; each later cut stays away from what the round before left unfinished (poor "
@@ -222,6 +227,10 @@ void write_outputs(const Options& o, const Mesh& mesh, const CadModel* model, co
 // not carry yet is refused up front.
 int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice& policies,
                     const std::optional<AnalyticMetric>& analytic, const MetricBounds& bounds, int iterations) {
+  if (o.has("ridge-angle"))
+    throw UsageError(
+        "adapt: --ridge-angle is not taken under mpirun (the ranks read the surfaces as given): give the "
+        "surfaces as Triangles with ids, or adapt on one process");
   distributed::DistributedAdapt run;
   run.input = o.get<std::string>("input");
   run.output = o.get<std::string>("output");
@@ -272,72 +281,37 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
 }
 #endif
 
-}  // namespace
-
-int run_adapt(const std::vector<std::string>& args) {
-  Options o("adapt", "[-i] MESH (-m METRIC | --analytic NAME) [-o] OUTPUT [options]",
-            "Adapts a tetrahedral mesh to a metric: cycles of edge collapse, edge split, flips and vertex\n"
-            "smoothing until the mesh is a unit mesh (edge lengths near 1 in the metric), then a quality\n"
-            "phase of flips and smoothing, and repair rounds around any tet still below --repair-below.\n"
-            "Prints one line per cycle, pass and round (vertices, tets, applied/tried per operator with\n"
-            "its time, share of edges in [1/sqrt2, sqrt2], worst mean ratio) and ends with the UGAWG\n"
-            "quality report. With --analytic, new vertices take the exact metric, and\n"
-            "--iterations N repeats the adaptation N times, re-evaluating the metric on the new mesh each\n"
-            "time (the UGAWG loop). The output is checked with validate() before it is written.\n"
-            "By default every operator runs on all cores (--threads N to choose, --concurrency serial\n"
-            "for one thread and an output that is the same to the bit on every run).\n"
-            "With --geometry MODEL (.step, .iges, .brep, .geo: any file gmsh opens) new boundary vertices\n"
-            "are placed on the CAD model, not on the input's facets: the mesh's surface ids must be the\n"
-            "model's surface tags, and each boundary vertex is associated with its model vertex, curve\n"
-            "or surface (from the input's VerticesOnGeometric* records when present, else by\n"
-            "projection); the output .meshb carries the association for the next run.\n"
-            "Regions (tet references), internal surfaces (triangles between two tets) and the input's\n"
-            "RequiredVertices, RequiredEdges and RequiredTriangles are kept; --keep-surface keeps the\n"
-            "whole surface and adapts the volume only.\n\n"
-            "Examples:\n"
-            "  metrica adapt cube-linear-00.meshb -m cube-linear-00.solb -o adapted.meshb\n"
-            "  metrica adapt cube.meshb --analytic polar-1 --iterations 5 -o polar1.meshb --vtu polar1.vtu\n"
-            "  metrica adapt cube.meshb --analytic polar-2 --points centroid -o polar2.meshb\n"
-            "  metrica adapt cube.meshb --analytic linear --threads 2 -o linear.meshb\n"
-            "  metrica adapt cube-cylinder.meshb --geometry cube-cylinder.step --analytic polar-2 -o cc.meshb");
-  declare_options(o);
-  if (!o.parse(args)) return kOk;
-  const auto input = o.required("input", "the input mesh (-i)");
-  const auto output = o.required("output", "the output mesh (-o)");
-  o.one_of({"metric", "analytic"}, "one of -m METRIC or --analytic NAME");
-  const int iterations = o.in_range("iterations", 1, 1000);
-  if (iterations > 1 && !o.has("analytic"))
-    throw UsageError("adapt: --iterations needs --analytic (a metric file holds values at the input's vertices only)");
-  const PolicyChoice policies{o.get<std::string>("space"), o.get<std::string>("precision"),
-                              o.get<std::string>("concurrency")};
-  o.as_usage([&] { check_policy_choice(policies); });
-  const bool serial = policies.concurrency == Serial::name;
-
-  const AdaptOptions ao = adapt_options_from(o);
-  AdaptInputs inputs;
-  const MetricBounds bounds = o.size_bounds();
-  const auto analytic = o.named("analytic", analytic_metric_from_name);
-  const std::string interpolate_from = o.get<std::string>("interpolate-from");
-  if (interpolate_from != "background" && interpolate_from != "parents")
-    throw UsageError(fmt::format("adapt: --interpolate-from is background or parents (got '{}')", interpolate_from));
-#ifdef METRICA_HAS_MPI
-  if (distributed::MpiRuntime::size() > 1) return run_distributed(o, ao, policies, analytic, bounds, iterations);
-#endif
-
-  Stopwatch clock;
-  auto loaded = load_mesh(input);
-  Mesh& mesh = loaded.mesh;
-  const double volume = mesh.volume();
+// One adaptation of the input (read again on each call), up to the checks
+// of the adapted mesh: what is written, or NotKept when a check fails.
+struct Adapted {
+  Mesh mesh;
   std::unique_ptr<CadModel> model;
+  int input_version = 0;
+};
+struct NotKept : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+Adapted adapt_input(const Options& o, const AdaptOptions& ao, const PolicyChoice& policies,
+                    const std::optional<AnalyticMetric>& analytic, const MetricBounds& bounds, int iterations) {
+  const auto input = o.get<std::string>("input");
+  const bool serial = policies.concurrency == Serial::name;
+  AdaptInputs inputs;
+  const std::string interpolate_from = o.get<std::string>("interpolate-from");
+  Adapted out;
+  auto loaded = load_mesh(input, Valid::required, ridge_angle(o));
+  Mesh& mesh = out.mesh;
+  mesh = std::move(loaded.mesh);
+  const double volume = mesh.volume();
+  std::unique_ptr<CadModel>& model = out.model;
   if (o.has("geometry")) {
-    model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data);
+    model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data, true);
     inputs.model = model.get();
   }
   if (o.has("keep-surface")) mesh.keep_surface();
   // The input's arrays are in the mesh now: only its vertex count and
   // version are read again.
   const std::size_t input_vertices = loaded.data.vertices.size();
-  const int input_version = loaded.data.version;
+  out.input_version = loaded.data.version;
   loaded.data = io::MeshData{};
   // A metric file's field, kept on the input mesh (built once the field is
   // assigned, before any work).
@@ -364,7 +338,7 @@ int run_adapt(const std::vector<std::string>& args) {
         fmt::print("adapt: {} vertices, {} tets in; about {:.3g} tets out (complexity x {}), about {} of memory\n",
                    count_text(mesh.num_vertices()), count_text(mesh.num_tets()), predicted, kTetsPerComplexity,
                    bytes_text(predicted * kBytesPerTet));
-        return kOk;
+        return out;
       }
     }
     assign_metric(mesh, field);
@@ -399,7 +373,100 @@ int run_adapt(const std::vector<std::string>& args) {
                  count_text(outside), count_text(mesh.num_vertices()));
     background.reset();  // not beside the writers' copy of the mesh
   }
-  check_adapted(mesh, model.get(), volume, adapted_volume_tolerance(iterations, ao.volume_budget), sweeps, talk);
+  try {
+    check_adapted(mesh, model.get(), volume, adapted_volume_tolerance(iterations, ao.volume_budget), sweeps, talk);
+  } catch (const InputError& e) {
+    throw NotKept(e.what());
+  }
+  return out;
+}
+
+}  // namespace
+
+int run_adapt(const std::vector<std::string>& args) {
+  Options o("adapt", "[-i] MESH (-m METRIC | --analytic NAME) [-o] OUTPUT [options]",
+            "Adapts a tetrahedral mesh to a metric: cycles of edge collapse, edge split, flips and vertex\n"
+            "smoothing until the mesh is a unit mesh (edge lengths near 1 in the metric), then a quality\n"
+            "phase of flips and smoothing, and repair rounds around any tet still below --repair-below.\n"
+            "Prints one line per cycle, pass and round (vertices, tets, applied/tried per operator with\n"
+            "its time, share of edges in [1/sqrt2, sqrt2], worst mean ratio) and ends with the UGAWG\n"
+            "quality report. With --analytic, new vertices take the exact metric, and\n"
+            "--iterations N repeats the adaptation N times, re-evaluating the metric on the new mesh each\n"
+            "time (the UGAWG loop). The output is checked with validate() before it is written; if a\n"
+            "run on threads ends with a check that fails, the run is made again from the input under\n"
+            "--concurrency serial (a warning says so), and nothing is written only if that fails too.\n"
+            "By default every operator runs on all cores (--threads N to choose, --concurrency serial\n"
+            "for one thread and an output that is the same to the bit on every run).\n"
+            "With --geometry MODEL (.step, .iges, .brep, .geo: any file gmsh opens) new boundary vertices\n"
+            "are placed on the CAD model, not on the input's facets: the mesh's surface ids must be the\n"
+            "model's surface tags, and each boundary vertex is associated with its model vertex, curve\n"
+            "or surface (from the input's VerticesOnGeometric* records when the model's point there is\n"
+            "the vertex, else by projection: another kernel's parameters are checked, not trusted); the\n"
+            "input's distance to the model is printed, vertices off it go onto it in the first stage,\n"
+            "and the output .meshb carries the association for the next run.\n"
+            "A mesh without boundary triangles (points and tets only), or with one surface id for all\n"
+            "of its boundary, is split into surfaces at the edges sharper than 45 degrees, which become\n"
+            "ridges (Mmg's -ar; --ridge-angle DEG splits every surface so, 180 none).\n"
+            "Regions (tet references), internal surfaces (triangles between two tets) and the input's\n"
+            "RequiredVertices, RequiredEdges and RequiredTriangles are kept; --keep-surface keeps the\n"
+            "whole surface and adapts the volume only.\n\n"
+            "Examples:\n"
+            "  metrica adapt cube-linear-00.meshb -m cube-linear-00.solb -o adapted.meshb\n"
+            "  metrica adapt cube.meshb --analytic polar-1 --iterations 5 -o polar1.meshb --vtu polar1.vtu\n"
+            "  metrica adapt cube.meshb --analytic polar-2 --points centroid -o polar2.meshb\n"
+            "  metrica adapt cube.meshb --analytic linear --threads 2 -o linear.meshb\n"
+            "  metrica adapt cube-cylinder.meshb --geometry cube-cylinder.step --analytic polar-2 -o cc.meshb");
+  declare_options(o);
+  if (!o.parse(args)) return kOk;
+  const auto input = o.required("input", "the input mesh (-i)");
+  const auto output = o.required("output", "the output mesh (-o)");
+  o.one_of({"metric", "analytic"}, "one of -m METRIC or --analytic NAME");
+  const int iterations = o.in_range("iterations", 1, 1000);
+  if (iterations > 1 && !o.has("analytic"))
+    throw UsageError("adapt: --iterations needs --analytic (a metric file holds values at the input's vertices only)");
+  const PolicyChoice policies{o.get<std::string>("space"), o.get<std::string>("precision"),
+                              o.get<std::string>("concurrency")};
+  o.as_usage([&] { check_policy_choice(policies); });
+  const bool serial = policies.concurrency == Serial::name;
+
+  const AdaptOptions ao = adapt_options_from(o);
+  const MetricBounds bounds = o.size_bounds();
+  const auto analytic = o.named("analytic", analytic_metric_from_name);
+  const std::string interpolate_from = o.get<std::string>("interpolate-from");
+  if (interpolate_from != "background" && interpolate_from != "parents")
+    throw UsageError(fmt::format("adapt: --interpolate-from is background or parents (got '{}')", interpolate_from));
+#ifdef METRICA_HAS_MPI
+  if (distributed::MpiRuntime::size() > 1) return run_distributed(o, ao, policies, analytic, bounds, iterations);
+#endif
+
+  Stopwatch clock;
+  const bool talk = log::level() >= log::Level::normal;
+  std::optional<Adapted> adapted;
+  try {
+    adapted.emplace(adapt_input(o, ao, policies, analytic, bounds, iterations));
+  } catch (const NotKept& e) {
+    // A check at the end that the threads' order of operations failed
+    // (a vertex left off the model): the serial order, from the input
+    // read again, writes a mesh rather than nothing.
+    if (serial) throw InputError(e.what());
+    std::string what = e.what();
+    if (const auto at = what.find("; nothing written"); at != std::string::npos) what.erase(at, 17);
+    log::warn("{}\nadapting again from {} under --concurrency serial (the threads' order of operations left "
+              "this; the serial order writes the same mesh on every run)",
+              what, input);
+    PolicyChoice again = policies;
+    again.concurrency = std::string(Serial::name);
+    try {
+      adapted.emplace(adapt_input(o, ao, again, analytic, bounds, iterations));
+    } catch (const NotKept& e2) {
+      throw InputError(e2.what());
+    }
+  }
+  if (o.dry_run()) return kOk;
+  Mesh& mesh = adapted->mesh;
+  const auto& model = adapted->model;
+  const int input_version = adapted->input_version;
+  const PartRunner sweeps = sweep_runner(mesh.tet_capacity(), serial);
   write_outputs(o, mesh, model.get(), output, input_version, sweeps);
   if (talk) {
     fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());

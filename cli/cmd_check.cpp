@@ -31,7 +31,7 @@ int run_check(const std::vector<std::string>& args) {
   vo.max_messages_per_check = static_cast<std::size_t>(o.in_range("max-messages", 0, 1000000));
   const double tolerance = o.in_range("model-tolerance", 0.0, 1e300);
 
-  auto loaded = load_mesh(input, Valid::not_required);
+  auto loaded = load_mesh(input, Valid::not_required, ridge_angle(o));
   if (o.dry_run()) return kOk;
   const auto report = loaded.mesh.validate(vo);
   if (report.ok() && o.has("geometry")) {

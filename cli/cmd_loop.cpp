@@ -86,10 +86,10 @@ int run_loop(const std::vector<std::string>& args) {
   Mesh mesh;
   std::unique_ptr<CadModel> model;
   if (o.has("input")) {
-    auto loaded = load_mesh(o.get<std::string>("input"));
+    auto loaded = load_mesh(o.get<std::string>("input"), Valid::required, ridge_angle(o));
     mesh = std::move(loaded.mesh);
     if (o.has("geometry")) {
-      model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data);
+      model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data, true);
       lo.model = model.get();
     }
   } else {

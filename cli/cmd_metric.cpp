@@ -167,7 +167,7 @@ int run_metric(const std::vector<std::string>& args) {
     throw UsageError("metric: --curvature-angle bounds the sizes on a CAD model's curved boundary: give --geometry");
 
   Stopwatch clock;
-  auto loaded = load_mesh(input);
+  auto loaded = load_mesh(input, Valid::required, ridge_angle(o));
   Mesh& mesh = loaded.mesh;
   std::unique_ptr<CadModel> model;
   if (o.has("geometry")) model = open_geometry(o.get<std::string>("geometry"), mesh, &loaded.data);

@@ -9,15 +9,26 @@
 
 namespace metrica::cli {
 
-std::unique_ptr<CadModel> open_geometry(const std::string& path, Mesh& mesh, const io::MeshData* input) {
+std::unique_ptr<CadModel> open_geometry(const std::string& path, Mesh& mesh, const io::MeshData* input,
+                                        bool adapting) {
   Stopwatch clock;
   auto model = std::make_unique<CadModel>(path);
   const AssociationReport r = associate(mesh, *model, input);
-  log::info(
-      "{}: {} surfaces, {} curves, {} model vertices; {} boundary vertices associated ({} with the input's "
-      "parameters), farthest {:.3g} from its entity ({:.2f} s)",
-      path, model->entities(2).size(), model->entities(1).size(), model->entities(0).size(), count_text(r.vertices),
-      count_text(r.from_file), r.max_distance, clock.seconds());
+  log::info("{}: {} surfaces, {} curves, {} model vertices ({:.2f} s)", path, model->entities(2).size(),
+            model->entities(1).size(), model->entities(0).size(), clock.seconds());
+  if (log::level() < log::Level::normal) return model;
+  // What the input is on the model, before any work.
+  fmt::print("{}: {} boundary vertices associated ({} with the input's parameters), the farthest {:.3g} from the model\n",
+             path, count_text(r.vertices), count_text(r.from_file), r.max_distance);
+  if (r.records_refused > 0)
+    fmt::print(
+        "{}: the input's parameters of {} vertices name points up to {:.3g} away from them (another kernel's "
+        "parameterization?): those vertices were projected onto the model instead\n",
+        path, count_text(r.records_refused), r.refused_distance);
+  if (r.off_model > 0)
+    fmt::print("{}: {} boundary vertices farther than {:.0e} from the model{}\n", path, count_text(r.off_model),
+               kOnModel, adapting ? "; the first stage brings them onto it" : "");
+  std::fflush(stdout);
   return model;
 }
 

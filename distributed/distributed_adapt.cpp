@@ -190,9 +190,7 @@ AssociateVertex associate_on(const CadModel& model, AssociationReport& report) {
       }
     const VertexAssociation a = associate_vertex(model, p, surfaces, vertex_class_of_fan(fan), file, tolerance);
     if (!(a.distance <= tolerance)) throw InputError(off_model_message(VertexId(v), p, a, model, tolerance));
-    ++report.vertices;
-    report.from_file += a.from_file;
-    report.max_distance = std::max(report.max_distance, a.distance);
+    report.add(a);
     return a.param;
   };
 }

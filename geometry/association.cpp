@@ -37,17 +37,21 @@ VertexAssociation associate_vertex(const CadModel& model, const Point& p, std::s
   // curves: new vertices between it and a neighbour on any of those curves
   // then find the curve they share (CadGeometry::boundary_vertex).
   const double at_model_vertex = 1e-9 * model.size();
+  const double trusted = kTrustedRecord * model.size();
   Candidate best;
   bool from_file = false;
+  double refused = -1.0;
   if (cls == VertexClass::surface && around.size() == 1) {
     const int s = around[0];
     for (const auto* r : file.on_surface)
       if (r->entity == s) {
         const GeoParam g{s, 2, r->u, r->v};
         const double d = (model.value(g) - p).norm();
-        if (d < tolerance) {
+        if (d <= trusted) {
           best = {g, d};
           from_file = true;
+        } else {
+          refused = std::max(refused, d);
         }
       }
     if (!best.param.valid()) best = project(model, 2, s, p);
@@ -60,9 +64,11 @@ VertexAssociation associate_vertex(const CadModel& model, const Point& p, std::s
     if (file.model_vertex != 0 && model.has(0, file.model_vertex)) {
       const GeoParam g{file.model_vertex, 0, 0.0, 0.0};
       const double d = (model.value(g) - p).norm();
-      if (d < tolerance) {
+      if (d <= trusted) {
         best = {g, d};
         from_file = true;
+      } else {
+        refused = d;
       }
     }
     if (!best.param.valid()) {
@@ -86,7 +92,18 @@ VertexAssociation associate_vertex(const CadModel& model, const Point& p, std::s
       }
     if (best.distance > tolerance && around.size() == 1) best = project(model, 2, around[0], p);
   }
-  return {best.param, best.distance, from_file && best.param.valid()};
+  return {best.param, best.distance, from_file && best.param.valid(), from_file ? -1.0 : refused};
+}
+
+void AssociationReport::add(const VertexAssociation& a) {
+  ++vertices;
+  from_file += a.from_file;
+  max_distance = std::max(max_distance, a.distance);
+  off_model += a.distance > kOnModel;
+  if (a.refused_record >= 0.0) {
+    ++records_refused;
+    refused_distance = std::max(refused_distance, a.refused_record);
+  }
 }
 
 std::string off_model_message(VertexId v, const Point& p, const VertexAssociation& a, const CadModel& model,
@@ -141,11 +158,9 @@ AssociationReport associate(Mesh& mesh, const CadModel& model, const io::MeshDat
     if (input != nullptr) file = {on_surface[v], on_model_vertex[v]};
     const VertexAssociation a = associate_vertex(model, p, surfaces[v], mesh.vertex_class(v), file, tolerance);
     if (!(a.distance <= tolerance)) throw InputError(off_model_message(v, p, a, model, tolerance));
-    report.from_file += a.from_file;
+    report.add(a);
     mesh.set_geo_param(v, a.param);
     reclassify |= a.param.dim == 0 && mesh.vertex_class(v) != VertexClass::corner;
-    report.max_distance = std::max(report.max_distance, a.distance);
-    ++report.vertices;
   }
   if (reclassify) mesh.classify();
   return report;
@@ -230,13 +245,12 @@ void complete_geometry_records(io::MeshData& data, const CadModel& model) {
 }
 
 void require_on_model(const Mesh& mesh, const CadModel& model, const std::string& what, SurfaceId skip) {
-  constexpr double kTolerance = 1e-8;
-  const ModelDistance d = model_distance(mesh, model, kTolerance, skip);
-  if (d.unassociated == 0 && d.max <= kTolerance) return;
+  const ModelDistance d = model_distance(mesh, model, kOnModel, skip);
+  if (d.unassociated == 0 && d.max <= kOnModel) return;
   throw InputError(
       fmt::format("{}: the boundary is not on {} ({} vertices without an entity, {} farther than {:.0e}, "
                   "largest distance {:.3g}); nothing written",
-                  what, model.source(), d.unassociated, d.beyond, kTolerance, d.max));
+                  what, model.source(), d.unassociated, d.beyond, kOnModel, d.max));
 }
 
 }  // namespace metrica

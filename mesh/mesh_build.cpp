@@ -117,11 +117,12 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
                                  std::max(max_id, opt.default_surface_id), kMaxSurfaceId - 1));
   const SurfaceId default_id = opt.default_surface_id > 0 ? opt.default_surface_id : max_id + 1;
   std::vector<char> used(d.triangles.size(), 0);
-  std::size_t untagged = 0, nonpositive = 0;
+  std::size_t untagged = 0, nonpositive = 0, boundary_faces = 0;
   std::set<int> outer_ids;  // the ids the input gave to outer boundary faces
   for (TetId t = 0; t < tets.size(); ++t) {
     for (int f = 0; f < 4; ++f) {
       if (mesh.neighbour(t, f).valid()) continue;
+      ++boundary_faces;
       const auto key = sorted(face_vertices(tets[t], f));
       auto it = std::lower_bound(triangles.begin(), triangles.end(), key,
                                  [](const FaceKeyed& a, const TriangleVertices& k) { return a.key < k; });
@@ -140,11 +141,29 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
       mesh.set_surface_id(t, f, id);
     }
   }
-  if (untagged > 0 && opt.require_boundary_triangles)
+  if (untagged > 0 && opt.require_boundary_triangles && untagged < boundary_faces)
     throw InputError(
         fmt::format("{}: {} boundary faces have no input triangle: give the whole boundary as Triangles "
                     "with surface ids (their edges between ids become ridges)",
                     src, untagged));
+  // The faces no triangle covers, or a boundary of one id, are split by
+  // angle (unless the ridge angle is 180 or more); with
+  // split_every_surface every surface is.
+  // A mesh with CAD association records keeps its ids: they are the
+  // model's surfaces, and its curves are the ridges.
+  const bool on_model = !d.on_geometry[0].empty() || !d.on_geometry[1].empty() || !d.on_geometry[2].empty();
+  std::vector<SurfaceId> split;
+  if (opt.ridge_angle < 180.0 && (!on_model || opt.split_every_surface)) {
+    if (opt.split_every_surface) {
+      split.assign(outer_ids.begin(), outer_ids.end());
+      if (untagged > 0 || nonpositive > 0) split.push_back(default_id);
+    } else if (untagged > 0 || nonpositive > 0) {
+      split.push_back(default_id);
+    } else if (outer_ids.size() == 1) {
+      split.push_back(*outer_ids.begin());
+    }
+  }
+  if (!split.empty()) untagged = nonpositive = 0;  // said at the end, with what the split found
   if (untagged > 0 && !opt.untagged_expected)
     log::warn("{}: {} boundary faces have no input triangle; they get surface id {}", src, untagged, default_id);
   if (nonpositive > 0)
@@ -215,6 +234,19 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
   for (std::uint32_t i : d.required_triangles) required.push_back(d.triangles[i]);
   mesh.add_required_triangles(required);
   mesh.classify();
+  if (!split.empty()) {
+    const AngleSplit a = split_surfaces_at_angle(mesh, opt.ridge_angle, split);
+    if (!opt.untagged_expected) {
+      std::size_t corners = 0;
+      for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+        corners += mesh.vertex_alive(v) && mesh.vertex_class(v) == VertexClass::corner;
+      log::emit(log::Level::normal,
+                fmt::format("{}: {} split at edges sharper than {:g} degrees: {} surfaces, {} ridge edges, {} corners",
+                            src, split.size() == 1 && split[0] == default_id ? "the boundary without surface ids" :
+                                 opt.split_every_surface ? "every surface" : "the boundary's one surface",
+                            opt.ridge_angle, a.surfaces, mesh.ridge_edges().size(), corners));
+    }
+  }
   return mesh;
 }
 

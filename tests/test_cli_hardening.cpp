@@ -111,8 +111,9 @@ TEST_SUITE("regression") {
   TEST_CASE("an invalid input mesh is refused before any work - a non-manifold or open boundary") {
     test::TempDir dir;
     std::ofstream(dir / "pinched.mesh") << kPinched;
+    // A boundary given in part as triangles (all of it or none is taken).
     std::ofstream(dir / "open.mesh") << "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n"
-                                        "0 1 0 0\n0 0 1 0\nTetrahedra\n1\n1 2 3 4 0\nEnd\n";
+                                        "0 1 0 0\n0 0 1 0\nTriangles\n1\n1 3 2 1\nTetrahedra\n1\n1 2 3 4 0\nEnd\n";
     for (const char* input : {"pinched.mesh", "open.mesh"}) {
       CAPTURE(input);
       const auto adapt = metrica_cli("adapt " + (dir / input) + " --analytic linear -o " + (dir / "a.meshb"));

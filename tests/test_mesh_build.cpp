@@ -28,7 +28,9 @@ io::MeshData two_tets() {
 TEST_SUITE("unit") {
   TEST_CASE("two tets: the shared face is linked both ways - the others are boundary") {
     test::QuietLog quiet;  // no triangles given: default ids, with a warning
-    const auto mesh = build_mesh(two_tets());
+    BuildOptions as_given;
+    as_given.ridge_angle = 180.0;  // not split by angle (test_surface_angles.cpp)
+    const auto mesh = build_mesh(two_tets(), as_given);
     CHECK(mesh.num_tets() == 2);
     int links = 0, boundary = 0;
     for (TetId t = 0; t < 2; ++t)
@@ -53,7 +55,7 @@ TEST_SUITE("unit") {
     auto d = two_tets();
     d.triangles = {{0, 1, 2}};
     d.triangle_refs = {7};
-    const auto mesh = build_mesh(d, BuildOptions{.default_surface_id = 3, .source = "t"});
+    const auto mesh = build_mesh(d, BuildOptions{.default_surface_id = 3, .ridge_angle = 180.0, .source = "t"});
     std::map<SurfaceId, int> ids;
     for (TetId t = 0; t < 2; ++t)
       for (int f = 0; f < 4; ++f)

@@ -568,7 +568,9 @@ TEST_SUITE("unit") {
     data.triangles = {{a, b, p1}, {b, p2, p1}, {b, x, p2}, {x, p1, p2}, {x, a, p1},
                       {b, a, q1}, {q2, b, q1}, {x, b, q2}, {q1, x, q2}, {a, x, q1}};
     data.triangle_refs.assign(data.triangles.size(), 1);
-    Mesh mesh = build_mesh(data);
+    BuildOptions as_given;  // one surface, not split by angle
+    as_given.ridge_angle = 180.0;
+    Mesh mesh = build_mesh(data, as_given);
     REQUIRE(mesh.validate().ok());
     REQUIRE(mesh.vertex_class(a) == VertexClass::surface);
     CollapseScratch s;

@@ -3,6 +3,7 @@
 
 #include <metrica/io/mesh_data.hpp>
 #include <metrica/mesh.hpp>
+#include <metrica/surface_angles.hpp>
 
 #include <string>
 
@@ -12,10 +13,19 @@ struct BuildOptions {
   // Surface id given to boundary faces that no input triangle covers;
   // 0 means one more than the largest id in the input.
   SurfaceId default_surface_id = 0;
-  // When set, a boundary face that no input triangle covers is an
-  // InputError: the adaptation takes its surfaces and ridges from the
-  // triangles' ids, and a boundary without them would lose its corners.
+  // When set, an input with triangles must cover the whole boundary with
+  // them (a boundary face without one is an InputError: a boundary given
+  // in part is more likely a mistake than a choice). An input without any
+  // boundary triangle is split by angle (below).
   bool require_boundary_triangles = false;
+  // Surfaces and ridges by angle (surface_angles.hpp): the boundary faces
+  // no triangle covers, or a boundary that is one surface id, are split
+  // into surfaces at the edges sharper than ridge_angle degrees (180 or
+  // more: never), unless the input has CAD association records (its ids
+  // are then a model's surfaces).
+  double ridge_angle = kDefaultRidgeAngle;
+  // Every surface is split so, not only those.
+  bool split_every_surface = false;
   // A piece of a larger mesh measured alone: its boundary faces have no
   // triangles by design, so no warning says so.
   bool untagged_expected = false;

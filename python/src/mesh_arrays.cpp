@@ -97,8 +97,19 @@ const io::MeshData& PyMesh::data() const {
   return *data_;
 }
 
+namespace {
+// ridge_angle=DEG: every surface split at DEG degrees (0 to 180).
+void set_ridge_angle(BuildOptions& o, const py::object& ridge_angle) {
+  if (ridge_angle.is_none()) return;
+  const double a = py::cast<double>(ridge_angle);
+  if (!(a >= 0.0 && a <= 180.0)) throw InputError(fmt::format("ridge_angle: {} is not in [0, 180] degrees", a));
+  o.ridge_angle = a;
+  o.split_every_surface = true;
+}
+}  // namespace
+
 PyMesh mesh_from_arrays(const py::array& points, const py::array& tets, const py::object& triangles,
-                        const py::object& triangle_ids, const py::object& tet_ids) {
+                        const py::object& triangle_ids, const py::object& tet_ids, const py::object& ridge_angle) {
   io::MeshData d;
   const auto p = as_rows<double>(points, 3, "points");
   if (static_cast<std::uint64_t>(p.shape(0)) >= std::numeric_limits<std::int32_t>::max())
@@ -118,17 +129,19 @@ PyMesh mesh_from_arrays(const py::array& points, const py::array& tets, const py
   BuildOptions o;
   o.source = "the arrays";
   o.require_boundary_triangles = !triangles.is_none();
+  set_ridge_angle(o, ridge_angle);
   Mesh mesh = build_mesh(d, o);
   check_valid_input(mesh, "the arrays");
   return PyMesh(std::move(mesh), d.version);
 }
 
-PyMesh read_mesh(const std::string& path) {
+PyMesh read_mesh(const std::string& path, const py::object& ridge_angle) {
   io::MeshData d = io::read_mesh_file(path);
   check_coordinates(d, path);
   BuildOptions o;
   o.source = path;
   o.require_boundary_triangles = true;
+  set_ridge_angle(o, ridge_angle);
   Mesh mesh = build_mesh(d, o);
   check_valid_input(mesh, path);
   return PyMesh(std::move(mesh), d.version, std::move(d.on_geometry));

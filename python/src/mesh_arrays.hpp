@@ -44,11 +44,14 @@ class PyMesh {
 // Mesh(points, tets, triangles, triangle_ids, tet_ids): the arrays checked
 // (shapes, dtypes, indices in range, finite coordinates), then the mesh
 // built and checked like a file's (InputError with the command's message).
+// Without triangles (or with one id for the whole boundary) the surfaces
+// are split at edges sharper than 45 degrees; `ridge_angle` (degrees, not
+// None) splits every surface so (surface_angles.hpp).
 PyMesh mesh_from_arrays(const py::array& points, const py::array& tets, const py::object& triangles,
-                        const py::object& triangle_ids, const py::object& tet_ids);
+                        const py::object& triangle_ids, const py::object& tet_ids, const py::object& ridge_angle);
 
 // A file read and checked as every command reads its input.
-PyMesh read_mesh(const std::string& path);
+PyMesh read_mesh(const std::string& path, const py::object& ridge_angle);
 
 // The mesh's arrays.
 py::array_t<double> points_array(const io::MeshData& d);

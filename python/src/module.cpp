@@ -28,9 +28,12 @@ PYBIND11_MODULE(_metrica, m) {
 
   py::class_<PyMesh>(m, "Mesh", "A tetrahedral mesh: vertices, tets with region ids, surface triangles with ids.")
       .def(py::init(&mesh_from_arrays), py::arg("points"), py::arg("tets"), py::arg("triangles") = py::none(),
-           py::arg("triangle_ids") = py::none(), py::arg("tet_ids") = py::none(),
+           py::arg("triangle_ids") = py::none(), py::arg("tet_ids") = py::none(), py::kw_only(),
+           py::arg("ridge_angle") = py::none(),
            "A mesh from numpy arrays: points float64 (n, 3); tets (m, 4), triangles (k, 3): 0-based vertex "
-           "indices; ids int. Checked as a file is (InputError).")
+           "indices; ids int. Checked as a file is (InputError). Without triangles (or with one id for the "
+           "whole boundary) the boundary is split into surfaces at edges sharper than 45 degrees, which "
+           "become ridges; ridge_angle=DEG splits every surface at DEG degrees (180: none).")
       .def_property_readonly("points", [](const PyMesh& x) { return points_array(x.data()); })
       .def_property_readonly("tets", [](const PyMesh& x) { return tets_array(x.data()); })
       .def_property_readonly("triangles", [](const PyMesh& x) { return triangles_array(x.data()); })
@@ -47,8 +50,9 @@ PYBIND11_MODULE(_metrica, m) {
 
   using Path = std::filesystem::path;
   m.def(
-      "read", [](const Path& path) { return read_mesh(path.string()); }, py::arg("path"),
-      "A mesh file (.mesh, .meshb, .msh), checked as every command reads it.");
+      "read", [](const Path& path, const py::object& ridge_angle) { return read_mesh(path.string(), ridge_angle); },
+      py::arg("path"), py::kw_only(), py::arg("ridge_angle") = py::none(),
+      "A mesh file (.mesh, .meshb, .msh), checked as every command reads it; ridge_angle as for Mesh().");
   m.def(
       "write",
       [](const PyMesh& x, const Path& path, int version, bool binary, const py::object& metric) {

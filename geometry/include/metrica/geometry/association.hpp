@@ -4,10 +4,12 @@
 //
 // The mesh's surface ids are the model's surface tags. Surface vertices
 // take the (u, v) of the input's VerticesOnGeometricTriangles records
-// when the model's point there is the vertex, else their projection;
-// ridge vertices the nearest curve among those of their surfaces, corners
-// the nearest model vertex (matched by geometry: other tools number
-// curves and model vertices differently).
+// when the model's point there is the vertex (within kTrustedRecord of
+// the model's size), else their projection: records written with another
+// kernel's parameterization of the same model (EGADS's, say) are checked,
+// never trusted blindly. Ridge vertices take the nearest curve among
+// those of their surfaces, corners the nearest model vertex (matched by
+// geometry: other tools number curves and model vertices differently).
 #pragma once
 
 #include <metrica/geometry/cad_model.hpp>
@@ -20,10 +22,27 @@
 
 namespace metrica {
 
+// A record's parameters are the vertex's when the model's point there is
+// this close to it, relative to the model's size.
+inline constexpr double kTrustedRecord = 1e-8;
+// A boundary vertex is on the model when this close to its entity's point
+// (`check --geometry`'s default tolerance, and what every output keeps).
+inline constexpr double kOnModel = 1e-8;
+
+struct VertexAssociation;
+
 struct AssociationReport {
   std::size_t vertices = 0;   // boundary vertices associated
   std::size_t from_file = 0;  // of which with the input's parameters
   double max_distance = 0.0;  // largest distance from a vertex to its entity's point
+  // Vertices whose records name a point of the model farther than
+  // kTrustedRecord from them (projected instead), and the farthest.
+  std::size_t records_refused = 0;
+  double refused_distance = 0.0;
+  // Vertices farther than kOnModel from their entity's point (brought onto
+  // the model in the adaptation's first stage).
+  std::size_t off_model = 0;
+  void add(const VertexAssociation& a);
 };
 
 // Associates every boundary vertex. Throws InputError when a surface id is
@@ -43,6 +62,9 @@ struct VertexAssociation {
   GeoParam param;  // invalid when no entity may hold it
   double distance = std::numeric_limits<double>::infinity();
   bool from_file = false;
+  // The distance from the vertex to the point its records name, when they
+  // name one farther than kTrustedRecord (else -1).
+  double refused_record = -1.0;
 };
 VertexAssociation associate_vertex(const CadModel& model, const Point& p, std::span<const int> surfaces,
                                    VertexClass cls, const VertexRecords& file, double tolerance);

@@ -30,6 +30,7 @@
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/pass_scope.hpp>
 #include <metrica/operators/shell.hpp>
+#include <metrica/operators/volume_budget.hpp>
 #include <metrica/policies/concurrency.hpp>
 #include <metrica/timer.hpp>
 
@@ -46,6 +47,11 @@ struct SmoothOptions {
   // 1 - |cos| between them is below this.
   double flat_tolerance = 1e-12;
   double shape_floor = ShapeFloors::smoothing;
+  // Off a model, the budget a boundary vertex's move takes its change of
+  // the domain's volume from (volume_budget.hpp): a ridge vertex moving
+  // along its straight ridge drags the curved faces on either side, and
+  // flat faces are flat within flat_tolerance only.
+  const VolumeBudget* volume_budget = nullptr;
   // The metric a moved vertex takes at its new position; only vertices
   // with a tet written since scope.changed_since (smoothing v reads only
   // v's ball; valid only when `below` is no larger than in the pass that
@@ -267,6 +273,19 @@ inline bool straight_ridge_trials(const Mesh& mesh, VertexId v, double flat_tole
   return true;
 }
 
+// The change of the ball's volume when v moves to p.
+inline double ball_volume_change(const Mesh& mesh, VertexId v, std::span<const TetId> ball, const Point& p) {
+  double delta = 0.0;
+  for (TetId t : ball) {
+    const auto& tv = mesh.tet(t);
+    TetPoints x{mesh.point(tv[0]), mesh.point(tv[1]), mesh.point(tv[2]), mesh.point(tv[3])};
+    const double before = tet_volume(x[0], x[1], x[2], x[3]);
+    x[static_cast<std::size_t>(local_index(tv, v))] = p;
+    delta += tet_volume(x[0], x[1], x[2], x[3]) - before;
+  }
+  return delta;
+}
+
 // The best of s.trials under MinQuality (scores Q^3), from the ball terms:
 // the smallest mean ratio (cubed) of the ball with v at a trial, each
 // trial stopping at the first tet at or below the best so far (tested
@@ -414,16 +433,24 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   // measured in v's metric where it stands, which a field given on a coarse
   // mesh may change much over the move. (An analytic metric is evaluated at
   // the apply, as the UGAWG reference outputs were made.)
-  if (!d || o.scope.metric.background == nullptr) return d;
-  SmoothPlan plan = d.plan();
-  const std::array<VertexId, 1> self{v};
-  plan.metric = o.scope.metric.at(mesh, plan.to, self);
-  plan.sampled = true;
-  int n = 0;
-  for (VertexId u : s.neighbours)
-    n += !ugawg_length_in(kUnitBand, mesh.point(u) - plan.to, plan.metric.m, S::vertex_metric(mesh, u));
-  if (n > bad_old) return Refusal::rejected;
-  return plan;
+  if (!d) return d;
+  if (o.scope.metric.background != nullptr) {
+    SmoothPlan plan = d.plan();
+    const std::array<VertexId, 1> self{v};
+    plan.metric = o.scope.metric.at(mesh, plan.to, self);
+    plan.sampled = true;
+    int n = 0;
+    for (VertexId u : s.neighbours)
+      n += !ugawg_length_in(kUnitBand, mesh.point(u) - plan.to, plan.metric.m, S::vertex_metric(mesh, u));
+    if (n > bad_old) return Refusal::rejected;
+    d = plan;
+  }
+  // Last, once nothing else refuses: a boundary move's change of volume
+  // from the budget (the ball's volume with v moved against now).
+  if (o.volume_budget != nullptr && cls != VertexClass::interior && !geometry.places(mesh, v) &&
+      !o.volume_budget->take(detail::ball_volume_change(mesh, v, view(s.ball), d.plan().to)))
+    return Refusal::rejected;
+  return d;
 }
 
 // The trials of boundary vertex v on the model (s.trials and their

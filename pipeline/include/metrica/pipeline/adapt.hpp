@@ -165,6 +165,9 @@ void touch_around_poor_tets(Mesh& mesh, double below) {
 // quality phase and of one repair round, and when to stop.
 template <class A>
 struct Pipeline : PipelineRules {
+  // Run once, at the start of the first cycle (e.g. the input's vertices
+  // off the model onto it).
+  Stages<A> opening;
   Stages<A> cycle;
   // At the start of the quality phase (e.g. forget the epochs of passes
   // whose thresholds grow), then its passes.
@@ -180,12 +183,14 @@ struct Pipeline : PipelineRules {
 // report; quality-phase rounds follow the cycles.
 enum class RoundKind { cycle, quality_pass, repair, closing };
 template <class A>
-const CycleReport& run_round(A& a, const Stages<A>& stages, RoundKind kind, int number) {
+const CycleReport& run_round(A& a, const Stages<A>& stages, RoundKind kind, int number,
+                             const Stages<A>& first = {}) {
   Stopwatch clock;
   CycleReport c;
   c.cycle = number;
   c.quality_phase = kind != RoundKind::cycle;
   c.repair = kind == RoundKind::repair;
+  run_stages(a, first, c);
   run_stages(a, stages, c);
   a.finish(c, clock);
   return a.report().cycles.back();
@@ -199,7 +204,8 @@ const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
   double previous_conformity = 0.0;
   for (int cycle = 0; cycle < p.max_cycles; ++cycle) {
     const std::uint64_t changes_before = a.mesh().vertex_changes();
-    const double conformity = run_round(a, p.cycle, RoundKind::cycle, cycle).conformity;
+    const double conformity =
+        run_round(a, p.cycle, RoundKind::cycle, cycle, cycle == 0 ? p.opening : Stages<A>{}).conformity;
     const std::uint64_t changed = a.mesh().vertex_changes() - changes_before;
     if (static_cast<double>(changed) < p.min_change * static_cast<double>(a.mesh().num_vertices())) break;
     if (previous_conformity >= p.near_unit_conformity && conformity - previous_conformity < p.min_conformity_gain)
@@ -223,6 +229,7 @@ const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
 
 // The standard pipeline of AdaptOptions:
 //
+//   opening   on a model: the input's vertices off it, onto it;
 //   cycle     collapse, split (or centroids + metric Delaunay flips),
 //             quality flips, the internal surfaces' swaps and 2-2 flips,
 //             collapse, smoothing of the poor tets;
@@ -257,8 +264,11 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   SmoothOptions polish_smooth = o.smooth;
   polish_smooth.below = o.quality_phase_smooth_below;
 
-  p.cycle.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   constexpr bool on_model = A::Geometry::on_model;
+  // The input's boundary vertices off the model (association reports
+  // them) onto it before anything is decided around them.
+  if constexpr (on_model) p.opening.push_back({"project", [](A& a) { return a.project(); }});
+  p.cycle.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   if (o.points == PointRule::edge) {
     p.cycle.push_back({"split", [=](A& a) { return a.split(refine); }});
     // On a model, an internal surface's split whose model point an inner

@@ -276,6 +276,7 @@ class Adapter {
   template <class Criterion = MinQuality>
   OperatorStats smooth(SmoothOptions o, std::string_view key = {}) {
     o.scope.metric = metric_;
+    if constexpr (!G::on_model) o.volume_budget = &volume_budget_;
     return incremental(key_or(key, "smooth"), o, [this](Mesh& m, const SmoothOptions& x) {
       return smooth_vertices<S, P, C, Criterion>(m, x, geometry_);
     });
