@@ -92,6 +92,10 @@ def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concu
                  min_length, collapse_max_length, shape_floor, smooth_below,
                  points ("edge", "centroid"), hmin, hmax.
 
+    The adapted mesh is checked as the command checks it; if a run on
+    threads fails that check, it is made again from the input with
+    concurrency="serial" (a warning on stderr says so).
+
     Each cycle is logged to the "metrica" logger (INFO) and passed to
     `on_cycle(dict)` when given. The report holds the cycles, the
     operations' counts and the quality report. The GIL is released while it

@@ -7,6 +7,7 @@
 #include <metrica/geometry/association.hpp>
 #include <metrica/geometry/cad_model.hpp>
 #include <metrica/io/meshb.hpp>
+#include <metrica/log.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/metric_field.hpp>
@@ -256,64 +257,75 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
     throw InputError(fmt::format("adapt: threads must be in [1, 4096] (got {})", call.threads));
   const ThreadsForCall threads(call.threads);
 
-  Mesh mesh = m.mesh();  // the input stays as it was, whatever happens
-  const double volume = mesh.volume();
-  std::optional<AnalyticMetric> kind;
-  MetricFunction exact;
-  AdaptInputs inputs;
-  // On a CAD model, as `metrica adapt --geometry`: the boundary vertices
-  // associated with their entities (from the mesh's own records when its
-  // ids are the arrays' indices, as for a mesh read or built from arrays).
-  std::unique_ptr<CadModel> model;
-  if (!call.geometry.empty()) {
-    model = std::make_unique<CadModel>(call.geometry);
-    const bool compact = mesh.vertex_capacity() == mesh.num_vertices();
-    associate(mesh, *model, compact ? &m.data() : nullptr);
-    inputs.model = model.get();
-  }
-  std::vector<Sym6> given;
-  if (!call.analytic.empty()) {
-    kind = analytic_metric_from_name(call.analytic);
-    if (bounds.active())
-      exact = [k = *kind, bounds](const Point& p) { return clamp_metric(evaluate(k, p), bounds); };
-    else
-      exact = [k = *kind](const Point& p) { return evaluate(k, p); };
-    inputs.metric = &exact;
-  } else {
-    given = metric_by_id(mesh, call.metric, "metric", false);
-  }
-  // An array's field stays, on the input mesh, the background of the run.
-  std::unique_ptr<BackgroundMetric> background;
-  py::list cycles;
-  inputs.on_cycle = cycle_callback(cycles, call.on_cycle);
-  OperatorReport ops;
-  double seconds = 0.0;
-  QualityReport q;
-  try {
-    py::gil_scoped_release no_gil;
-    const FreedMemoryKeptForRun memory;  // as the command's (allocator.hpp)
-    for (int it = 0; it < call.iterations; ++it) {
-      std::vector<Sym6> field = kind ? analytic_metric_field(*kind, vertex_points(mesh)) : given;
-      clamp_metrics(field, bounds);
-      check_metric_field(field, kind ? fmt::format("metric '{}'", call.analytic) : std::string("metric"));
-      assign_metric(mesh, field);
-      if (!kind && it == 0) {
-        background = std::make_unique<BackgroundMetric>(mesh);
-        inputs.background = background.get();
-      }
-      const AdaptReport report = adapt_by_name(mesh, ao, policies, inputs);
-      ops += report.ops;
-      seconds += report.seconds;
+  for (;;) {
+    Mesh mesh = m.mesh();  // the input stays as it was, whatever happens
+    const double volume = mesh.volume();
+    std::optional<AnalyticMetric> kind;
+    MetricFunction exact;
+    AdaptInputs inputs;
+    // On a CAD model, as `metrica adapt --geometry`: the boundary vertices
+    // associated with their entities (from the mesh's own records when its
+    // ids are the arrays' indices, as for a mesh read or built from arrays).
+    std::unique_ptr<CadModel> model;
+    if (!call.geometry.empty()) {
+      model = std::make_unique<CadModel>(call.geometry);
+      const bool compact = mesh.vertex_capacity() == mesh.num_vertices();
+      associate(mesh, *model, compact ? &m.data() : nullptr);
+      inputs.model = model.get();
     }
-    // The report (and the metric of the returned mesh) in the field given.
-    if (background) background->assign(mesh);
-    require_adapted(mesh, model.get(), volume, adapted_volume_tolerance(call.iterations, ao.volume_budget));
-    q = quality_report(mesh, policies.space, {.cached_quality = true});
-  } catch (const PythonError&) {
-    throw py::error_already_set();
+    std::vector<Sym6> given;
+    if (!call.analytic.empty()) {
+      kind = analytic_metric_from_name(call.analytic);
+      if (bounds.active())
+        exact = [k = *kind, bounds](const Point& p) { return clamp_metric(evaluate(k, p), bounds); };
+      else
+        exact = [k = *kind](const Point& p) { return evaluate(k, p); };
+      inputs.metric = &exact;
+    } else {
+      given = metric_by_id(mesh, call.metric, "metric", false);
+    }
+    // An array's field stays, on the input mesh, the background of the run.
+    std::unique_ptr<BackgroundMetric> background;
+    py::list cycles;
+    inputs.on_cycle = cycle_callback(cycles, call.on_cycle);
+    OperatorReport ops;
+    double seconds = 0.0;
+    QualityReport q;
+    try {
+      py::gil_scoped_release no_gil;
+      const FreedMemoryKeptForRun memory;  // as the command's (allocator.hpp)
+      for (int it = 0; it < call.iterations; ++it) {
+        std::vector<Sym6> field = kind ? analytic_metric_field(*kind, vertex_points(mesh)) : given;
+        clamp_metrics(field, bounds);
+        check_metric_field(field, kind ? fmt::format("metric '{}'", call.analytic) : std::string("metric"));
+        assign_metric(mesh, field);
+        if (!kind && it == 0) {
+          background = std::make_unique<BackgroundMetric>(mesh);
+          inputs.background = background.get();
+        }
+        const AdaptReport report = adapt_by_name(mesh, ao, policies, inputs);
+        ops += report.ops;
+        seconds += report.seconds;
+      }
+      // The report (and the metric of the returned mesh) in the field given.
+      if (background) background->assign(mesh);
+      try {
+        require_adapted(mesh, model.get(), volume, adapted_volume_tolerance(call.iterations, ao.volume_budget));
+      } catch (const InputError& e) {
+        // As the command: a check at the end that the threads' order of
+        // operations failed, the serial order from the input again.
+        if (policies.concurrency == Serial::name) throw;
+        log::warn("{}\nadapting again under concurrency=\"serial\"", e.what());
+        policies.concurrency = std::string(Serial::name);
+        continue;
+      }
+      q = quality_report(mesh, policies.space, {.cached_quality = true});
+    } catch (const PythonError&) {
+      throw py::error_already_set();
+    }
+    return py::make_tuple(py::cast(PyMesh(std::move(mesh), m.version()), py::return_value_policy::move),
+                          adapt_report(cycles, ops, seconds, q));
   }
-  return py::make_tuple(py::cast(PyMesh(std::move(mesh), m.version()), py::return_value_policy::move),
-                        adapt_report(cycles, ops, seconds, q));
 }
 
 }  // namespace metrica::python

@@ -182,6 +182,7 @@ py::dict mesh_info(const PyMesh& m) {
   out["internal_faces"] = s.internal_faces;
   out["corners"] = s.corners;
   out["ridge_edges"] = s.ridge_edges;
+  out["ridge_curves"] = s.ridge_curves;
   out["required_vertices"] = s.required_vertices;
   out["volume"] = s.volume;
   out["min_tet_volume"] = s.min_tet_volume;

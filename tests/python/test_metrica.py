@@ -53,6 +53,23 @@ def test_info_and_check():
     assert info["internal_faces"] == 1  # the face between the two regions
 
 
+def test_a_cube_of_points_and_tets_keeps_its_edges_and_corners(tmp_path):
+    # No triangles: the boundary is split at edges sharper than 45 degrees.
+    full = metrica.read(cube(tmp_path, n=4))
+    mesh = metrica.Mesh(full.points, full.tets)
+    info = mesh.info()
+    assert len(info["surfaces"]) == 6 and info["ridge_curves"] == 12 and info["corners"] == 8
+    adapted, _ = metrica.adapt(mesh, analytic="linear", concurrency="serial", cycles=4)
+    after = adapted.info()
+    assert len(after["surfaces"]) == 6 and after["ridge_curves"] == 12 and after["corners"] == 8
+    assert after["volume"] == pytest.approx(1.0, abs=1e-12)
+    # ridge_angle=180: one surface, no ridge; out of [0, 180]: refused.
+    flat = metrica.Mesh(full.points, full.tets, ridge_angle=180).info()
+    assert len(flat["surfaces"]) == 1 and flat["corners"] == 0
+    with pytest.raises(metrica.InputError, match="ridge_angle"):
+        metrica.Mesh(full.points, full.tets, ridge_angle=200)
+
+
 def test_bad_arrays_raise_the_commands_messages():
     points, tets = two_tets()
     with pytest.raises(metrica.InputError, match=r"expected shape \(n, 3\)"):
