@@ -54,6 +54,7 @@ class Checker {
     if (!check_vertices()) return std::move(report_);
     check_orientation();
     check_adjacency();
+    check_faces_once();
     check_manifold();
     check_internal_manifold();
     check_classification();
@@ -143,6 +144,37 @@ class Checker {
           fail_in(r, "adjacency", "tet {} face {} and tet {} face {} hold different vertices", t, f, n.tet(), n.face());
       }
     });
+  }
+
+  // Each triangle a face of one tet (boundary) or of two neighbours: a
+  // third tet on it (tets that overlap, their adjacency consistent pair by
+  // pair) is a mesh the other checks pass and no file can hold. The faces
+  // once each (boundary faces, interior ones from the smaller tet id),
+  // bucketed by their smallest vertex; equal triangles meet in a bucket.
+  void check_faces_once() {
+    const std::size_t nv = m_.vertex_capacity();
+    std::vector<std::uint32_t> start(nv + 1, 0);
+    auto each_face = [&](auto&& f) {
+      for (TetId t = 0; t < m_.tet_capacity(); ++t) {
+        if (!m_.tet_alive(t)) continue;
+        for (int i = 0; i < 4; ++i) {
+          const FaceRef n = m_.neighbour(t, i);
+          if (!n.valid() || t < n.tet()) f(sorted(face_vertices(m_.tet(t), i)));
+        }
+      }
+    };
+    each_face([&](const TriangleVertices& k) { ++start[k[0] + 1]; });
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<std::pair<VertexId, VertexId>> rest(start[nv]);
+    std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
+    each_face([&](const TriangleVertices& k) { rest[at[k[0]]++] = {k[1], k[2]}; });
+    for (std::size_t v = 0; v < nv; ++v) {
+      const auto first = rest.begin() + start[v], last = rest.begin() + start[v + 1];
+      std::sort(first, last);
+      for (auto it = std::adjacent_find(first, last); it != last; it = std::adjacent_find(it + 1, last))
+        fail("faces", "triangle ({} {} {}) is a face of more than two tets, or of two that are not neighbours", v,
+             it->first, it->second);
+    }
   }
 
   // Each boundary edge on exactly two boundary faces, and around each

@@ -94,6 +94,30 @@ TEST_SUITE("invariant") {
     CHECK(r.problems().front().message.find("single umbrella") != std::string::npos);
   }
 
+  TEST_CASE("faces: two pairs of neighbours on one triangle (their adjacency consistent pair by pair)") {
+    test::QuietLog quiet;
+    // Two copies of the pair (0 1 2 3), (0 2 1 4), the second on its own
+    // vertices 5..9, then made to use 0 1 2 as the first pair does.
+    io::MeshData d;
+    d.vertices = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0.2, 0.2, 1), Point(0.2, 0.2, -1)};
+    for (int k = 0; k < 5; ++k) d.vertices.push_back(d.vertices[k] + Point(3, 0, 0));
+    d.tets = {{0, 1, 2, 3}, {0, 2, 1, 4}, {5, 6, 7, 8}, {5, 7, 6, 9}};
+    test::orient_positively(d);
+    Mesh mesh = build_mesh(d);
+    REQUIRE(mesh.validate().ok());
+    mesh.point(8) = Point(0.3, 0.2, 1);
+    mesh.point(9) = Point(0.3, 0.2, -1);
+    for (TetId t : {TetId(2), TetId(3)}) {
+      TetVertices v = mesh.tet(t);
+      for (auto& x : v)
+        if (x >= 5 && x <= 7) x -= 5;
+      mesh.set_tet_vertices(t, v);
+    }
+    const auto r = mesh.validate();
+    CHECK(r.count("faces") == 1);
+    CHECK(r.to_string().find("triangle (0 1 2) is a face of more than two tets") != std::string::npos);
+  }
+
   TEST_CASE("classification: a surface id changed without reclassifying") {
     auto mesh = make_box({.nx = 2, .ny = 2, .nz = 2});
     for (TetId t = 0; t < mesh.tet_capacity(); ++t)

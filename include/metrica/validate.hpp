@@ -58,6 +58,8 @@ class ValidationReport {
 //                    holds other vertices
 //   "boundary"       a boundary face with surface id <= 0, an interior
 //                    face with an id
+//   "faces"          a triangle that is a face of more than two tets, or
+//                    of two that are not neighbours through it
 //   "manifold"       a boundary edge not on exactly two boundary faces, or
 //                    a boundary vertex whose faces do not form one umbrella
 //   "classification" stored ridges or vertex classes differ from a fresh
