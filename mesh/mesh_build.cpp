@@ -148,9 +148,9 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
                     src, untagged));
   // The faces no triangle covers, or a boundary of one id, are split by
   // angle (unless the ridge angle is 180 or more); with
-  // split_every_surface every surface is.
-  // A mesh with CAD association records keeps its ids: they are the
-  // model's surfaces, and its curves are the ridges.
+  // split_every_surface every surface is. Without it, a mesh with CAD
+  // association records keeps its ids: they are the model's surfaces, and
+  // its curves the ridges.
   const bool on_model = !d.on_geometry[0].empty() || !d.on_geometry[1].empty() || !d.on_geometry[2].empty();
   std::vector<SurfaceId> split;
   if (opt.ridge_angle < 180.0 && (!on_model || opt.split_every_surface)) {
