@@ -185,8 +185,8 @@ std::optional<double> ridge_angle(const Options& o) {
   if (o.has("geometry")) {
     // On a model its surfaces are the mesh's ids, its curves the ridges.
     if (o.has("ridge-angle"))
-      throw UsageError(fmt::format("{}: --ridge-angle and --geometry: on a model the ridges are its curves",
-                                   o.command()));
+      throw UsageError(
+          fmt::format("{}: --ridge-angle and --geometry: on a model the ridges are its curves", o.command()));
     return 180.0;
   }
   if (!o.has("ridge-angle")) return std::nullopt;

@@ -451,9 +451,10 @@ int run_adapt(const std::vector<std::string>& args) {
     if (serial) throw InputError(e.what());
     std::string what = e.what();
     if (const auto at = what.find("; nothing written"); at != std::string::npos) what.erase(at, 17);
-    log::warn("{}\nadapting again from {} under --concurrency serial (the threads' order of operations left "
-              "this; the serial order writes the same mesh on every run)",
-              what, input);
+    log::warn(
+        "{}\nadapting again from {} under --concurrency serial (the threads' order of operations left "
+        "this; the serial order writes the same mesh on every run)",
+        what, input);
     PolicyChoice again = policies;
     again.concurrency = std::string(Serial::name);
     try {

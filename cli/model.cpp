@@ -9,8 +9,7 @@
 
 namespace metrica::cli {
 
-std::unique_ptr<CadModel> open_geometry(const std::string& path, Mesh& mesh, const io::MeshData* input,
-                                        bool adapting) {
+std::unique_ptr<CadModel> open_geometry(const std::string& path, Mesh& mesh, const io::MeshData* input, bool adapting) {
   Stopwatch clock;
   auto model = std::make_unique<CadModel>(path);
   const AssociationReport r = associate(mesh, *model, input);
@@ -18,8 +17,10 @@ std::unique_ptr<CadModel> open_geometry(const std::string& path, Mesh& mesh, con
             model->entities(1).size(), model->entities(0).size(), clock.seconds());
   if (log::level() < log::Level::normal) return model;
   // What the input is on the model, before any work.
-  fmt::print("{}: {} boundary vertices associated ({} with the input's parameters), the farthest {:.3g} from the model\n",
-             path, count_text(r.vertices), count_text(r.from_file), r.max_distance);
+  fmt::print(
+      "{}: {} boundary vertices associated ({} with the input's parameters), the farthest {:.3g} from the "
+      "model\n",
+      path, count_text(r.vertices), count_text(r.from_file), r.max_distance);
   if (r.records_refused > 0)
     fmt::print(
         "{}: the input's parameters of {} vertices name points up to {:.3g} away from them (another kernel's "

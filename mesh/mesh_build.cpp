@@ -240,11 +240,13 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
       std::size_t corners = 0;
       for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
         corners += mesh.vertex_alive(v) && mesh.vertex_class(v) == VertexClass::corner;
-      log::emit(log::Level::normal,
-                fmt::format("{}: {} split at edges sharper than {:g} degrees: {} surfaces, {} ridge edges, {} corners",
-                            src, split.size() == 1 && split[0] == default_id ? "the boundary without surface ids" :
-                                 opt.split_every_surface ? "every surface" : "the boundary's one surface",
-                            opt.ridge_angle, a.surfaces, mesh.ridge_edges().size(), corners));
+      log::emit(
+          log::Level::normal,
+          fmt::format("{}: {} split at edges sharper than {:g} degrees: {} surfaces, {} ridge edges, {} corners", src,
+                      split.size() == 1 && split[0] == default_id ? "the boundary without surface ids"
+                      : opt.split_every_surface                   ? "every surface"
+                                                                  : "the boundary's one surface",
+                      opt.ridge_angle, a.surfaces, mesh.ridge_edges().size(), corners));
     }
   }
   return mesh;

@@ -80,9 +80,10 @@ AngleSplit split_surfaces_at_angle(Mesh& mesh, double degrees, std::span<const S
       const bool first = std::find(kept.begin(), kept.end(), faces[i].id) == kept.end();
       if (first) kept.push_back(faces[i].id);
       if (!first && largest + 1 >= kMaxSurfaceId)
-        throw InputError(fmt::format("splitting the boundary at {} degrees makes more surfaces than a mesh holds "
-                                     "(ids up to {})",
-                                     degrees, kMaxSurfaceId - 1));
+        throw InputError(
+            fmt::format("splitting the boundary at {} degrees makes more surfaces than a mesh holds "
+                        "(ids up to {})",
+                        degrees, kMaxSurfaceId - 1));
       piece_id[r] = first ? faces[i].id : ++largest;
       ++out.surfaces;
     }

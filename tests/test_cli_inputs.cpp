@@ -86,9 +86,9 @@ TEST_SUITE("regression") {
     INFO(check.output);
     CHECK(check.code == 0);
     CHECK(has(check, "vertices name points up to"));
-    const auto r = metrica_cli("adapt " + (dir / "other.meshb") + " --geometry " + step +
-                               " --analytic polar-2 --cycles 3 --quality-passes 1" + serial_option() + " -o " +
-                               (dir / "a.meshb"));
+    const auto r =
+        metrica_cli("adapt " + (dir / "other.meshb") + " --geometry " + step +
+                    " --analytic polar-2 --cycles 3 --quality-passes 1" + serial_option() + " -o " + (dir / "a.meshb"));
     INFO(r.output);
     REQUIRE(r.code == 0);
     CHECK(metrica_cli("check " + (dir / "a.meshb") + " --geometry " + step).code == 0);
@@ -99,9 +99,9 @@ TEST_SUITE("regression") {
     const std::string h = data("hemisphere-cylinder/");
     for (const std::string grid : {"hemicyl_curvAdapt.meshb", "hsc01.meshb"}) {
       CAPTURE(grid);
-      const auto r = metrica_cli("adapt " + h + grid + " -m " + h + "hemicyl_curvAdapt-metric.solb --geometry " + h +
-                                 "hemisph-cyl.stp --cycles 3 --quality-passes 1" + serial_option() + " -o " +
-                                 (dir / "a.meshb"));
+      const auto r =
+          metrica_cli("adapt " + h + grid + " -m " + h + "hemicyl_curvAdapt-metric.solb --geometry " + h +
+                      "hemisph-cyl.stp --cycles 3 --quality-passes 1" + serial_option() + " -o " + (dir / "a.meshb"));
       INFO(r.output);
       REQUIRE(r.code == 0);
       // Without records, 249 vertices are off the model (its points, not

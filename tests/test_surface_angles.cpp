@@ -110,7 +110,7 @@ TEST_SUITE("unit") {
       if (v < 0) std::swap(t[2], t[3]);
     }
     const auto s = summarize(build_mesh(d));
-    CHECK(s.surfaces.size() == 3);             // bottom, top, side
+    CHECK(s.surfaces.size() == 3);               // bottom, top, side
     CHECK(s.ridge_edges == std::size_t(2 * n));  // the two rims
     CHECK(s.ridge_curves == 2);
     CHECK(s.corners == 0);

@@ -10,9 +10,9 @@
 #include <metrica/geometry/cad_model.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
+#include <metrica/mesh_build.hpp>
 #include <metrica/metrics/background_metric.hpp>
 #include <metrica/metrics/metric_field.hpp>
-#include <metrica/mesh_build.hpp>
 #include <metrica/pipeline/adapt.hpp>
 
 #include <doctest/doctest.h>

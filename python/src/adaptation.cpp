@@ -9,9 +9,9 @@
 #include <metrica/io/meshb.hpp>
 #include <metrica/log.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
+#include <metrica/metrics/background_metric.hpp>
 #include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/metric_field.hpp>
-#include <metrica/metrics/background_metric.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
