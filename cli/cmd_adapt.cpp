@@ -358,7 +358,7 @@ Adapted adapt_input(const Options& o, const AdaptOptions& ao, const PolicyChoice
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
                  count_text(report.ops.get("collapse").applied + report.ops.get("lift").applied),
-                 count_text(report.ops.get("split").applied),
+                 count_text(report.ops.get("split").applied + report.ops.get("centroids").applied),
                  count_text(report.ops.get("flip").applied + report.ops.get("delaunay").applied),
                  count_text(report.ops.get("smooth").applied));
     if (talk && (!serial || log::level() >= log::Level::verbose)) print_operator_stats(report, serial, thread_count());

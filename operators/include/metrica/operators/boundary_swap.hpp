@@ -34,7 +34,7 @@ struct BoundarySwap : EdgeShellSteps {
   using Item = EdgeSeed;
   using Scratch = FlipScratch;
   using Plan = EdgeRemovalPlan;
-  static constexpr std::string_view name = "swap";
+  static constexpr std::string_view name = "boundary-swap";
   BoundarySwapOptions options;
   G geometry{};
 

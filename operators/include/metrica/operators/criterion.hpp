@@ -41,6 +41,7 @@
 
 #include <metrica/metrics/space.hpp>
 #include <metrica/metrics/unit_band.hpp>
+#include <metrica/policy_list.hpp>
 #include <metrica/predicates/edge_weight.hpp>
 #include <metrica/predicates/metric_delaunay.hpp>
 #include <metrica/predicates/quality_criterion.hpp>
@@ -102,7 +103,7 @@ double min_score(const Mesh& mesh, std::span<const TetVertices> tets,
 }
 
 struct MinQuality {
-  static constexpr std::string_view name = "quality";
+  static constexpr std::string_view name = "min-quality";
   static constexpr bool measures_shape = true;
   // The score is Q^3: the same order and the same worst tet as Q, without
   // a cube root per tet (most of them on the candidate tets of edge
@@ -143,7 +144,7 @@ struct MaxMinEdgeWeight {
 };
 
 struct ShapeOnly {
-  static constexpr std::string_view name = "shape";
+  static constexpr std::string_view name = "shape-only";
   static constexpr bool indifferent = true;
   template <MetricSpace S>
   static double tet_score(const Mesh&, const TetVertices&) {
@@ -165,7 +166,7 @@ static_assert(CriterionTraits<MinQuality>::measures_shape && CriterionTraits<Min
               CriterionTraits<ShapeOnly>::indifferent && !CriterionTraits<MaxMinEdgeWeight>::measures_shape);
 
 struct MetricDelaunay {
-  static constexpr std::string_view name = "delaunay";
+  static constexpr std::string_view name = "metric-delaunay";
   // True when some pair of tets of `tets` sharing a face has the apex of
   // one inside the other's circumsphere in the metric (eq. (4)).
   template <MetricSpace S, Precision P>
@@ -197,6 +198,10 @@ struct MetricDelaunay {
     return violated<S, P>(mesh, old_tets) && !violated<S, P>(mesh, new_tets);
   }
 };
+
+// The criteria a flip pass takes, by the names a user gives them (the
+// Python pipeline's `criterion`).
+using FlipCriteria = PolicyList<MinQuality, MetricDelaunay, MaxMinEdgeWeight>;
 
 static_assert(Criterion<MetricDelaunay> && Criterion<MinQuality>);
 

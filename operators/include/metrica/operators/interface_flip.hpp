@@ -65,7 +65,7 @@ struct InterfaceFlip : EdgeShellSteps {
   using Item = EdgeSeed;
   using Scratch = InterfaceFlipScratch;
   using Plan = InterfaceFlipPlan;
-  static constexpr std::string_view name = "swap";
+  static constexpr std::string_view name = "interface-flip";
   InterfaceFlipOptions options;
   G geometry{};
 

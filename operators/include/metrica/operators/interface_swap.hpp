@@ -61,7 +61,7 @@ struct InterfaceSwap {
   using Item = TetId;
   using Scratch = InterfaceSwapScratch;
   using Plan = InterfaceSwapPlan;
-  static constexpr std::string_view name = "swap";
+  static constexpr std::string_view name = "interface-swap";
   InterfaceSwapOptions options;
   G geometry{};
 

@@ -162,7 +162,7 @@ struct CentroidInsertion {
   using Item = PointCandidate;
   using Scratch = CentroidScratch;
   using Plan = CentroidPlan;
-  static constexpr std::string_view name = "centroid";
+  static constexpr std::string_view name = "centroids";
   RefineOptions options;
   Mesh::Epoch start = 0;  // when the candidates were made
   G geometry{};

@@ -281,7 +281,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
     // vertex stands in front of waits; that vertex goes, for the next pass.
     if constexpr (on_model) p.cycle.push_back({"clear", [=](A& a) { return a.clear_way(refine); }});
   } else {
-    p.cycle.push_back({"split", [=](A& a) { return a.insert_centroids(refine); }});
+    p.cycle.push_back({"centroids", [=](A& a) { return a.insert_centroids(refine); }});
     // A centroid leaves its tet's long edge in place; metric Delaunay flips
     // remove it (the seed pairs the rule with them).
     p.cycle.push_back({"delaunay", [=](A& a) { return a.template flips<MetricDelaunay>(delaunay); }});
