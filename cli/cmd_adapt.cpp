@@ -97,7 +97,8 @@ void declare_options(Options& o) {
       "space", po::value<std::string>()->default_value(policies.space)->value_name("S"),
       "metric interpolation: log-euclidean, anisotropic, isotropic")(
       "precision", po::value<std::string>()->default_value(policies.precision)->value_name("P"),
-      "predicates: filtered (exact when it matters), exact, fast (plain double)")(
+      "the metric-Delaunay criterion's insphere signs (the centroid rule's flips): filtered (exact when "
+      "it matters), exact, fast (plain double); orientations are decided alike under every precision")(
       "concurrency", po::value<std::string>()->default_value(policies.concurrency)->value_name("C"),
       "speculative (every operator on --threads threads, lock-free per-vertex try-locks) or serial "
       "(one thread, the same output to the bit on every run)")(

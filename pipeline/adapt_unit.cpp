@@ -1,6 +1,7 @@
 // One (space, concurrency, geometry) triple of the policy lists, compiled
 // with METRICA_ADAPT_UNIT = its index (space-major, geometry last): the
-// standard stages and the pipeline under every precision for that triple.
+// standard stages of that triple, and the pipeline under every precision
+// of its metric-Delaunay criterion.
 #include <metrica/error.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
 
@@ -28,14 +29,9 @@ using UnitConcurrency = Concurrencies::at<kUnit % kPerSpace / Geometries::size>;
 using UnitGeometry = Geometries::at<kUnit % Geometries::size>;
 
 // The standard stages of the triple (declared in standard_stages.hpp).
-static_assert(Precisions::size == 3, "one line per precision below");
 static_assert(!METRICA_DEFAULT_POLICIES_ONLY || kUnit < kPerSpace, "the default space's units only");
 static_assert(!METRICA_SPECULATIVE_ONLY || kUnit < Geometries::size, "the default concurrency's units only");
-METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<0>, UnitConcurrency, UnitGeometry)
-#if !METRICA_DEFAULT_POLICIES_ONLY
-METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<1>, UnitConcurrency, UnitGeometry)
-METRICA_STANDARD_STAGES(, UnitSpace, Precisions::at<2>, UnitConcurrency, UnitGeometry)
-#endif
+METRICA_STANDARD_STAGES_OF_TRIPLE(, UnitSpace, UnitConcurrency, UnitGeometry)
 
 template AdaptReport adapt_instance<UnitSpace, UnitConcurrency, UnitGeometry>(Mesh&, const AdaptOptions&,
                                                                               const AdaptInputs&, std::string_view);

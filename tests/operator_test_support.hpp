@@ -101,7 +101,7 @@ inline Mesh jittered_box(int n, double amount, std::uint64_t stream) {
 
 // Accepts every valid configuration: exercises the topology alone.
 struct AlwaysFlip {
-  template <MetricSpace S, Precision P>
+  template <MetricSpace S>
   static bool prefers(const Mesh&, std::span<const TetVertices>, std::span<const TetVertices>) {
     return true;
   }

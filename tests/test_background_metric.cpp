@@ -30,7 +30,8 @@ Sym6 turning(const Point& p) {
 }  // namespace
 
 TEST_SUITE("unit") {
-  TEST_CASE("a background gives its tensors at its vertices, the log-Euclidean mean inside, the clamped value outside") {
+  TEST_CASE(
+      "a background gives its tensors at its vertices, the log-Euclidean mean inside, the clamped value outside") {
     Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
     set_metric_function(mesh, turning);
     const BackgroundMetric background(mesh);
@@ -67,7 +68,7 @@ TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("adapting to a background: every vertex has the background's metric at its position", T,
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
-    using A = Adapter<typename T::Space, typename T::Precision, typename T::Concurrency>;
+    using A = Adapter<typename T::Space, typename T::Concurrency>;
     Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
     set_metric_function(mesh, turning);
     const double volume = mesh.volume();
@@ -98,7 +99,8 @@ TEST_SUITE("invariant") {
     adapt<LogEuclidean, Filtered, Serial>(mesh, AdaptOptions{});
     double worst = 0.0;
     for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-      if (mesh.vertex_alive(v)) worst = std::max(worst, rel_diff(mesh.metric(v), background.at(mesh.point(v)).metric.m));
+      if (mesh.vertex_alive(v))
+        worst = std::max(worst, rel_diff(mesh.metric(v), background.at(mesh.point(v)).metric.m));
     CHECK(worst > 1e-3);
   }
 }

@@ -66,7 +66,6 @@ TEST_SUITE("invariant") {
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     using C = typename T::Concurrency;
     Mesh mesh = jittered_box(3, 0.35, 7);
     set_uniform_metric(mesh, 0.3);
@@ -74,15 +73,15 @@ TEST_SUITE("invariant") {
     ReconnectOptions flips;
     for (int i = 0; i < 20; ++i) {
       const Mesh::Epoch start = mesh.next_epoch();
-      const auto st = reconnect<S, P, C, MinQuality>(mesh, flips);
+      const auto st = reconnect<S, C, MinQuality>(mesh, flips);
       flips.scope.changed_since = start;
       CHECK(require_cache_fresh<S>(mesh) > 0);
       if (st.applied == 0) break;
     }
     const Mesh::Epoch start = mesh.next_epoch();
-    CHECK(reconnect<S, P, C, MinQuality>(mesh, flips).tried == 0);
+    CHECK(reconnect<S, C, MinQuality>(mesh, flips).tried == 0);
     flips.scope.changed_since = start;
-    CHECK(reconnect<S, P, C, MinQuality>(mesh, flips).tried == 0);
+    CHECK(reconnect<S, C, MinQuality>(mesh, flips).tried == 0);
     // Smoothing: moves touch the balls; after a pass with no move, nothing
     // is left to try. (A pass may touch every tet: the cache may be empty
     // after one pass, not after all.)
@@ -90,13 +89,13 @@ TEST_SUITE("invariant") {
     std::size_t cached = 0;
     for (int i = 0; i < 50; ++i) {
       const Mesh::Epoch s0 = mesh.next_epoch();
-      const auto st = smooth_vertices<S, P, C>(mesh, smooth);
+      const auto st = smooth_vertices<S, C>(mesh, smooth);
       smooth.scope.changed_since = s0;
       cached += require_cache_fresh<S>(mesh);
       if (st.applied == 0) break;
     }
     CHECK(cached > 0);
-    CHECK(smooth_vertices<S, P, C>(mesh, smooth).tried == 0);
+    CHECK(smooth_vertices<S, C>(mesh, smooth).tried == 0);
     require_valid(mesh, 1.0);
   }
 

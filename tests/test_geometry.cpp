@@ -4,8 +4,8 @@
 // vertices under CadGeometry, under each Concurrency policy.
 #include "operator_test_support.hpp"
 
-#include <metrica/error.hpp>
 #include <metrica/classification.hpp>
+#include <metrica/error.hpp>
 #include <metrica/geometry/association.hpp>
 #include <metrica/geometry/bootstrap.hpp>
 #include <metrica/geometry/cad_geometry.hpp>
@@ -428,7 +428,6 @@ TEST_SUITE("invariant") {
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     using C = typename T::Concurrency;
     CubeCylinder c;
     const CadGeometry g{&c.model};
@@ -436,8 +435,8 @@ TEST_SUITE("invariant") {
     const double faceted = c.mesh.volume();
     test::set_uniform_metric(c.mesh, 0.08);
     for (int pass = 0; pass < 3; ++pass) {
-      refine_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
-      project_to_model<S, P, C>(c.mesh, {}, g);
+      refine_edges<S, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+      project_to_model<S, C>(c.mesh, {}, g);
       const auto report = c.mesh.validate();
       INFO(report.to_string());
       REQUIRE(report.ok());
@@ -506,14 +505,13 @@ TEST_SUITE("invariant") {
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     using C = typename T::Concurrency;
     CubeCylinder c;
     const CadGeometry g{&c.model};
     test::set_uniform_metric(c.mesh, 0.1);
     for (int pass = 0; pass < 2; ++pass) {
-      refine_centroids<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
-      project_to_model<S, P, C>(c.mesh, {}, g);
+      refine_centroids<S, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+      project_to_model<S, C>(c.mesh, {}, g);
       const auto report = c.mesh.validate();
       INFO(report.to_string());
       REQUIRE(report.ok());
@@ -525,7 +523,6 @@ TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("an inner vertex in the way of an internal surface's split on the model goes - then the split", T,
                      METRICA_POLICY_COMBINATIONS) {
     using S = typename T::Space;
-    using P = typename T::Precision;
     using C = typename T::Concurrency;
     const ExecutorOf<T> executor;
     Mesh mesh = cap_split_in_the_way();
@@ -543,10 +540,10 @@ TEST_SUITE("invariant") {
     RefineOptions only_ab;
     only_ab.max_length = 3.5;
     // The split waits while the inner vertex stands there.
-    CHECK(refine_edges<S, P, C, ShapeOnly, CapGeometry>(mesh, only_ab, g).applied == 0);
+    CHECK(refine_edges<S, C, ShapeOnly, CapGeometry>(mesh, only_ab, g).applied == 0);
     CHECK(!vertex_at(cap_top));
     const double worst_before = worst_quality<S>(mesh);
-    const OperatorStats stats = clear_way_for_splits<S, P, C>(mesh, only_ab, g);
+    const OperatorStats stats = clear_way_for_splits<S, C>(mesh, only_ab, g);
     CHECK(stats.tried == 1);
     CHECK(stats.applied == 1);
     CHECK(!mesh.vertex_alive(6));
@@ -554,36 +551,35 @@ TEST_SUITE("invariant") {
     // the worst that was there.
     CHECK(worst_quality<S>(mesh) >= std::min(kClearingCollapse.shape_floor, worst_before));
     REQUIRE(mesh.validate().ok());
-    CHECK(refine_edges<S, P, C, ShapeOnly, CapGeometry>(mesh, only_ab, g).applied == 1);
+    CHECK(refine_edges<S, C, ShapeOnly, CapGeometry>(mesh, only_ab, g).applied == 1);
     CHECK(vertex_at(cap_top));
     const auto report = mesh.validate();
     INFO(report.to_string());
     CHECK(report.ok());
     // Nothing left in the way: nothing to clear.
-    CHECK(clear_way_for_splits<S, P, C>(mesh, only_ab, g).tried == 0);
+    CHECK(clear_way_for_splits<S, C>(mesh, only_ab, g).tried == 0);
   }
 
   TEST_CASE_TEMPLATE("collapse - flips and smoothing on a CAD model keep the boundary on it", T,
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     using C = typename T::Concurrency;
     CubeCylinder c;
     const CadGeometry g{&c.model};
     test::set_uniform_metric(c.mesh, 0.06);
-    refine_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
-    project_to_model<S, P, C>(c.mesh, {}, g);
+    refine_edges<S, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+    project_to_model<S, C>(c.mesh, {}, g);
     test::set_uniform_metric(c.mesh, 0.15);  // now most edges are short
     const std::size_t before = c.mesh.num_vertices();
-    collapse_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+    collapse_edges<S, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
     CHECK(c.mesh.num_vertices() < before);
-    const OperatorStats flips = reconnect<S, P, C, MinQuality, CadGeometry>(c.mesh, {}, g);
+    const OperatorStats flips = reconnect<S, C, MinQuality, CadGeometry>(c.mesh, {}, g);
     CHECK(flips.applied > 0);
     // Boundary vertices move too, on the model.
     std::vector<Point> was(c.mesh.vertex_capacity());
     for (VertexId v = 0; v < c.mesh.vertex_capacity(); ++v) was[v] = c.mesh.point(v);
-    smooth_vertices<S, P, C, MinQuality, CadGeometry>(c.mesh, {.below = 1.0}, g);
+    smooth_vertices<S, C, MinQuality, CadGeometry>(c.mesh, {.below = 1.0}, g);
     std::size_t moved_on_boundary = 0;
     for (VertexId v = 0; v < c.mesh.vertex_capacity(); ++v)
       moved_on_boundary += c.mesh.vertex_alive(v) && c.mesh.geo_param(v).valid() && c.mesh.point(v) != was[v];
@@ -601,13 +597,12 @@ TEST_SUITE("invariant") {
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     using C = typename T::Concurrency;
     CubeCylinder c;
     const CadGeometry g{&c.model};
     test::set_uniform_metric(c.mesh, 0.07);
-    refine_edges<S, P, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
-    project_to_model<S, P, C>(c.mesh, {}, g);
+    refine_edges<S, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+    project_to_model<S, C>(c.mesh, {}, g);
     auto deviation = [&] {
       double sum = 0.0;
       for_each_boundary_face(c.mesh, [&](TetId t, int f) {
@@ -617,14 +612,14 @@ TEST_SUITE("invariant") {
       return sum;
     };
     const double before = deviation();
-    const OperatorStats st = swap_toward_model<S, P, C>(c.mesh, {}, g);
+    const OperatorStats st = swap_toward_model<S, C>(c.mesh, {}, g);
     CHECK(st.applied > 0);
     CHECK(deviation() < before);
     const auto report = c.mesh.validate();
     INFO(report.to_string());
     REQUIRE(report.ok());
     // Without a model nothing deviates: nothing is swapped.
-    CHECK(swap_toward_model<S, P, C>(c.mesh, {}, NoGeometry{}).applied == 0);
+    CHECK(swap_toward_model<S, C>(c.mesh, {}, NoGeometry{}).applied == 0);
   }
 }
 

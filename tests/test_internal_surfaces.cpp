@@ -182,7 +182,6 @@ TEST_SUITE("invariant") {
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     using C = typename T::Concurrency;
     Mesh mesh = build_mesh(two_region_box(4, true));
     set_uniform_metric(mesh, 0.25);
@@ -196,7 +195,7 @@ TEST_SUITE("invariant") {
     }
     require_valid(mesh, 1.0);
     const double before = worst_quality<S>(mesh);
-    const OperatorStats stats = flip_interfaces<S, P, C>(mesh, {}, NoGeometry{});
+    const OperatorStats stats = flip_interfaces<S, C>(mesh, {}, NoGeometry{});
     require_valid(mesh, 1.0);
     CHECK(stats.applied > 0);
     CHECK(worst_quality<S>(mesh) >= before);

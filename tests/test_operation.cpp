@@ -124,17 +124,16 @@ TEST_SUITE("property") {
   TEST_CASE_TEMPLATE("a decided split or centroid insertion never inverts - applied it keeps areas and ridges", T,
                      METRICA_SPACE_PRECISION) {
     using S = typename T::Space;
-    using P = typename T::Precision;
     Mesh mesh = jittered_box(3, 0.3, 11);
     require_valid(mesh, 1.0);
     set_uniform_metric(mesh, 0.12);
     const auto long_edges = edges_beyond<S>(mesh, kUnitBand.hi, EdgeOrder::longest_first);
-    CHECK(plans_checked<S>(mesh, EdgeSplit<S, P>{{}, mesh.next_epoch()}, long_edges, 0.0) > 0);
+    CHECK(plans_checked<S>(mesh, EdgeSplit<S>{{}, mesh.next_epoch()}, long_edges, 0.0) > 0);
     // With a shape floor (children measured in their parent's metric).
-    CHECK(plans_checked<S>(mesh, EdgeSplit<S, P>{{.shape_floor = 0.2}, mesh.next_epoch()}, long_edges, 0.0) > 0);
+    CHECK(plans_checked<S>(mesh, EdgeSplit<S>{{.shape_floor = 0.2}, mesh.next_epoch()}, long_edges, 0.0) > 0);
     std::vector<std::uint32_t> of_tet;
     const auto candidates = centroid_candidates<S>(mesh, {}, of_tet);
-    CHECK(plans_checked<S>(mesh, CentroidInsertion<S, P>{{}, mesh.next_epoch()}, candidates, 0.0) > 0);
+    CHECK(plans_checked<S>(mesh, CentroidInsertion<S>{{}, mesh.next_epoch()}, candidates, 0.0) > 0);
   }
 
   TEST_CASE("a plan is applied only with its scratch as decided: after another seed or decide it is refused") {
@@ -143,7 +142,7 @@ TEST_SUITE("property") {
     set_uniform_metric(mesh, 0.12);
     const auto long_edges = edges_beyond<S>(mesh, kUnitBand.hi, EdgeOrder::longest_first);
     REQUIRE(long_edges.size() >= 2);
-    const EdgeSplit<S, Filtered> split{{}, mesh.next_epoch()};
+    const EdgeSplit<S> split{{}, mesh.next_epoch()};
     EdgeSplitScratch s;
     const auto first = decide_item(mesh, split, long_edges[0], s);
     REQUIRE(first);
@@ -164,14 +163,13 @@ TEST_SUITE("property") {
   TEST_CASE_TEMPLATE("a decided collapse never inverts nor drops below its floor - applied it keeps areas and ridges",
                      T, METRICA_SPACE_PRECISION) {
     using S = typename T::Space;
-    using P = typename T::Precision;
     Mesh mesh = jittered_box(4, 0.3, 12);
     require_valid(mesh, 1.0);
     set_uniform_metric(mesh, 0.5);
     const auto short_edges = edges_beyond<S>(mesh, kUnitBand.lo, EdgeOrder::shortest_first);
     const CollapseOptions o;
-    CHECK(plans_checked<S>(mesh, Collapse<S, P>{o}, short_edges, o.shape_floor) > 0);
-    CHECK(plans_checked<S>(mesh, Collapse<S, P, MinQuality>{o}, short_edges, o.shape_floor) > 0);
+    CHECK(plans_checked<S>(mesh, Collapse<S>{o}, short_edges, o.shape_floor) > 0);
+    CHECK(plans_checked<S>(mesh, Collapse<S, MinQuality>{o}, short_edges, o.shape_floor) > 0);
   }
 
   TEST_CASE_TEMPLATE("decided flips and smoothing moves never invert nor drop below the floor under every criterion", T,
@@ -184,18 +182,18 @@ TEST_SUITE("property") {
     const FlipOptions fo;
     const auto edges = all_edge_seeds<S>(mesh);
     const auto tets = all_tets(mesh);
-    CHECK(plans_checked<S>(mesh, EdgeRemoval<S, P, MinQuality>{fo}, edges, fo.shape_floor) > 0);
-    CHECK(plans_checked<S>(mesh, EdgeRemoval<S, P, MaxMinEdgeWeight>{fo}, edges, fo.shape_floor) > 0);
-    plans_checked<S>(mesh, EdgeRemoval<S, P, MetricDelaunay>{fo}, edges, fo.shape_floor);
-    plans_checked<S>(mesh, EdgeRemoval<S, P, PreferNew>{fo}, edges, fo.shape_floor);
-    CHECK(plans_checked<S>(mesh, FaceFlip<S, P, MinQuality>{fo}, tets, fo.shape_floor) > 0);
-    plans_checked<S>(mesh, FaceFlip<S, P, MaxMinEdgeWeight>{fo}, tets, fo.shape_floor);
-    plans_checked<S>(mesh, FaceFlip<S, P, MetricDelaunay>{fo}, tets, fo.shape_floor);
-    CHECK(plans_checked<S>(mesh, FaceFlip<S, P, PreferNew>{fo}, tets, fo.shape_floor) > 0);
+    CHECK(plans_checked<S>(mesh, EdgeRemoval<S, MinQuality>{fo}, edges, fo.shape_floor) > 0);
+    CHECK(plans_checked<S>(mesh, EdgeRemoval<S, MaxMinEdgeWeight>{fo}, edges, fo.shape_floor) > 0);
+    plans_checked<S>(mesh, EdgeRemoval<S, MetricDelaunay<P>>{fo}, edges, fo.shape_floor);
+    plans_checked<S>(mesh, EdgeRemoval<S, PreferNew>{fo}, edges, fo.shape_floor);
+    CHECK(plans_checked<S>(mesh, FaceFlip<S, MinQuality>{fo}, tets, fo.shape_floor) > 0);
+    plans_checked<S>(mesh, FaceFlip<S, MaxMinEdgeWeight>{fo}, tets, fo.shape_floor);
+    plans_checked<S>(mesh, FaceFlip<S, MetricDelaunay<P>>{fo}, tets, fo.shape_floor);
+    CHECK(plans_checked<S>(mesh, FaceFlip<S, PreferNew>{fo}, tets, fo.shape_floor) > 0);
     const auto vertices = all_vertices(mesh);
     const SmoothOptions so{.below = 1.0};
-    CHECK(plans_checked<S>(mesh, Smoothing<S, P>{{}, so}, vertices, 0.0) > 0);
-    CHECK(plans_checked<S>(mesh, Smoothing<S, P, MaxMinEdgeWeight>{{}, so}, vertices, so.shape_floor) > 0);
+    CHECK(plans_checked<S>(mesh, Smoothing<S>{{}, so}, vertices, 0.0) > 0);
+    CHECK(plans_checked<S>(mesh, Smoothing<S, MaxMinEdgeWeight>{{}, so}, vertices, so.shape_floor) > 0);
   }
 
   TEST_CASE_TEMPLATE("the 2-3 flip keeps the shape floor under every criterion", T, METRICA_SPACE_PRECISION) {
@@ -215,19 +213,19 @@ TEST_SUITE("property") {
       if (!d) return;
       for (const auto& c : s.candidate) CHECK(S::mean_ratio(mesh, c) >= std::min(fo.shape_floor, old_worst));
     };
-    const auto prefer_new = decide_flip23<S, P, PreferNew>(mesh, t, face, s, fo);
+    const auto prefer_new = decide_flip23<S, PreferNew>(mesh, t, face, s, fo);
     double sliver = 1.0;
     for (const auto& c : s.candidate) sliver = std::min(sliver, S::mean_ratio(mesh, c));
     CHECK(sliver < fo.shape_floor);  // the configuration holds the case
     CHECK_FALSE(prefer_new);
-    check_floor(decide_flip23<S, P, MinQuality>(mesh, t, face, s, fo));
-    check_floor(decide_flip23<S, P, MaxMinEdgeWeight>(mesh, t, face, s, fo));
-    check_floor(decide_flip23<S, P, MetricDelaunay>(mesh, t, face, s, fo));
-    check_floor(decide_flip23<S, P, AlwaysFlip>(mesh, t, face, s, fo));
+    check_floor(decide_flip23<S, MinQuality>(mesh, t, face, s, fo));
+    check_floor(decide_flip23<S, MaxMinEdgeWeight>(mesh, t, face, s, fo));
+    check_floor(decide_flip23<S, MetricDelaunay<P>>(mesh, t, face, s, fo));
+    check_floor(decide_flip23<S, AlwaysFlip>(mesh, t, face, s, fo));
     // With the floor at 0 the flip is taken (the floor is what refused it).
     FlipOptions no_floor = fo;
     no_floor.shape_floor = 0.0;
-    CHECK(static_cast<bool>(decide_flip23<S, P, PreferNew>(mesh, t, face, s, no_floor)));
+    CHECK(static_cast<bool>(decide_flip23<S, PreferNew>(mesh, t, face, s, no_floor)));
   }
 }
 
@@ -290,11 +288,10 @@ TEST_SUITE("invariant") {
       METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     using C = typename T::Concurrency;
     Mesh mesh = jittered_box(4, 0.3, 21);
     set_uniform_metric(mesh, 0.3);
-    const example::LaplacianMove<S, P> op;
+    const example::LaplacianMove<S> op;
     // Its plans, property-tested without applying them.
     CHECK(plans_checked<S>(mesh, op, all_vertices(mesh), 0.0) > 0);
     const double before = worst_quality<S>(mesh);
@@ -310,19 +307,17 @@ TEST_SUITE("invariant") {
 TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE_DEFINE("a Laplacian move never inverts under every policy (the tutorial's test)", T, laplacian) {
     using S = typename T::Space;
-    using P = typename T::Precision;
     const ExecutorOf<T> executor;
     std::mt19937_64 rng(7);
     Mesh mesh = jittered_box(4, 0.3, rng);
     set_uniform_metric(mesh, 0.3);
     std::vector<VertexId> vertices;
     for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) vertices.push_back(v);
-    const PlanCheck plans =
-        check_plans<S>(mesh, example::LaplacianMove<S, P>{}, std::span<const VertexId>(vertices), 0.0);
+    const PlanCheck plans = check_plans<S>(mesh, example::LaplacianMove<S>{}, std::span<const VertexId>(vertices), 0.0);
     INFO(plans.problem);
     CHECK(plans.ok());
     CHECK(plans.plans > 0);
-    run_pass<typename T::Concurrency>(mesh, example::LaplacianMove<S, P>{}, vertices);
+    run_pass<typename T::Concurrency>(mesh, example::LaplacianMove<S>{}, vertices);
     CHECK(mesh.validate().ok());
   }
   TEST_CASE_TEMPLATE_APPLY(laplacian, PolicyCombinations);

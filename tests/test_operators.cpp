@@ -40,16 +40,16 @@ FlipResult outcome(const Decision<Plan>& d) {
   return d.why() == Refusal::not_applicable ? FlipResult::not_applicable : FlipResult::rejected;
 }
 
-template <MetricSpace S, Precision P, class Criterion>
+template <MetricSpace S, class Criterion>
 FlipResult remove_edge(Mesh& mesh, VertexId a, VertexId b, FlipScratch& s, const FlipOptions& o) {
-  const auto d = decide_edge_removal<S, P, Criterion>(mesh, a, b, s, o);
+  const auto d = decide_edge_removal<S, Criterion>(mesh, a, b, s, o);
   if (d) apply_edge_removal<S, Criterion>(mesh, d.plan(), s);
   return outcome(d);
 }
 
-template <MetricSpace S, Precision P, class Criterion>
+template <MetricSpace S, class Criterion>
 FlipResult flip23(Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptions& o = {}) {
-  const auto d = decide_flip23<S, P, Criterion>(mesh, t, face, s, o);
+  const auto d = decide_flip23<S, Criterion>(mesh, t, face, s, o);
   if (d) apply_flip23<S, Criterion>(mesh, d.plan(), s);
   return outcome(d);
 }
@@ -82,7 +82,7 @@ TEST_SUITE("invariant") {
     set_uniform_metric(mesh, 0.15);
     const std::size_t start = mesh.num_vertices();
     for (int pass = 0; pass < 30 && longest<S>(mesh) > std::sqrt(2.0); ++pass) {
-      const auto st = refine_edges<S, typename T::Precision, typename T::Concurrency>(mesh);
+      const auto st = refine_edges<S, typename T::Concurrency>(mesh);
       CHECK(st.applied > 0);
       if (T::Concurrency::threads() == 1) CHECK(st.conflicts == 0);  // conflicts need two threads
       require_valid(mesh, 1.0);
@@ -98,7 +98,7 @@ TEST_SUITE("invariant") {
     set_uniform_metric(mesh, 0.08);
     const auto ridges_before = mesh.ridge_edges().size();
     for (int pass = 0; pass < 3; ++pass) {
-      refine_edges<LogEuclidean, Filtered, Serial>(mesh);
+      refine_edges<LogEuclidean, Serial>(mesh);
       require_valid(mesh, volume);
     }
     CHECK(mesh.ridge_edges().size() > ridges_before);
@@ -109,7 +109,6 @@ TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("a 2-3 flip then the 3-2 flip of its new edge restores the tets", T, METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     Mesh mesh = jittered_box(3, 0.2, 1);
     set_uniform_metric(mesh, 0.3);
     const auto before = sorted_tets(mesh);
@@ -122,13 +121,13 @@ TEST_SUITE("invariant") {
         const FaceRef nb = mesh.neighbour(t, f);
         if (!nb.valid()) continue;
         const VertexId a = mesh.tet(t)[f], b = mesh.tet(nb.tet())[nb.face()];
-        if (flip23<S, P, AlwaysFlip>(mesh, t, f, s) != FlipResult::applied) continue;
+        if (flip23<S, AlwaysFlip>(mesh, t, f, s) != FlipResult::applied) continue;
         require_valid(mesh, 1.0);
         CHECK(sorted_tets(mesh) != before);
         vertex_ball(mesh, a, s.ball);
         REQUIRE(edge_shell(mesh, a, b, s.ball, s.shell));
         CHECK(s.shell.tets.size() == 3);
-        REQUIRE(remove_edge<S, P, AlwaysFlip>(mesh, a, b, s, fo) == FlipResult::applied);
+        REQUIRE(remove_edge<S, AlwaysFlip>(mesh, a, b, s, fo) == FlipResult::applied);
         require_valid(mesh, 1.0);
         CHECK(sorted_tets(mesh) == before);
         ++done;
@@ -150,13 +149,13 @@ TEST_SUITE("invariant") {
     assign_metric(mesh, f);
     const auto areas = surface_areas(mesh);
     const double q0 = worst_quality<S>(mesh);
-    const auto st = reconnect<S, P, C, MinQuality>(mesh);
+    const auto st = reconnect<S, C, MinQuality>(mesh);
     CHECK(st.applied > 0);
     require_valid(mesh, 1.0);
     CHECK(worst_quality<S>(mesh) >= q0);
-    reconnect<S, P, C, MetricDelaunay>(mesh);
+    reconnect<S, C, MetricDelaunay<P>>(mesh);
     require_valid(mesh, 1.0);
-    reconnect<S, P, C, MaxMinEdgeWeight>(mesh);
+    reconnect<S, C, MaxMinEdgeWeight>(mesh);
     require_valid(mesh, 1.0);
     // Boundary 2-2 flips moved boundary edges inside their faces only.
     const auto after = surface_areas(mesh);
@@ -171,7 +170,7 @@ TEST_SUITE("invariant") {
     assign_metric(start, f);
     auto tried = [&](bool faces, double below) {
       Mesh mesh = start;
-      const auto st = reconnect<LogEuclidean, Filtered, Serial, MinQuality>(
+      const auto st = reconnect<LogEuclidean, Serial, MinQuality>(
           mesh, ReconnectOptions{.max_sweeps = 1, .face_flips = faces, .face_flip_below = below});
       require_valid(mesh, 1.0);
       return st.tried;
@@ -194,7 +193,7 @@ TEST_SUITE("invariant") {
       // The ring's own threshold applies: 4 vertices, ring4; more, ring5.
       const bool four = s.shell.tets.size() == 4;
       FlipOptions above{.short_edge_ring4 = four ? 1.01 * l : 0.0, .short_edge_ring5 = four ? 0.0 : 1.01 * l};
-      CHECK(remove_edge<LogEuclidean, Filtered, AlwaysFlip>(mesh, a, b, s, above) == FlipResult::not_applicable);
+      CHECK(remove_edge<LogEuclidean, AlwaysFlip>(mesh, a, b, s, above) == FlipResult::not_applicable);
       CHECK(sorted_tets(mesh) == before);
       FlipOptions other{.short_edge_ring4 = four ? 0.0 : 1.01 * l, .short_edge_ring5 = four ? 1.01 * l : 0.0};
       FlipOptions below{.short_edge_ring4 = 0.99 * l, .short_edge_ring5 = 0.99 * l};
@@ -202,7 +201,7 @@ TEST_SUITE("invariant") {
       // lower one; on copies, so the mesh stays for the next edge.
       for (const FlipOptions& o : {other, below}) {
         Mesh copy = mesh;
-        CHECK(remove_edge<LogEuclidean, Filtered, AlwaysFlip>(copy, a, b, s, o) != FlipResult::not_applicable);
+        CHECK(remove_edge<LogEuclidean, AlwaysFlip>(copy, a, b, s, o) != FlipResult::not_applicable);
       }
     });
     CHECK(checked > 10);
@@ -219,7 +218,7 @@ TEST_SUITE("invariant") {
       const auto before = sorted_tets(mesh);
       FlipOptions at;  // this ring's entry at the worst tet: skipped
       at.good_shell[std::min<std::size_t>(ring, 7)] = worst;
-      CHECK(remove_edge<LogEuclidean, Filtered, MinQuality>(mesh, a, b, s, at) == FlipResult::not_applicable);
+      CHECK(remove_edge<LogEuclidean, MinQuality>(mesh, a, b, s, at) == FlipResult::not_applicable);
       CHECK(sorted_tets(mesh) == before);
       // Another ring's entry, or this one's above the worst tet: decided
       // as without the rule (on copies, so the mesh stays for the next
@@ -228,11 +227,11 @@ TEST_SUITE("invariant") {
       other.good_shell[ring == 3 ? 4 : 3] = worst;
       above.good_shell[std::min<std::size_t>(ring, 7)] = std::nextafter(worst, 2.0);
       Mesh plain = mesh;
-      const FlipResult expected = remove_edge<LogEuclidean, Filtered, MinQuality>(plain, a, b, s, FlipOptions{});
+      const FlipResult expected = remove_edge<LogEuclidean, MinQuality>(plain, a, b, s, FlipOptions{});
       CHECK(expected != FlipResult::not_applicable);
       for (const FlipOptions& o : {other, above}) {
         Mesh copy = mesh;
-        CHECK(remove_edge<LogEuclidean, Filtered, MinQuality>(copy, a, b, s, o) == expected);
+        CHECK(remove_edge<LogEuclidean, MinQuality>(copy, a, b, s, o) == expected);
         CHECK(sorted_tets(copy) == sorted_tets(plain));
       }
     });
@@ -262,7 +261,6 @@ TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("boundary 2-2 flips swap diagonals inside one surface", T, METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     Mesh mesh = make_box({.nx = 2, .ny = 2, .nz = 2});
     set_uniform_metric(mesh, 0.5);
     const auto areas = surface_areas(mesh);
@@ -273,7 +271,7 @@ TEST_SUITE("invariant") {
       if (!mesh.vertex_alive(a) || mesh.is_ridge(a, b)) continue;
       vertex_ball(mesh, a, s.ball);
       if (!edge_shell(mesh, a, b, s.ball, s.shell) || s.shell.closed) continue;
-      if (remove_edge<S, P, AlwaysFlip>(mesh, a, b, s, fo) == FlipResult::applied) {
+      if (remove_edge<S, AlwaysFlip>(mesh, a, b, s, fo) == FlipResult::applied) {
         ++flipped;
         require_valid(mesh, 1.0);
       }
@@ -285,13 +283,12 @@ TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("edge collapse keeps corners and ridges and the volume", T, METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     using C = typename T::Concurrency;
     Mesh mesh = make_box({.nx = 4, .ny = 4, .nz = 4});
     set_uniform_metric(mesh, 0.6);  // every edge is short
     const std::size_t start = mesh.num_vertices();
     for (int pass = 0; pass < 4; ++pass) {
-      collapse_edges<S, P, C>(mesh);
+      collapse_edges<S, C>(mesh);
       require_valid(mesh, 1.0);
     }
     CHECK(mesh.num_vertices() < start / 2);
@@ -318,7 +315,6 @@ TEST_SUITE("invariant") {
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     using C = typename T::Concurrency;
     // An interior vertex moved to a quarter of the way to an interior
     // neighbour: its ball holds flat tets that merging the two lifts.
@@ -340,7 +336,7 @@ TEST_SUITE("invariant") {
     CollapseOptions o;
     o.min_length = std::numeric_limits<double>::infinity();
     o.require_gain = true;
-    const OperatorStats stats = collapse_edges<S, P, C>(mesh, o);
+    const OperatorStats stats = collapse_edges<S, C>(mesh, o);
     require_valid(mesh, 1.0);
     INFO("applied " << stats.applied << " of " << stats.tried << ", worst " << before << " -> "
                     << worst_quality<S>(mesh));
@@ -352,7 +348,6 @@ TEST_SUITE("invariant") {
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
     using S = typename T::Space;
-    using P = typename T::Precision;
     Mesh mesh = jittered_box(3, 0.35, 3);
     set_uniform_metric(mesh, 0.3);
     SmoothScratch s;
@@ -365,7 +360,7 @@ TEST_SUITE("invariant") {
       for (TetId t : ball) before = std::min(before, S::mean_ratio(mesh, mesh.tet(t)));
       const Point x = mesh.point(v);
       find_smoothing_cavity(mesh, v, s);
-      const auto d = decide_smoothing<S, P>(mesh, v, s, so);
+      const auto d = decide_smoothing<S>(mesh, v, s, so);
       if (d) apply_smoothing(mesh, v, d.plan(), s, so);
       for (TetId t : ball) after = std::min(after, S::mean_ratio(mesh, mesh.tet(t)));
       if (d) {
@@ -588,7 +583,7 @@ TEST_SUITE("unit") {
     balls(a, b);
     CollapseOptions any;
     any.shape_floor = 0.0;
-    CHECK_FALSE(decide_collapse<Anisotropic, Filtered>(mesh, a, b, s, any));
+    CHECK_FALSE(decide_collapse<Anisotropic>(mesh, a, b, s, any));
     // p1's collapse onto a: its boundary neighbours b, x, p2 and a's meet on
     // the faces a b p1 and x a p1 only.
     balls(p1, a);

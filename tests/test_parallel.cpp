@@ -532,7 +532,7 @@ TEST_SUITE("parallel") {
     auto coarsened = [] {
       Mesh mesh = make_box({.nx = 16, .ny = 16, .nz = 16});
       set_uniform_metric(mesh, 0.15);
-      collapse_edges<LogEuclidean, Filtered, Serial>(mesh);
+      collapse_edges<LogEuclidean, Serial>(mesh);
       return mesh;
     };
     Mesh one = coarsened();
@@ -658,11 +658,11 @@ TEST_SUITE("parallel") {
     for (TetId t = 0; t < mesh.tet_capacity(); ++t)
       if (mesh.tet_alive(t) && mesh.tet_point(t, 0).y() > 0.85 && mesh.tet_point(t, 0).z() > 0.85) mesh.touch_tet(t);
     const Mesh::Epoch changes = mesh.next_epoch();
-    const OperatorStats collapsed = collapse_edges<LogEuclidean, Filtered, Serial>(
+    const OperatorStats collapsed = collapse_edges<LogEuclidean, Serial>(
         mesh, {.max_new_length = 3.0, .shape_floor = 0.0, .scope = {.changed_since = local}});
     INFO("collapses tried " << collapsed.tried);
     CHECK(collapsed.applied > 0);
-    CHECK(refine_edges<LogEuclidean, Filtered, Serial>(mesh, {.scope = {.changed_since = local}}).applied > 0);
+    CHECK(refine_edges<LogEuclidean, Serial>(mesh, {.scope = {.changed_since = local}}).applied > 0);
     TetList ball;
     std::size_t moved = 0;
     for (VertexId v = 0; v < mesh.vertex_capacity() && moved < 20; ++v) {
@@ -670,7 +670,7 @@ TEST_SUITE("parallel") {
       // A small move that keeps the ball positive.
       vertex_ball(mesh, v, ball);
       const Point p = mesh.point(v) + Point(1e-3, -1e-3, 5e-4);
-      if (!ball_positive_at<Filtered>(mesh, v, ball, p)) continue;
+      if (!ball_positive_at(mesh, v, ball, p)) continue;
       mesh.point(v) = p;
       for (TetId t : ball) mesh.touch_tet(t);
       ++moved;
@@ -771,9 +771,9 @@ TEST_SUITE("parallel") {
     Mesh a = make_box({.nx = 2, .ny = 2, .nz = 2});
     set_uniform_metric(a, 0.12);
     Mesh b = a;
-    const auto s = refine_edges<LogEuclidean, Filtered, Serial>(a);
+    const auto s = refine_edges<LogEuclidean, Serial>(a);
     const SpeculativeScope small({.threads = 2, .small_list = 1000000});
-    const auto p = refine_edges<LogEuclidean, Filtered, Speculative>(b);
+    const auto p = refine_edges<LogEuclidean, Speculative>(b);
     CHECK(s.applied > 20);
     CHECK(p.applied == s.applied);
     CHECK(p.conflicts == 0);

@@ -32,7 +32,7 @@ TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("a custom pipeline (stages reordered and one replaced) reports by stage name", T,
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
-    using A = Adapter<typename T::Space, typename T::Precision, typename T::Concurrency>;
+    using A = Adapter<typename T::Space, typename T::Concurrency>;
     Mesh mesh = small_linear_box();
     const MetricFunction metric = small_linear;
     A adapter(mesh, &metric);
@@ -47,12 +47,11 @@ TEST_SUITE("invariant") {
     int custom_runs = 0;
     p.cycle = {{"split", [](A& a) { return a.split({}); }},
                {"collapse", [](A& a) { return a.collapse({}); }},
-               {"delaunay-cycle", [](A& a) { return a.template flips<MetricDelaunay>({}); }},
+               {"delaunay-cycle", [](A& a) { return a.template flips<MetricDelaunay<typename T::Precision>>({}); }},
                {"my-smooth", [&custom_runs](A& a) {
                   ++custom_runs;
                   const std::vector<VertexId> vertices = all_vertices(a.mesh());
-                  return a.run(Smoothing<typename A::Space, typename A::Precision>{{}, {.below = 1.0}},
-                               std::span<const VertexId>(vertices));
+                  return a.run(Smoothing<typename A::Space>{{}, {.below = 1.0}}, std::span<const VertexId>(vertices));
                 }}};
     const AdaptReport& r = run_pipeline(adapter, p);
     require_valid(mesh, 1.0);
@@ -66,7 +65,7 @@ TEST_SUITE("invariant") {
   }
 
   TEST_CASE("renamed stages: the cycles stop for the same reason, after the same number of cycles") {
-    using A = Adapter<LogEuclidean, Filtered, Serial>;
+    using A = Adapter<LogEuclidean, Serial>;
     const MetricFunction metric = small_linear;
     auto run = [&](bool renamed) {
       Mesh mesh = small_linear_box();
@@ -85,7 +84,7 @@ TEST_SUITE("invariant") {
   }
 
   TEST_CASE("a cycle that creates and removes no vertex is the last one; one that does goes on") {
-    using A = Adapter<LogEuclidean, Filtered, Serial>;
+    using A = Adapter<LogEuclidean, Serial>;
     const MetricFunction metric = small_linear;
     Mesh mesh = small_linear_box();
     A adapter(mesh, &metric);
@@ -104,7 +103,7 @@ TEST_SUITE("invariant") {
   }
 
   TEST_CASE("stages of one name share their epoch; another name starts from everything") {
-    using A = Adapter<LogEuclidean, Filtered, Serial>;
+    using A = Adapter<LogEuclidean, Serial>;
     const MetricFunction metric = small_linear;
     Mesh mesh = small_linear_box();
     A adapter(mesh, &metric);

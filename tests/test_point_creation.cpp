@@ -27,11 +27,11 @@ TEST_SUITE("invariant") {
     const std::size_t ridges = mesh.ridge_edges().size();
     std::size_t inserted = 0;
     for (int pass = 0; pass < 4; ++pass) {
-      const auto st = refine_centroids<S, P, C>(mesh);
+      const auto st = refine_centroids<S, C>(mesh);
       if (T::Concurrency::threads() == 1) CHECK(st.conflicts == 0);  // conflicts need two threads
       inserted += st.applied;
       require_valid(mesh, 1.0);
-      reconnect<S, P, C, MetricDelaunay>(mesh);
+      reconnect<S, C, MetricDelaunay<P>>(mesh);
       require_valid(mesh, 1.0);
     }
     CHECK(inserted > 50);
@@ -63,7 +63,6 @@ TEST_SUITE("invariant") {
   TEST_CASE_TEMPLATE("a tet split in four and a boundary face split in three conserve volume and area", T,
                      METRICA_POLICY_COMBINATIONS) {
     const ExecutorOf<T> executor;
-    using P = typename T::Precision;
     Mesh mesh = make_box({.nx = 1, .ny = 1, .nz = 1});
     set_uniform_metric(mesh, 1.0);
     const auto areas = surface_areas(mesh);
@@ -73,7 +72,7 @@ TEST_SUITE("invariant") {
     // Inside tet 0, at its centroid.
     const auto& v0 = mesh.tet(0);
     const Point c = 0.25 * (mesh.point(v0[0]) + mesh.point(v0[1]) + mesh.point(v0[2]) + mesh.point(v0[3]));
-    REQUIRE(cell_split_is_valid<P>(mesh, 0, -1, c));
+    REQUIRE(cell_split_is_valid(mesh, 0, -1, c));
     const VertexId n = split_cell(mesh, 0, -1, c, m, s);
     REQUIRE(n != kNoId);
     CHECK(mesh.vertex_class(n) == VertexClass::interior);
@@ -87,8 +86,8 @@ TEST_SUITE("invariant") {
         if (mesh.neighbour(t, f).valid()) continue;
         const auto fv = face_vertices(mesh.tet(t), f);
         const Point p = (mesh.point(fv[0]) + mesh.point(fv[1]) + mesh.point(fv[2])) / 3.0;
-        CHECK_FALSE(cell_split_is_valid<P>(mesh, t, -1, p));  // on a face: flat as an inside split
-        REQUIRE(cell_split_is_valid<P>(mesh, t, f, p));
+        CHECK_FALSE(cell_split_is_valid(mesh, t, -1, p));  // on a face: flat as an inside split
+        REQUIRE(cell_split_is_valid(mesh, t, f, p));
         const VertexId b = split_cell(mesh, t, f, p, m, s);
         REQUIRE(b != kNoId);
         CHECK(mesh.vertex_class(b) == VertexClass::surface);
@@ -108,9 +107,9 @@ TEST_SUITE("invariant") {
     set_uniform_metric(mesh, 0.08);
     const auto ids = surface_areas(mesh).size();
     for (int pass = 0; pass < 3; ++pass) {
-      refine_centroids<LogEuclidean, Filtered, Serial>(mesh);
+      refine_centroids<LogEuclidean, Serial>(mesh);
       require_valid(mesh, volume);
-      reconnect<LogEuclidean, Filtered, Serial, MetricDelaunay>(mesh);
+      reconnect<LogEuclidean, Serial, MetricDelaunay<Filtered>>(mesh);
       require_valid(mesh, volume);
     }
     CHECK(surface_areas(mesh).size() == ids);

@@ -43,9 +43,9 @@ TEST_SUITE("invariant") {
     o.max_cycles = 3;
     o.repair_rounds = 2;
     shorten_under_exact<P>(o);
-    Adapter<S, P, C, NoGeometry> a(mesh, &metric);
+    Adapter<S, C, NoGeometry> a(mesh, &metric);
     a.set_volume_budget(o.volume_budget);
-    run_pipeline(a, standard_pipeline<Adapter<S, P, C, NoGeometry>>(o));
+    run_pipeline(a, standard_pipeline<Adapter<S, C, NoGeometry>>(o));
     const auto report = mesh.validate();
     INFO(report.to_string());
     REQUIRE(report.ok());
@@ -72,7 +72,7 @@ TEST_SUITE("invariant") {
     assign_metric(mesh, metric);
     const double volume = mesh.volume();
     const BackgroundMetric background(mesh);
-    using A = Adapter<S, P, C, NoGeometry>;
+    using A = Adapter<S, C, NoGeometry>;
     A a(mesh, &background);
     Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
     p.max_cycles = 6;

@@ -13,7 +13,7 @@
 #include <cstdlib>
 
 using namespace metrica;
-using A = Adapter<LogEuclidean, Filtered, Serial>;
+using A = Adapter<LogEuclidean, Serial>;
 
 int main(int argc, char** argv) {
   Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});
@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   p.max_cycles = argc > 1 ? std::atoi(argv[1]) : 8;
   p.cycle = {{"collapse", [](A& a) { return a.collapse({}); }},
              {"split", [](A& a) { return a.split({}); }},
-             {"delaunay", [](A& a) { return a.flips<MetricDelaunay>({}); }},
+             {"delaunay", [](A& a) { return a.flips<MetricDelaunay<>>({}); }},
              {"edge-weight", [](A& a) { return a.flips<MaxMinEdgeWeight>({}); }},
              {"smooth", [](A& a) { return a.smooth({.below = 0.3}); }}};
   run_pipeline(adapter, p);

@@ -8,7 +8,7 @@
 #include <fmt/core.h>
 
 using namespace metrica;
-using A = Adapter<LogEuclidean, Filtered, Serial>;
+using A = Adapter<LogEuclidean, Serial>;
 
 int main() {
   Mesh mesh = make_box({.nx = 3, .ny = 3, .nz = 3});

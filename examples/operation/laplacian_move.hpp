@@ -1,8 +1,9 @@
 // A new operation, written once for every policy (the tutorial of
 // docs/writing-an-operator.md): Laplacian smoothing, which moves an
 // interior vertex to the mean of its neighbours when every tet of its
-// ball stays positive (Precision) and the ball's smallest score under
-// Criterion grows.
+// ball stays positive (positive_tet: the sign every operation decides a
+// new tet's orientation by) and the ball's smallest score under Criterion
+// grows.
 #pragma once
 
 #include <metrica/operators/criterion.hpp>
@@ -11,7 +12,7 @@
 
 namespace metrica::example {
 
-template <MetricSpace S, Precision P, class Criterion = MinQuality>
+template <MetricSpace S, class Criterion = MinQuality>
 struct LaplacianMove {
   using Item = VertexId;
   struct Scratch : ScratchGeneration {
@@ -46,7 +47,7 @@ struct LaplacianMove {
     const double bar = Criterion::bar(min_score_of<Criterion, S>(mesh, view(s.ball)));
     for (TetId t : s.ball) {
       const TetPoints x = tet_points_moved(mesh, mesh.tet(t), v, to);
-      if (P::orient3d(x[0], x[1], x[2], x[3]) <= 0) return Refusal::rejected;
+      if (!positive_tet(x[0], x[1], x[2], x[3])) return Refusal::rejected;
       if (Criterion::template tet_score_at<S>(mesh, mesh.tet(t), x) <= bar) return Refusal::rejected;
     }
     return Plan{to};
@@ -61,6 +62,6 @@ struct LaplacianMove {
   }
 };
 
-static_assert(Operation<LaplacianMove<LogEuclidean, Filtered>>);
+static_assert(Operation<LaplacianMove<LogEuclidean>>);
 
 }  // namespace metrica::example

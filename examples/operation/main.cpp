@@ -28,7 +28,7 @@ int run(int n, int passes) {
   std::vector<VertexId> vertices;
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) vertices.push_back(v);
   for (int pass = 0; pass < passes; ++pass) {
-    const OperatorStats s = run_pass<C>(mesh, example::LaplacianMove<Isotropic, Filtered>{}, vertices);
+    const OperatorStats s = run_pass<C>(mesh, example::LaplacianMove<Isotropic>{}, vertices);
     fmt::print("{:<11} pass {}: moved {} of {} tried ({} rejected) in {:.3f} s\n", C::name, pass, s.applied, s.tried,
                s.rejected, s.seconds);
   }

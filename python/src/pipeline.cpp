@@ -162,7 +162,7 @@ void apply_rules(PipelineRules& p, const py::dict& rules) {
 
 template <class C>
 py::tuple run_with(const PyMesh& m, const PipelineCall& call) {
-  using A = Adapter<LogEuclidean, Filtered, C>;
+  using A = Adapter<LogEuclidean, C>;
   Pipeline<A> p;
   apply_rules(p, call.rules);
   p.cycle = make_stages<A>(call.cycle);

@@ -29,7 +29,7 @@ struct BoundarySwapOptions {
   double below = 1e-4;
 };
 
-template <MetricSpace S, Precision P, Geometry G>
+template <MetricSpace S, Geometry G>
 struct BoundarySwap : EdgeShellSteps {
   using Item = EdgeSeed;
   using Scratch = FlipScratch;
@@ -68,7 +68,7 @@ struct BoundarySwap : EdgeShellSteps {
                                   geometry.facet_deviation(mesh, v0, v2, b, surface));
     if (after > options.gain * before) return Refusal::rejected;
     fan_tets(s.ring, 0, a, b, sign, s.candidate);
-    if (!all_positive<P>(mesh, view(s.candidate))) return Refusal::rejected;
+    if (!all_positive(mesh, view(s.candidate))) return Refusal::rejected;
     if (!Acceptance<S, ShapeOnly>(options.shape_floor).keeps_shape(mesh, view(shell.tets), view(s.candidate)))
       return Refusal::rejected;
     // The new boundary edge must not exist already.
@@ -102,12 +102,12 @@ inline std::vector<EdgeSeed> boundary_edge_seeds(const Mesh& mesh) {
 }
 
 // The pass: every boundary edge whose facets deviate from the model.
-template <MetricSpace S, Precision P, Concurrency C, Geometry G>
+template <MetricSpace S, Concurrency C, Geometry G>
 OperatorStats swap_toward_model(Mesh& mesh, const BoundarySwapOptions& o, const G& geometry) {
   Stopwatch clock;
   OperatorStats stats;
   const std::vector<EdgeSeed> edges = boundary_edge_seeds(mesh);
-  stats = run_pass<C>(mesh, BoundarySwap<S, P, G>{{}, o, geometry}, edges);
+  stats = run_pass<C>(mesh, BoundarySwap<S, G>{{}, o, geometry}, edges);
   stats.seconds = clock.seconds();
   return stats;
 }

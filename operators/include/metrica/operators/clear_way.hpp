@@ -30,7 +30,7 @@ inline bool removable_inner_vertex(const Mesh& mesh, VertexId w) {
 // next split pass splits the edge on the model. Serial (the edges are
 // few: those their split pass left); `tried` counts the blocked edges,
 // `applied` those with a vertex removed, `candidates` the vertices weighed.
-template <MetricSpace S, Precision P, Concurrency C, Geometry G>
+template <MetricSpace S, Concurrency C, Geometry G>
 OperatorStats clear_way_for_splits(Mesh& mesh, const RefineOptions& o, const G& geometry) {
   Stopwatch clock;
   OperatorStats stats;
@@ -56,7 +56,7 @@ OperatorStats clear_way_for_splits(Mesh& mesh, const RefineOptions& o, const G& 
         bool blocked = false;
         in_the_way.clear();
         all_split_children(mesh, shell, c.a, c.b, q, [&](TetId s, const TetVertices&, const TetPoints& x) {
-          if (positive_tet<P>(x[0], x[1], x[2], x[3])) return true;
+          if (positive_tet(x[0], x[1], x[2], x[3])) return true;
           blocked = true;
           for (VertexId w : mesh.tet(s))
             if (w != c.a && w != c.b && removable_inner_vertex(mesh, w) &&
@@ -70,7 +70,7 @@ OperatorStats clear_way_for_splits(Mesh& mesh, const RefineOptions& o, const G& 
         for (VertexId w : in_the_way) {
           ++stats.candidates;
           if (mesh.vertex_alive(w) &&
-              collapse_onto_any_neighbour<S, P>(mesh, w, cs, geometry, any_neighbour, kClearingCollapse).done)
+              collapse_onto_any_neighbour<S>(mesh, w, cs, geometry, any_neighbour, kClearingCollapse).done)
             cleared = true;
         }
         ++(cleared ? stats.applied : stats.rejected);

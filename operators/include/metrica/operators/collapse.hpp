@@ -175,7 +175,7 @@ struct CollapsePlan {
 // shorter edges than either end). s.ball, s.ball_b, s.neighbours and
 // s.neighbours_b hold the two balls and the vertices joined to each end
 // (the caller holds them).
-template <MetricSpace S, Precision P, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
                                        const CollapseOptions& o, const Point* moved = nullptr,
                                        const VertexMetric* moved_metric = nullptr, const G& geometry = {}) {
@@ -225,7 +225,7 @@ Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b,
   for (const auto* list : {&s.new_tets, &s.dragged})
     for (const auto& t : *list) {
       const TetPoints x = tet_points_moved(mesh, t, b, pb);
-      if (!positive_tet<P>(x[0], x[1], x[2], x[3])) return Refusal::rejected;
+      if (!positive_tet(x[0], x[1], x[2], x[3])) return Refusal::rejected;
     }
   // New edges: b to a's neighbours; when b moves, all of b's edges too.
   const UnitBand allowed{0.0, o.max_new_length};
@@ -314,7 +314,7 @@ inline void apply_collapse(Mesh& mesh, const CollapsePlan& plan, CollapseScratch
 // end of lower class (interior before surface before ridge), then the
 // other, then (two interior ends) to merge them at the edge's metric
 // midpoint.
-template <MetricSpace S, Precision P, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 struct Collapse {
   using Item = EdgeCandidate;
   using Scratch = CollapseScratch;
@@ -361,7 +361,7 @@ struct Collapse {
       }
       Decision<Plan> d = Refusal::not_applicable;
       if (attempt < 2) {
-        d = decide_collapse<S, P, Criterion>(mesh, from, to, s, options, nullptr, nullptr, geometry);
+        d = decide_collapse<S, Criterion>(mesh, from, to, s, options, nullptr, nullptr, geometry);
       } else {
         if (mesh.vertex_class(from) != VertexClass::interior || mesh.vertex_class(to) != VertexClass::interior) break;
         const auto& ma = S::vertex_metric(mesh, from);
@@ -372,7 +372,7 @@ struct Collapse {
         const std::array<VertexId, 2> ends{from, to};
         const std::array<double, 2> w{1.0 - t, t};
         const VertexMetric m = new_vertex_metric<S>(mesh, options.scope.metric, ends, w, p);
-        d = decide_collapse<S, P, Criterion>(mesh, from, to, s, options, &p, &m, geometry);
+        d = decide_collapse<S, Criterion>(mesh, from, to, s, options, &p, &m, geometry);
       }
       if (d) return d;
       rejected = rejected || d.why() == Refusal::rejected;
@@ -390,12 +390,12 @@ struct Collapse {
 };
 
 // The collapse pass: edges shorter than min_length, shortest first.
-template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   const auto todo =
       edges_beyond<S, C>(mesh, o.min_length, EdgeOrder::shortest_first, o.scope.changed_since, o.scope.known);
-  OperatorStats stats = run_pass<C>(mesh, Collapse<S, P, Criterion, G>{o, geometry}, todo);
+  OperatorStats stats = run_pass<C>(mesh, Collapse<S, Criterion, G>{o, geometry}, todo);
   stats.seconds = clock.seconds();
   return stats;
 }
@@ -414,7 +414,7 @@ struct AnyCollapseRule {
   double shape_floor = 0.0;
   bool best = false;
 };
-template <MetricSpace S, Precision P, Geometry G, class Onto>
+template <MetricSpace S, Geometry G, class Onto>
 AnyCollapse collapse_onto_any_neighbour(Mesh& mesh, VertexId v, CollapseScratch& s, const G& geometry, Onto&& onto,
                                         AnyCollapseRule rule = {}) {
   CollapseOptions any;
@@ -427,7 +427,7 @@ AnyCollapse collapse_onto_any_neighbour(Mesh& mesh, VertexId v, CollapseScratch&
     vertex_neighbours(mesh, s.ball, v, s.neighbours);
     vertex_ball(mesh, u, s.ball_b);
     vertex_neighbours(mesh, s.ball_b, u, s.neighbours_b);
-    return decide_collapse<S, P, ShapeOnly>(mesh, v, u, s, any, nullptr, nullptr, geometry);
+    return decide_collapse<S, ShapeOnly>(mesh, v, u, s, any, nullptr, nullptr, geometry);
   };
   vertex_ball(mesh, v, s.ball);
   vertex_neighbours(mesh, s.ball, v, s.neighbours);

@@ -28,12 +28,15 @@
 //
 // A flip may also take a configuration criterion that is no score,
 //
-//   template <MetricSpace S, Precision P>
+//   template <MetricSpace S>
 //   static bool prefers(const Mesh&, old tets, new tets);
 //
-//   MetricDelaunay   the old configuration violates the anisotropic
+//   MetricDelaunay<P>  the old configuration violates the anisotropic
 //                    empty-sphere criterion of eqs. (3)-(4) across one of its
-//                    inner faces and the new one across none.
+//                    inner faces and the new one across none, the insphere
+//                    signs decided by the Precision P (the only sign in
+//                    the adaptation that is not a tet's orientation, which
+//                    positive_tet decides the same under every precision).
 //
 // An operation applies its criterion together with a shape floor through
 // one object, Acceptance (acceptance.hpp).
@@ -66,7 +69,7 @@ concept ScoredCriterion = requires(const Mesh& mesh, const TetVertices& tet, con
 // A criterion that compares whole configurations (flips only).
 template <class C>
 concept ConfigurationCriterion = requires(const Mesh& mesh, std::span<const TetVertices> tets) {
-  { C::template prefers<Isotropic, Fast>(mesh, tets, tets) } -> std::same_as<bool>;
+  { C::template prefers<Isotropic>(mesh, tets, tets) } -> std::same_as<bool>;
 };
 
 template <class C>
@@ -165,11 +168,13 @@ static_assert(ScoredCriterion<MinQuality> && ScoredCriterion<MaxMinEdgeWeight> &
 static_assert(CriterionTraits<MinQuality>::measures_shape && CriterionTraits<MinQuality>::score_is_mean_ratio_cubed &&
               CriterionTraits<ShapeOnly>::indifferent && !CriterionTraits<MaxMinEdgeWeight>::measures_shape);
 
+template <Precision P = Precisions::at<0>>
 struct MetricDelaunay {
+  using Predicates = P;
   static constexpr std::string_view name = "metric-delaunay";
   // True when some pair of tets of `tets` sharing a face has the apex of
   // one inside the other's circumsphere in the metric (eq. (4)).
-  template <MetricSpace S, Precision P>
+  template <MetricSpace S>
   static bool violated(const Mesh& mesh, std::span<const TetVertices> tets) {
     for (std::size_t i = 0; i < tets.size(); ++i)
       for (std::size_t j = 0; j < tets.size(); ++j) {
@@ -193,16 +198,16 @@ struct MetricDelaunay {
       }
     return false;
   }
-  template <MetricSpace S, Precision P>
+  template <MetricSpace S>
   static bool prefers(const Mesh& mesh, std::span<const TetVertices> old_tets, std::span<const TetVertices> new_tets) {
-    return violated<S, P>(mesh, old_tets) && !violated<S, P>(mesh, new_tets);
+    return violated<S>(mesh, old_tets) && !violated<S>(mesh, new_tets);
   }
 };
 
 // The criteria a flip pass takes, by the names a user gives them (the
 // Python pipeline's `criterion`).
-using FlipCriteria = PolicyList<MinQuality, MetricDelaunay, MaxMinEdgeWeight>;
+using FlipCriteria = PolicyList<MinQuality, MetricDelaunay<>, MaxMinEdgeWeight>;
 
-static_assert(Criterion<MetricDelaunay> && Criterion<MinQuality>);
+static_assert(Criterion<MetricDelaunay<>> && Criterion<MinQuality>);
 
 }  // namespace metrica

@@ -89,10 +89,9 @@ inline void fan_tets(const VertexList& ring, std::size_t k, VertexId a, VertexId
   }
 }
 
-template <Precision P>
-bool all_positive(const Mesh& mesh, std::span<const TetVertices> tets) {
+inline bool all_positive(const Mesh& mesh, std::span<const TetVertices> tets) {
   for (const auto& t : tets)
-    if (!positive_tet<P>(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3]))) return false;
+    if (!positive_tet(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3]))) return false;
   return true;
 }
 
@@ -211,7 +210,7 @@ inline bool closing_edge_is_new(const Mesh& mesh, FlipScratch& s) {
 // of the ring (the new tets joining a ring triangulation to a and b) is
 // weighed in turn: positive (P), on the boundary fitting the Geometry,
 // better than the best so far under the criterion, above the shape floor.
-template <MetricSpace S, Precision P, class Criterion, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion, Geometry G = NoGeometry>
 Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, VertexId b, FlipScratch& s,
                                               const FlipOptions& o, const G& geometry = {}) {
   const Shell& shell = s.shell;
@@ -254,7 +253,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
     for (std::size_t c = 0; c < s.candidate.size() && positive; ++c) {
       const auto& t = s.candidate[c];
       auto orient = [&] {
-        return positive_tet<P>(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])) ? 1 : -1;
+        return positive_tet(mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])) ? 1 : -1;
       };
       if (memo) {
         auto& o8 = s.memo_orientation[slot(c)];
@@ -282,7 +281,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
       best_score = q;
     } else {
       const NewTets& reference = found ? s.best : s.old_tets;
-      if (!Criterion::template prefers<S, P>(mesh, view(reference), view(s.candidate))) continue;
+      if (!Criterion::template prefers<S>(mesh, view(reference), view(s.candidate))) continue;
     }
     if (!accept.keeps_shape(mesh, view(shell.tets), view(s.candidate))) continue;
     s.best = s.candidate;
@@ -311,7 +310,7 @@ struct Flip23Plan {
   int face = -1;
 };
 
-template <MetricSpace S, Precision P, class Criterion>
+template <MetricSpace S, class Criterion>
 Decision<Flip23Plan> decide_flip23(const Mesh& mesh, TetId t, int face, FlipScratch& s, const FlipOptions& o) {
   const FaceRef nb = mesh.neighbour(t, face);
   if (!nb.valid() || mesh.tet_ref(nb.tet()) != mesh.tet_ref(t)) return Refusal::not_applicable;
@@ -326,7 +325,7 @@ Decision<Flip23Plan> decide_flip23(const Mesh& mesh, TetId t, int face, FlipScra
     const VertexId p = f[i], q = f[(i + 1) % 3];
     s.candidate.emplace_back(TetVertices{p, q, a, b});
   }
-  if (!all_positive<P>(mesh, view(s.candidate))) return Refusal::rejected;
+  if (!all_positive(mesh, view(s.candidate))) return Refusal::rejected;
   const std::array<TetId, 2> old{t, nb.tet()};
   const Acceptance<S, Criterion> accept(o.shape_floor);
   s.best_scores.clear();
@@ -340,7 +339,7 @@ Decision<Flip23Plan> decide_flip23(const Mesh& mesh, TetId t, int face, FlipScra
     s.old_tets.clear();
     s.old_tets.emplace_back(mesh.tet(t));
     s.old_tets.emplace_back(mesh.tet(nb.tet()));
-    if (!Criterion::template prefers<S, P>(mesh, view(s.old_tets), view(s.candidate))) return Refusal::rejected;
+    if (!Criterion::template prefers<S>(mesh, view(s.old_tets), view(s.candidate))) return Refusal::rejected;
   }
   if (!accept.keeps_shape(mesh, old, view(s.candidate))) return Refusal::rejected;
   if (!plan_cavity(mesh, old, view(s.candidate), s.plan)) return Refusal::rejected;
@@ -388,7 +387,7 @@ struct EdgeShellSteps {
 // The edge removal as an operation: items are edges with a tet that held
 // them when the work list was made (the shell walk starts there when the
 // tet still holds the edge, else from a's ball).
-template <MetricSpace S, Precision P, class Criterion, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion, Geometry G = NoGeometry>
 struct EdgeRemoval {
   using Item = EdgeSeed;
   using Scratch = FlipScratch;
@@ -417,7 +416,7 @@ struct EdgeRemoval {
   }
   Decision<Plan> decide(const Mesh& mesh, const Item& e, Scratch& s) const {
     const auto [a, b] = e.ends();
-    return decide_edge_removal<S, P, Criterion>(mesh, a, b, s, options, geometry);
+    return decide_edge_removal<S, Criterion>(mesh, a, b, s, options, geometry);
   }
   void apply(Mesh& mesh, const Item&, const Plan& plan, Scratch& s) const {
     apply_edge_removal<S, Criterion>(mesh, plan, s);
@@ -435,7 +434,7 @@ struct FaceFlipScratch : FlipScratch {
 // in order (those whose tets are both at or above face_flip_below are
 // skipped) until one flips. It flips inner faces only: the Geometry is
 // held like every operation's, and never asked.
-template <MetricSpace S, Precision P, class Criterion, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion, Geometry G = NoGeometry>
 struct FaceFlip {
   using Item = TetId;
   using Scratch = FaceFlipScratch;
@@ -470,7 +469,7 @@ struct FaceFlip {
       if (!nb.valid()) continue;
       if (!t_below && cached_mean_ratio<S>(mesh, nb.tet()) >= face_flip_below) continue;
       ++tries;
-      const auto d = decide_flip23<S, P, Criterion>(mesh, t, f, s, options);
+      const auto d = decide_flip23<S, Criterion>(mesh, t, f, s, options);
       if (d) return {d.plan(), tries};
       rejected = rejected || d.why() == Refusal::rejected;
     }

@@ -60,7 +60,7 @@ struct InterfaceFlipPlan {
   SurfaceId surface = 0;
 };
 
-template <MetricSpace S, Precision P, Geometry G>
+template <MetricSpace S, Geometry G>
 struct InterfaceFlip : EdgeShellSteps {
   using Item = EdgeSeed;
   using Scratch = InterfaceFlipScratch;
@@ -113,7 +113,7 @@ struct InterfaceFlip : EdgeShellSteps {
       std::size_t first = s.best.size();
       for (std::size_t k = 0; k < fans; ++k) {
         fan_tets(s.polygon, k, a, b, sign, s.candidate);
-        if (!all_positive<P>(mesh, view(s.candidate))) continue;
+        if (!all_positive(mesh, view(s.candidate))) continue;
         double q = 1.0;
         for (const auto& t : s.candidate) q = std::min(q, S::mean_ratio(mesh, t));
         if (q <= side_best) continue;
@@ -180,12 +180,12 @@ inline std::vector<EdgeSeed> interface_edge_seeds(const Mesh& mesh) {
 }
 
 // The pass: every edge of an internal surface whose flip lifts its shell.
-template <MetricSpace S, Precision P, Concurrency C, Geometry G>
+template <MetricSpace S, Concurrency C, Geometry G>
 OperatorStats flip_interfaces(Mesh& mesh, const InterfaceFlipOptions& o, const G& geometry) {
   Stopwatch clock;
   OperatorStats stats;
   const std::vector<EdgeSeed> edges = interface_edge_seeds(mesh);
-  if (!edges.empty()) stats = run_pass<C>(mesh, InterfaceFlip<S, P, G>{{}, o, geometry}, edges);
+  if (!edges.empty()) stats = run_pass<C>(mesh, InterfaceFlip<S, G>{{}, o, geometry}, edges);
   stats.seconds = clock.seconds();
   return stats;
 }

@@ -27,7 +27,7 @@ struct ProjectionOptions {
   PassScope scope{};
 };
 
-template <MetricSpace S, Precision P, Geometry G>
+template <MetricSpace S, Geometry G>
 struct Projection : VertexMoveSteps {
   static constexpr std::string_view name = "project";
   ProjectionOptions options;
@@ -45,7 +45,7 @@ struct Projection : VertexMoveSteps {
       return true;
     };
     const auto q = backtrack_toward(
-        x, target, [&](const Point& p) { return ball_positive_at<P>(mesh, v, s.ball, p) && keeps_shape_at(p); });
+        x, target, [&](const Point& p) { return ball_positive_at(mesh, v, s.ball, p) && keeps_shape_at(p); });
     if (!q) return Refusal::rejected;
     return Plan{*q, GeoParam{}};  // the vertex keeps its parameters
   }
@@ -66,12 +66,12 @@ std::vector<VertexId> vertices_off_model(const Mesh& mesh, const G& geometry, do
 }
 
 // The projection pass: every boundary vertex off the model.
-template <MetricSpace S, Precision P, Concurrency C, Geometry G>
+template <MetricSpace S, Concurrency C, Geometry G>
 OperatorStats project_to_model(Mesh& mesh, const ProjectionOptions& o, const G& geometry) {
   Stopwatch clock;
   const auto todo = vertices_off_model<C>(mesh, geometry, o.tolerance);
   OperatorStats stats;
-  if (!todo.empty()) stats = run_pass<C>(mesh, Projection<S, P, G>{{}, o, geometry}, todo);
+  if (!todo.empty()) stats = run_pass<C>(mesh, Projection<S, G>{{}, o, geometry}, todo);
   stats.seconds = clock.seconds();
   return stats;
 }
@@ -81,7 +81,7 @@ OperatorStats project_to_model(Mesh& mesh, const ProjectionOptions& o, const G& 
 // a boundary edge, at any length and shape, when the Geometry's rules
 // and a positive ball allow it (serial: few vertices, outside a pass). Returns the stats; the vertices that stay are
 // the caller's to report.
-template <MetricSpace S, Precision P, Geometry G>
+template <MetricSpace S, Geometry G>
 OperatorStats collapse_off_model(Mesh& mesh, std::span<const VertexId> off, const G& geometry) {
   Stopwatch clock;
   OperatorStats stats;
@@ -91,7 +91,7 @@ OperatorStats collapse_off_model(Mesh& mesh, std::span<const VertexId> off, cons
   for (VertexId v : off) {
     if (!mesh.vertex_alive(v)) continue;
     ++stats.tried;
-    const AnyCollapse c = collapse_onto_any_neighbour<S, P>(mesh, v, s, geometry, on_boundary);
+    const AnyCollapse c = collapse_onto_any_neighbour<S>(mesh, v, s, geometry, on_boundary);
     stats.candidates += c.weighed;
     ++(c.done ? stats.applied : stats.rejected);
   }

@@ -37,12 +37,12 @@ struct ReconnectOptions {
   double face_flip_below = 1.0;
 };
 
-template <MetricSpace S, Precision P, Concurrency C, class Criterion, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, class Criterion, Geometry G = NoGeometry>
 OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   OperatorStats stats;
-  const EdgeRemoval<S, P, Criterion, G> removal{o.flips, geometry};
-  const FaceFlip<S, P, Criterion, G> face_flip{o.flips, o.face_flip_below, geometry};
+  const EdgeRemoval<S, Criterion, G> removal{o.flips, geometry};
+  const FaceFlip<S, Criterion, G> face_flip{o.flips, o.face_flip_below, geometry};
   std::vector<TetId> seeds;
   MeshArray<EdgeSeed> edges;
   Mesh::Epoch since = o.scope.changed_since;

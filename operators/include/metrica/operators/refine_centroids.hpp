@@ -157,7 +157,7 @@ struct CentroidPlan {
 
 // The insertion of a candidate of the centroid rule, as an operation: its
 // tet must be as it was when the candidate was made (Mesh epochs).
-template <MetricSpace S, Precision P, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 struct CentroidInsertion {
   using Item = PointCandidate;
   using Scratch = CentroidScratch;
@@ -188,8 +188,8 @@ struct CentroidInsertion {
   Decision<Plan> decide(const Mesh& mesh, const Item& c, Scratch& x) const {
     const TetVertices& v = x.seen;
     if (c.a != kNoId) {
-      const auto d = decide_edge_point<S, P>(mesh, x.shell, c.a, c.b, c.t, c.p, options, acceptance(), geometry,
-                                             [](const Point&) { return false; });
+      const auto d = decide_edge_point<S>(mesh, x.shell, c.a, c.b, c.t, c.p, options, acceptance(), geometry,
+                                          [](const Point&) { return false; });
       if (!d) return d.why();
       return Plan{d.plan().metric, d.plan().p, d.plan().geo};
     }
@@ -214,8 +214,8 @@ struct CentroidInsertion {
     const GeoParam param =
         c.face >= 0 ? geometry.boundary_vertex(mesh, parents, weights, mesh.surface_id(c.tet, c.face)) : GeoParam{};
     const BoundaryPoint at = place_boundary_vertex(
-        geometry, param, c.p, [&](const Point& q) { return cell_split_is_valid<P>(mesh, c.tet, c.face, q); });
-    if (!cell_split_is_valid<P>(mesh, c.tet, c.face, at.p)) return Refusal::rejected;
+        geometry, param, c.p, [&](const Point& q) { return cell_split_is_valid(mesh, c.tet, c.face, q); });
+    if (!cell_split_is_valid(mesh, c.tet, c.face, at.p)) return Refusal::rejected;
     if (!cell_split_accepted(mesh, c.tet, c.face, at.p, acceptance())) return Refusal::rejected;
     return Plan{new_vertex_metric<S>(mesh, options.scope.metric, parents, weights, at.p), at.p, at.geo};
   }
@@ -232,13 +232,13 @@ struct CentroidInsertion {
   }
 };
 
-template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 OperatorStats refine_centroids(Mesh& mesh, const RefineOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   std::vector<std::uint32_t> candidate_of_tet;
   const Mesh::Epoch start = mesh.next_epoch();
   const auto candidates = centroid_candidates<S>(mesh, o, candidate_of_tet);
-  OperatorStats stats = run_pass<C>(mesh, CentroidInsertion<S, P, Criterion, G>{o, start, geometry}, candidates);
+  OperatorStats stats = run_pass<C>(mesh, CentroidInsertion<S, Criterion, G>{o, start, geometry}, candidates);
   stats.seconds = clock.seconds();
   return stats;
 }

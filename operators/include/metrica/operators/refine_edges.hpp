@@ -53,7 +53,7 @@ struct EdgeSplitPlan {
 // `accept`; its metric from `options.scope.metric` or interpolated
 // with the weights (1 - t, t). The decision of an edge split and of a
 // centroid candidate moved onto a ridge.
-template <MetricSpace S, Precision P, class Criterion, Geometry G, class TooClose>
+template <MetricSpace S, class Criterion, Geometry G, class TooClose>
 Decision<EdgeSplitPlan> decide_edge_point(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, double t,
                                           const Point& straight, const RefineOptions& options,
                                           const Acceptance<S, Criterion>& accept, const G& geometry,
@@ -61,15 +61,14 @@ Decision<EdgeSplitPlan> decide_edge_point(const Mesh& mesh, const Shell& shell, 
   // Required edges and, while the surface is kept, surface edges stay whole.
   if (mesh.is_required_edge(a, b)) return Refusal::not_applicable;
   if (mesh.keeps_surface() && (!shell.closed || edge_surface(mesh, shell, a, b) != 0)) return Refusal::not_applicable;
-  const BoundaryPoint at =
-      place_boundary_vertex(geometry, edge_vertex_param(geometry, mesh, shell, a, b, t), straight,
-                            [&](const Point& q) { return split_is_valid<P>(mesh, shell, a, b, q); });
+  const BoundaryPoint at = place_boundary_vertex(geometry, edge_vertex_param(geometry, mesh, shell, a, b, t), straight,
+                                                 [&](const Point& q) { return split_is_valid(mesh, shell, a, b, q); });
   if (too_close(at.p)) return Refusal::rejected;
   // On an internal surface (a closed shell) the vertex goes on the model or
   // the split waits: no later pass may move it there (both sides hold it),
   // nor collapse it away as the last resort does on the outer boundary.
   if (shell.closed && at.geo.valid() && at.p != geometry.point(at.geo)) return Refusal::rejected;
-  if (!split_is_valid<P>(mesh, shell, a, b, at.p)) return Refusal::rejected;
+  if (!split_is_valid(mesh, shell, a, b, at.p)) return Refusal::rejected;
   if (!split_accepted(mesh, shell, a, b, at.p, accept)) return Refusal::rejected;
   const std::array<VertexId, 2> ends{a, b};
   const std::array<double, 2> w{1.0 - t, t};
@@ -86,7 +85,7 @@ struct EdgeSplitScratch : ScratchGeneration {
 // criterion (ShapeOnly: none) and shape floor (0: none) may refuse splits
 // that make poor tets. On a boundary edge the Geometry places the new
 // vertex (boundary_placement.hpp).
-template <MetricSpace S, Precision P, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 struct EdgeSplit {
   using Item = EdgeCandidate;
   using Scratch = EdgeSplitScratch;
@@ -129,8 +128,8 @@ struct EdgeSplit {
       }
       return false;
     };
-    return decide_edge_point<S, P>(mesh, x.shell, c.a, c.b, t, Point(mesh.point(c.a) + t * e), options, acceptance(),
-                                   geometry, too_close);
+    return decide_edge_point<S>(mesh, x.shell, c.a, c.b, t, Point(mesh.point(c.a) + t * e), options, acceptance(),
+                                geometry, too_close);
   }
   void apply(Mesh& mesh, const Item& c, const Plan& plan, Scratch& x) const {
     const VertexId n = split_edge(mesh, x.shell, c.a, c.b, plan.p, plan.metric);
@@ -141,12 +140,12 @@ struct EdgeSplit {
   }
 };
 
-template <MetricSpace S, Precision P, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
 OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   const auto todo =
       edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first, o.scope.changed_since, o.scope.known);
-  const EdgeSplit<S, P, Criterion, G> split{o, mesh.next_epoch(), geometry};
+  const EdgeSplit<S, Criterion, G> split{o, mesh.next_epoch(), geometry};
   OperatorStats stats = run_pass<C>(mesh, split, todo);
   stats.seconds = clock.seconds();
   return stats;

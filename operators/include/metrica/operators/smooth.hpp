@@ -151,11 +151,10 @@ inline void ball_moved_to(const Mesh& mesh, VertexId v, const TetList& ball, con
 }
 
 // Is every tet of v's ball positively oriented (Precision) with v at p?
-template <Precision P>
-bool ball_positive_at(const Mesh& mesh, VertexId v, const TetList& ball, const Point& p) {
+inline bool ball_positive_at(const Mesh& mesh, VertexId v, const TetList& ball, const Point& p) {
   for (TetId t : ball) {
     const TetPoints pts = tet_points_moved(mesh, mesh.tet(t), v, p);
-    if (!positive_tet<P>(pts[0], pts[1], pts[2], pts[3])) return false;
+    if (!positive_tet(pts[0], pts[1], pts[2], pts[3])) return false;
   }
   return true;
 }
@@ -389,7 +388,7 @@ Decision<SmoothPlan> best_trial_by_criterion(const Mesh& mesh, VertexId v, const
 // conformity on polar-1). Under a criterion whose score is the mean ratio
 // cubed (MinQuality) trials are scored from the ball terms; under any
 // other, from its scores at the trial position, with the shape floor.
-template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = MinQuality, Geometry G = NoGeometry>
 Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o,
                                       const G& geometry = {}) {
   const VertexClass cls = mesh.vertex_class(v);
@@ -419,9 +418,7 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     return n;
   };
   const int bad_old = out_of_range(x);
-  auto admissible = [&](const Point& p) {
-    return out_of_range(p) <= bad_old && ball_positive_at<P>(mesh, v, s.ball, p);
-  };
+  auto admissible = [&](const Point& p) { return out_of_range(p) <= bad_old && ball_positive_at(mesh, v, s.ball, p); };
   Decision<SmoothPlan> d = Refusal::rejected;
   if constexpr (CriterionTraits<Criterion>::score_is_mean_ratio_cubed)
     d = detail::best_trial_by_mean_ratio(mesh, v, s, secondary, admissible);
@@ -549,20 +546,20 @@ struct VertexMoveSteps {
 };
 
 // Vertex smoothing as an operation.
-template <MetricSpace S, Precision P, class Criterion = MinQuality, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = MinQuality, Geometry G = NoGeometry>
 struct Smoothing : VertexMoveSteps {
   static constexpr std::string_view name = "smooth";
   SmoothOptions options;
   G geometry{};
 
   Decision<Plan> decide(const Mesh& mesh, VertexId v, Scratch& s) const {
-    return decide_smoothing<S, P, Criterion>(mesh, v, s, options, geometry);
+    return decide_smoothing<S, Criterion>(mesh, v, s, options, geometry);
   }
   void apply(Mesh& mesh, VertexId v, const Plan& plan, Scratch& s) const { apply_smoothing(mesh, v, plan, s, options); }
 };
 
 // The smoothing pass over the vertices of tets below o.below.
-template <MetricSpace S, Precision P, Concurrency C, class Criterion = MinQuality, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, class Criterion = MinQuality, Geometry G = NoGeometry>
 OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   const std::vector<std::uint8_t> changed = changed_vertices<C>(mesh, o.scope.changed_since);
@@ -584,7 +581,7 @@ OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}, const G& 
       C::template collect<VertexId>(marked.size(), [&](std::size_t v, std::vector<VertexId>& part) {
         if (marked[v] != 0) part.emplace_back(static_cast<VertexId>(v));
       });
-  OperatorStats stats = run_pass<C>(mesh, Smoothing<S, P, Criterion, G>{{}, o, geometry}, todo);
+  OperatorStats stats = run_pass<C>(mesh, Smoothing<S, Criterion, G>{{}, o, geometry}, todo);
   stats.seconds = clock.seconds();
   return stats;
 }

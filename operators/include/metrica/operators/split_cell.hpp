@@ -52,10 +52,9 @@ bool all_cell_children(const Mesh& mesh, TetId t, int face, const Point& p, F&& 
 
 // Decide: the children of t with p inside (face < 0) or on boundary face
 // `face` are all positively oriented.
-template <Precision P>
-bool cell_split_is_valid(const Mesh& mesh, TetId t, int face, const Point& p) {
-  return all_cell_children(
-      mesh, t, face, p, [](const TetVertices&, const TetPoints& x) { return positive_tet<P>(x[0], x[1], x[2], x[3]); });
+inline bool cell_split_is_valid(const Mesh& mesh, TetId t, int face, const Point& p) {
+  return all_cell_children(mesh, t, face, p,
+                           [](const TetVertices&, const TetPoints& x) { return positive_tet(x[0], x[1], x[2], x[3]); });
 }
 
 inline void preview_cell_split(const Mesh& mesh, TetId t, int face, const Point& p, PlannedTets& out) {

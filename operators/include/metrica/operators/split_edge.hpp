@@ -38,10 +38,9 @@ bool all_split_children(const Mesh& mesh, const Shell& shell, VertexId a, Vertex
 
 // Decide: both children of every shell tet are positively oriented with m
 // at p. Pure: reads the mesh, writes nothing.
-template <Precision P>
-bool split_is_valid(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p) {
+inline bool split_is_valid(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p) {
   return all_split_children(mesh, shell, a, b, p, [](TetId, const TetVertices&, const TetPoints& x) {
-    return positive_tet<P>(x[0], x[1], x[2], x[3]);
+    return positive_tet(x[0], x[1], x[2], x[3]);
   });
 }
 

@@ -189,8 +189,7 @@ struct Pipeline : PipelineRules {
 // report; quality-phase rounds follow the cycles.
 enum class RoundKind { cycle, quality_pass, repair, closing };
 template <class A>
-const CycleReport& run_round(A& a, const Stages<A>& stages, RoundKind kind, int number,
-                             const Stages<A>& first = {}) {
+const CycleReport& run_round(A& a, const Stages<A>& stages, RoundKind kind, int number, const Stages<A>& first = {}) {
   Stopwatch clock;
   CycleReport c;
   c.cycle = number;
@@ -249,7 +248,7 @@ const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
 // On a model every cycle, pass and round also projects onto it the
 // vertices whose placement had to backtrack, and cycles and passes flip
 // boundary edges whose facets then follow the model better (swap).
-template <class A>
+template <class A, Precision P = Precisions::at<0>>
 Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   using S = typename A::Space;
   using C = typename A::Concurrency;
@@ -284,7 +283,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
     p.cycle.push_back({"centroids", [=](A& a) { return a.insert_centroids(refine); }});
     // A centroid leaves its tet's long edge in place; metric Delaunay flips
     // remove it (the seed pairs the rule with them).
-    p.cycle.push_back({"delaunay", [=](A& a) { return a.template flips<MetricDelaunay>(delaunay); }});
+    p.cycle.push_back({"delaunay", [=](A& a) { return a.template flips<MetricDelaunay<P>>(delaunay); }});
   }
   p.cycle.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(flips); }});
   // On a model: the vertices a split left off it (their tets would have
@@ -365,7 +364,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
                                for (TetId t : ball) a.mesh().touch_tet(t);
                              }
                              if (round == rounds && !off.empty())  // the last resort
-                               stats += collapse_off_model<S, typename A::Precision>(a.mesh(), off, a.geometry());
+                               stats += collapse_off_model<S>(a.mesh(), off, a.geometry());
                              // The flips and smoothing of the quality phase, going on from their epochs.
                              a.template flips<MinQuality>(around, "flip");
                              a.smooth(polish_smooth, "smooth");
@@ -376,14 +375,15 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   return p;
 }
 
-// The standard adaptation under <S, P, C, G>, with the Geometry object
-// given, or made from inputs.model (geometry_of).
+// The standard adaptation under <S, P, C, G> (P: the metric-Delaunay
+// criterion's precision), with the Geometry object given, or made from
+// inputs.model (geometry_of).
 template <MetricSpace S, Precision P, Concurrency C, Geometry G>
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& inputs, const G& geometry) {
-  Adapter<S, P, C, G> a(mesh, inputs.source(), geometry);
+  Adapter<S, C, G> a(mesh, inputs.source(), geometry);
   a.set_volume_budget(options.volume_budget);
   a.on_cycle = inputs.on_cycle;
-  return run_pipeline(a, standard_pipeline<Adapter<S, P, C, G>>(options));
+  return run_pipeline(a, standard_pipeline<Adapter<S, C, G>, P>(options));
 }
 template <MetricSpace S, Precision P, Concurrency C, Geometry G = NoGeometry>
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& inputs = {}) {
@@ -392,10 +392,13 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& in
 
 // Compiled in the library (standard_stages.hpp).
 static_assert(Spaces::size == 3 && Precisions::size == 3 && Concurrencies::size == 2 && Geometries::size == 2,
-              "METRICA_STANDARD_STAGES_OF_SPACE lists 3 precisions, 2 concurrencies and 2 geometries per space "
-              "(standard_stages.hpp)");
+              "METRICA_STANDARD_STAGES_OF_SPACE lists 2 concurrencies and 2 geometries per space, "
+              "METRICA_STANDARD_STAGES_OF_TRIPLE 3 precisions (standard_stages.hpp)");
 #if METRICA_DEFAULT_POLICIES_ONLY
-METRICA_STANDARD_STAGES_OF_DEFAULTS(extern)
+METRICA_STANDARD_STAGES_AT(extern, 0, 0, 0)
+METRICA_STANDARD_STAGES_AT(extern, 0, 0, 1)
+METRICA_STANDARD_STAGES_AT(extern, 0, 1, 0)
+METRICA_STANDARD_STAGES_AT(extern, 0, 1, 1)
 #else
 METRICA_STANDARD_STAGES_OF_SPACE(extern, 0)
 METRICA_STANDARD_STAGES_OF_SPACE(extern, 1)

@@ -132,11 +132,10 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
   return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
 }
 
-template <MetricSpace S, Precision P, Concurrency C, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, Geometry G = NoGeometry>
 class Adapter {
  public:
   using Space = S;
-  using Precision = P;
   using Concurrency = C;
   using Geometry = G;
 
@@ -253,24 +252,24 @@ class Adapter {
     if constexpr (!G::on_model) o.volume_budget = &volume_budget_;
     o.scope.known = &out_of_band_;
     return incremental(key_or(key, "collapse"), o, [this](Mesh& m, const CollapseOptions& x) {
-      return collapse_edges<S, P, C, Criterion>(m, x, geometry_);
+      return collapse_edges<S, C, Criterion>(m, x, geometry_);
     });
   }
   template <class Criterion = ShapeOnly>
   OperatorStats split(RefineOptions o) {
     o.scope.metric = metric_;
     o.scope.known = &out_of_band_;
-    return refine_edges<S, P, C, Criterion>(mesh_, o, geometry_);
+    return refine_edges<S, C, Criterion>(mesh_, o, geometry_);
   }
   template <class Criterion = ShapeOnly>
   OperatorStats insert_centroids(RefineOptions o) {
     o.scope.metric = metric_;
-    return refine_centroids<S, P, C, Criterion>(mesh_, o, geometry_);
+    return refine_centroids<S, C, Criterion>(mesh_, o, geometry_);
   }
   template <class Criterion = MinQuality>
   OperatorStats flips(const ReconnectOptions& o, std::string_view key = {}) {
     return incremental(key_or(key, "flip"), o, [this](Mesh& m, const ReconnectOptions& x) {
-      return reconnect<S, P, C, Criterion>(m, x, geometry_);
+      return reconnect<S, C, Criterion>(m, x, geometry_);
     });
   }
   template <class Criterion = MinQuality>
@@ -278,14 +277,14 @@ class Adapter {
     o.scope.metric = metric_;
     if constexpr (!G::on_model) o.volume_budget = &volume_budget_;
     return incremental(key_or(key, "smooth"), o, [this](Mesh& m, const SmoothOptions& x) {
-      return smooth_vertices<S, P, C, Criterion>(m, x, geometry_);
+      return smooth_vertices<S, C, Criterion>(m, x, geometry_);
     });
   }
   // Boundary 2-2 flips that bring facets closer to the model (none
   // without a model), and the 2-2 swaps and flips of internal surfaces.
   OperatorStats swap(const BoundarySwapOptions& o = {}, const InterfaceSwapOptions& i = {},
                      const InterfaceFlipOptions& f = {}) {
-    OperatorStats stats = swap_toward_model<S, P, C>(mesh_, o, geometry_);
+    OperatorStats stats = swap_toward_model<S, C>(mesh_, o, geometry_);
     stats += swap_interfaces(i, f);
     return stats;
   }
@@ -293,16 +292,16 @@ class Adapter {
   // (interface_swap.hpp), then their 2-2 flips (interface_flip.hpp).
   OperatorStats swap_interfaces(const InterfaceSwapOptions& i = {}, const InterfaceFlipOptions& f = {}) {
     OperatorStats stats = metrica::swap_interfaces<S, C>(mesh_, i, geometry_);
-    stats += flip_interfaces<S, P, C>(mesh_, f, geometry_);
+    stats += flip_interfaces<S, C>(mesh_, f, geometry_);
     return stats;
   }
   // The inner vertices in the way of the internal surfaces' long edges'
   // splits on the model go (clear_way.hpp; nothing without a model).
-  OperatorStats clear_way(const RefineOptions& o) { return clear_way_for_splits<S, P, C>(mesh_, o, geometry_); }
+  OperatorStats clear_way(const RefineOptions& o) { return clear_way_for_splits<S, C>(mesh_, o, geometry_); }
   // Boundary vertices off the model move onto it (none without a model).
   OperatorStats project(ProjectionOptions o = {}) {
     o.scope.metric = metric_;
-    return project_to_model<S, P, C>(mesh_, o, geometry_);
+    return project_to_model<S, C>(mesh_, o, geometry_);
   }
 
   // Closes a cycle: compaction, counts, conformity and worst tet, the

@@ -1,8 +1,9 @@
-// The standard stages compiled once, in the library: for every tuple of
-// the policy lists (Spaces x Precisions x Concurrencies x Geometries), the
-// passes of the standard pipeline under their standard criteria, the
-// standard pipeline itself and adapt<S, P, C, G> are declared here as
-// explicit instantiations (extern template) and defined in
+// The standard stages compiled once, in the library: for every triple of
+// the policy lists (Spaces x Concurrencies x Geometries), the passes of
+// the standard pipeline under their standard criteria, and per precision
+// (Precisions: the metric-Delaunay criterion's only) the standard
+// pipeline and adapt<S, P, C, G>, are declared here as explicit
+// instantiations (extern template) and defined in
 // pipeline/adapt_unit.cpp. A program's own pipeline built from the
 // Adapter's standard stages therefore compiles none of them; a stage
 // under another criterion (flips<MaxMinEdgeWeight>) or another policy is
@@ -35,34 +36,42 @@ using Geometries = PolicyList<NoGeometry, CadGeometry>;
 
 // The macros keep one instantiation a line, in the lists' order.
 // clang-format off
-// The standard stages of one tuple: `kind` is `extern` for the declaration,
-// empty for the definition.
-#define METRICA_STANDARD_STAGES(kind, S, P, C, G)                                                               \
-  kind template OperatorStats collapse_edges<S, P, C, ShapeOnly, G>(Mesh&, const CollapseOptions&, const G&);  \
-  kind template OperatorStats refine_edges<S, P, C, ShapeOnly, G>(Mesh&, const RefineOptions&, const G&);      \
-  kind template OperatorStats refine_centroids<S, P, C, ShapeOnly, G>(Mesh&, const RefineOptions&, const G&);  \
-  kind template OperatorStats reconnect<S, P, C, MinQuality, G>(Mesh&, const ReconnectOptions&, const G&);     \
-  kind template OperatorStats reconnect<S, P, C, MetricDelaunay, G>(Mesh&, const ReconnectOptions&, const G&); \
-  kind template OperatorStats smooth_vertices<S, P, C, MinQuality, G>(Mesh&, const SmoothOptions&, const G&);  \
-  kind template OperatorStats swap_toward_model<S, P, C, G>(Mesh&, const BoundarySwapOptions&, const G&);      \
-  kind template OperatorStats flip_interfaces<S, P, C, G>(Mesh&, const InterfaceFlipOptions&, const G&);       \
-  kind template Pipeline<Adapter<S, P, C, G>> standard_pipeline<Adapter<S, P, C, G>>(const AdaptOptions&);     \
-  kind template const AdaptReport& run_pipeline<Adapter<S, P, C, G>>(Adapter<S, P, C, G>&,                      \
-                                                                     const Pipeline<Adapter<S, P, C, G>>&);    \
+// The standard stages of one (space, concurrency, geometry) triple: `kind`
+// is `extern` for the declaration, empty for the definition.
+#define METRICA_STANDARD_STAGES(kind, S, C, G)                                                                  \
+  kind template OperatorStats collapse_edges<S, C, ShapeOnly, G>(Mesh&, const CollapseOptions&, const G&);     \
+  kind template OperatorStats refine_edges<S, C, ShapeOnly, G>(Mesh&, const RefineOptions&, const G&);         \
+  kind template OperatorStats refine_centroids<S, C, ShapeOnly, G>(Mesh&, const RefineOptions&, const G&);     \
+  kind template OperatorStats reconnect<S, C, MinQuality, G>(Mesh&, const ReconnectOptions&, const G&);        \
+  kind template OperatorStats smooth_vertices<S, C, MinQuality, G>(Mesh&, const SmoothOptions&, const G&);     \
+  kind template OperatorStats swap_toward_model<S, C, G>(Mesh&, const BoundarySwapOptions&, const G&);         \
+  kind template OperatorStats flip_interfaces<S, C, G>(Mesh&, const InterfaceFlipOptions&, const G&);          \
+  kind template const AdaptReport& run_pipeline<Adapter<S, C, G>>(Adapter<S, C, G>&,                            \
+                                                                  const Pipeline<Adapter<S, C, G>>&);
+// What a precision changes in them: the metric-Delaunay flips (the
+// centroid rule's), the standard pipeline that runs them, adapt.
+#define METRICA_STANDARD_STAGES_OF_PRECISION(kind, S, P, C, G)                                                   \
+  kind template OperatorStats reconnect<S, C, MetricDelaunay<P>, G>(Mesh&, const ReconnectOptions&, const G&); \
+  kind template Pipeline<Adapter<S, C, G>> standard_pipeline<Adapter<S, C, G>, P>(const AdaptOptions&);        \
   kind template AdaptReport adapt<S, P, C, G>(Mesh&, const AdaptOptions&, const AdaptInputs&, const G&);
 
-// The tuple at indices (space, precision, concurrency, geometry) of the lists.
-#define METRICA_STANDARD_STAGES_AT(kind, s, p, c, g)                                                   \
-  METRICA_STANDARD_STAGES(kind, ::metrica::Spaces::at<s>, ::metrica::Precisions::at<p>,               \
-                          ::metrica::Concurrencies::at<c>, ::metrica::Geometries::at<g>)
+// The triple at indices (space, concurrency, geometry) of the lists, with
+// every precision (the default's only in the sanitizer builds).
+#if METRICA_DEFAULT_POLICIES_ONLY
+#define METRICA_STANDARD_STAGES_OF_OTHER_PRECISIONS(kind, S, C, G)
+#else
+#define METRICA_STANDARD_STAGES_OF_OTHER_PRECISIONS(kind, S, C, G)                                          \
+  METRICA_STANDARD_STAGES_OF_PRECISION(kind, S, ::metrica::Precisions::at<1>, C, G)                        \
+  METRICA_STANDARD_STAGES_OF_PRECISION(kind, S, ::metrica::Precisions::at<2>, C, G)
+#endif
+#define METRICA_STANDARD_STAGES_OF_TRIPLE(kind, S, C, G)                                                    \
+  METRICA_STANDARD_STAGES(kind, S, C, G)                                                                  \
+  METRICA_STANDARD_STAGES_OF_PRECISION(kind, S, ::metrica::Precisions::at<0>, C, G)                        \
+  METRICA_STANDARD_STAGES_OF_OTHER_PRECISIONS(kind, S, C, G)
+#define METRICA_STANDARD_STAGES_AT(kind, s, c, g)                                                           \
+  METRICA_STANDARD_STAGES_OF_TRIPLE(kind, ::metrica::Spaces::at<s>, ::metrica::Concurrencies::at<c>,        \
+                                    ::metrica::Geometries::at<g>)
 #define METRICA_STANDARD_STAGES_OF_SPACE(kind, s)                                                          \
-  METRICA_STANDARD_STAGES_AT(kind, s, 0, 0, 0) METRICA_STANDARD_STAGES_AT(kind, s, 0, 0, 1)              \
-  METRICA_STANDARD_STAGES_AT(kind, s, 0, 1, 0) METRICA_STANDARD_STAGES_AT(kind, s, 0, 1, 1)              \
-  METRICA_STANDARD_STAGES_AT(kind, s, 1, 0, 0) METRICA_STANDARD_STAGES_AT(kind, s, 1, 0, 1)              \
-  METRICA_STANDARD_STAGES_AT(kind, s, 1, 1, 0) METRICA_STANDARD_STAGES_AT(kind, s, 1, 1, 1)              \
-  METRICA_STANDARD_STAGES_AT(kind, s, 2, 0, 0) METRICA_STANDARD_STAGES_AT(kind, s, 2, 0, 1)              \
-  METRICA_STANDARD_STAGES_AT(kind, s, 2, 1, 0) METRICA_STANDARD_STAGES_AT(kind, s, 2, 1, 1)
-#define METRICA_STANDARD_STAGES_OF_DEFAULTS(kind)                                                        \
-  METRICA_STANDARD_STAGES_AT(kind, 0, 0, 0, 0) METRICA_STANDARD_STAGES_AT(kind, 0, 0, 0, 1)              \
-  METRICA_STANDARD_STAGES_AT(kind, 0, 0, 1, 0) METRICA_STANDARD_STAGES_AT(kind, 0, 0, 1, 1)
+  METRICA_STANDARD_STAGES_AT(kind, s, 0, 0) METRICA_STANDARD_STAGES_AT(kind, s, 0, 1)                     \
+  METRICA_STANDARD_STAGES_AT(kind, s, 1, 0) METRICA_STANDARD_STAGES_AT(kind, s, 1, 1)
 // clang-format on

@@ -168,8 +168,7 @@ using Precisions = PolicyList<Filtered, Exact, Fast>;
 // stage is needed; at or below it the tet is refused whatever its exact
 // sign: validate() and the programs that read the output measure
 // orientation in doubles, in whichever order the tet is stored.
-template <Precision P>
-bool positive_tet(const Point& a, const Point& b, const Point& c, const Point& d) {
+inline bool positive_tet(const Point& a, const Point& b, const Point& c, const Point& d) {
   const Eigen::Vector3d u = b - a, v = c - a, w = d - a;
   const double l =
       std::max({u.cwiseAbs().maxCoeff(), v.cwiseAbs().maxCoeff(), w.cwiseAbs().maxCoeff(),
