@@ -275,9 +275,8 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   settings.options = run.options;
   // A part's poorest tets lie against the faces it keeps, and what its
   // quality phase leaves there the next round adapts again: more sweeps
-  // and cycles per part take fewer rounds (4.3M tets on 4 ranks: 4 rounds
-  // in 68.8 s, min Q 0.487, against 5 in 73-76 s, min Q 0.425, with the
-  // single process's 2 sweeps and 0.01).
+  // and cycles per part take fewer rounds (docs/distributed.md, "Two
+  // settings differ on purpose").
   settings.options.polish_sweeps = std::max(settings.options.polish_sweeps, 4);
   settings.options.min_conformity_gain = std::min(settings.options.min_conformity_gain, 0.005);
   settings.policies = run.policies;

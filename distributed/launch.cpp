@@ -15,23 +15,10 @@ bool under_launcher() {
   return false;
 }
 
-// Every rank on this node (Open MPI's launcher says how many run here and
-// in all).
-bool all_on_one_node() {
-  const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
-  const char* all = std::getenv("OMPI_COMM_WORLD_SIZE");
-  return local != nullptr && all != nullptr && std::atoi(local) == std::atoi(all);
-}
 }  // namespace
 
 MpiRuntime::MpiRuntime(int* argc, char*** argv) {
   if (!under_launcher()) return;
-  // On one node the ranks talk through shared memory whichever transport
-  // layer carries it; Open MPI's default first probes UCX's devices, 0.2 s
-  // of every run's start here (0.41 s against 0.20 s for `mpirun -np 2
-  // metrica --version`). A user's own choice (OMPI_MCA_pml, --mca pml)
-  // stands; across nodes nothing changes.
-  if (all_on_one_node()) setenv("OMPI_MCA_pml", "ob1", 0);
   int provided = 0;
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
   g_active = true;

@@ -3,13 +3,11 @@
 //
 // Every pass builds work lists and scratch arrays and frees them when it
 // ends. Small ones (below 4 MiB) stay in the heap for reuse (glibc would
-// otherwise trim and fault them in again), until the pipeline's stage
-// ends (release_freed_memory in Adapter::run_stage): kept from one stage
-// to the next, 17-23 MiB of them stood under the next peak at 1M tets
-// (docs/benchmarks.md, "Memory"). Large ones are
-// mapped and unmapped: kept in the heap, the freed blocks of passes and
-// of growing arrays stayed resident between the live ones and set the
-// peak (figures: docs/benchmarks.md, "Memory").
+// otherwise trim and fault them in again) until the pipeline's stage ends
+// (release_freed_memory in Adapter::run_stage), so they do not stand
+// under the next stage's peak. Large ones are mapped and unmapped, so
+// freed blocks never stay resident between live ones (docs/benchmarks.md,
+// "Memory").
 //
 // Process-wide, so the library never calls it: the metrica command, the
 // examples and the benchmarks do at start-up; an application embedding
@@ -29,11 +27,11 @@ void keep_freed_memory();
 void release_freed_memory();
 
 // keep_freed_memory() for one run inside a process that is not ours (the
-// Python module's adapt and pipeline): without it glibc's adaptive mmap
-// threshold rose past the passes' large blocks and the heap held them
-// (8 MiB more at the peak at 4.3M tets). On leaving, the freed memory goes back to the
-// kernel and the heap's top is trimmed again at glibc's default; the
-// 4 MiB mmap threshold stays.
+// Python module's adapt and pipeline), where glibc's adaptive mmap
+// threshold would otherwise rise past the passes' large blocks and keep
+// them in the heap. On leaving, the freed memory goes back to the kernel
+// and the heap's top is trimmed again at glibc's default; the 4 MiB mmap
+// threshold stays.
 class FreedMemoryKeptForRun {
  public:
   FreedMemoryKeptForRun();
@@ -46,18 +44,14 @@ class FreedMemoryKeptForRun {
 // own, outside the heap, starting on a 2 MiB boundary and marked
 // MADV_HUGEPAGE (Linux): transparent huge pages where the kernel offers
 // them for the asking (THP "madvise" or "always", Debian's default is
-// "madvise"). Why huge pages: random reads over 1 GB on this 2-core VM
-// scaled 1.7x on two threads with 4 KiB pages (each miss also walks the
-// page tables, nested under a hypervisor) and 2.0x on huge pages, which
-// also made one thread 20% faster. Why outside the heap: an array that
-// grows leaves its old block behind, and in the heap (kept by
-// keep_freed_memory) those blocks stayed resident between the live ones:
-// at 1M tets the process held 282 MB for 120-160 MB in use; unmapped
-// when freed, 260 MB (a cache of freed blocks for the next pass's work
-// arrays, up to 64 MiB, held 330 MB and saved no time). Untouched pages
-// of a block are not resident: room reserved but never written costs
-// nothing. METRICA_NO_HUGE_PAGES (to anything but 0) leaves out the
-// advice; elsewhere than Linux, malloc.
+// "madvise"). Huge pages, because the passes read the mesh at random and
+// every TLB miss walks the page tables (nested under a hypervisor on a
+// VM): they speed up one thread and let two scale further. Outside the
+// heap, because a growing array leaves its old block behind, and in the
+// heap those blocks would stay resident between the live ones. Untouched
+// pages of a block are not resident: room reserved but never written
+// costs nothing. Figures: docs/benchmarks.md, "Memory". METRICA_NO_HUGE_PAGES
+// (to anything but 0) leaves out the advice; elsewhere than Linux, malloc.
 inline constexpr std::size_t kLargeBlock = std::size_t{4} << 20;
 void* allocate_large(std::size_t bytes);               // throws std::bad_alloc
 void free_large(void* p, std::size_t bytes) noexcept;  // bytes: as allocated

@@ -4,12 +4,9 @@
 // constructs without a value: resizing an array of ids, points or
 // tensors writes nothing, so the thread that resizes does not also write
 // (and page-fault) every new element on its own. grow_array then copies
-// and fills in parts on a PartRunner's threads. Why: at 4.4M tets a
-// 2-thread adaptation spent 2.0 s of 71 s on one thread growing the
-// arrays before its passes (Mesh::add_dead_room: a split pass reserves room for
-// 3.3M tets, the reallocation copied every array and std::vector's resize
-// wrote the room), and compaction zero-filled each gathered array before
-// the parallel gather overwrote it.
+// and fills in parts on a PartRunner's threads: a split pass reserves
+// room for millions of tets (Mesh::add_dead_room), and compaction
+// gathers into arrays that need no zero-fill first.
 #pragma once
 
 #include <metrica/allocator.hpp>
@@ -52,11 +49,9 @@ struct DefaultInitAllocator : std::allocator<T> {
   // No value: nothing written. Default-initialisation for a class type
   // with a default constructor of its own; the bytes left as they are for
   // an implicit-lifetime type (trivially copyable and destructible: ids,
-  // points, tensors, and FaceRef, whose member initialiser (no face)
-  // made every resize of the adjacency write 16 bytes per tet on one
-  // thread: 22 of the 110 one-thread samples of a 2-thread adaptation at
-  // 0.94M tets, in grow_array and compaction). Every such resize is
-  // followed by a fill or a gather.
+  // points, tensors, and FaceRef, whose member initialiser would
+  // otherwise write every new adjacency entry on one thread). Every such
+  // resize is followed by a fill or a gather.
   template <class U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
     if constexpr (!(std::is_trivially_copyable_v<U> && std::is_trivially_destructible_v<U>))
