@@ -190,7 +190,7 @@ std::vector<Sym6> metric_at_vertices(const Options& o, const Mesh& mesh, const s
   return field;
 }
 
-// The adapted mesh passes require_adapted (else InputError, nothing
+// The adapted mesh passes require_adapted (else NotAdapted, nothing
 // written); on a model the distance to it is printed first.
 void check_adapted(const Mesh& mesh, const CadModel* model, double volume, double volume_tolerance,
                    const PartRunner& sweeps, bool talk) {
@@ -283,14 +283,11 @@ int run_distributed(const Options& o, const AdaptOptions& ao, const PolicyChoice
 #endif
 
 // One adaptation of the input (read again on each call), up to the checks
-// of the adapted mesh: what is written, or NotKept when a check fails.
+// of the adapted mesh: what is written, or NotAdapted when a check fails.
 struct Adapted {
   Mesh mesh;
   std::unique_ptr<CadModel> model;
   int input_version = 0;
-};
-struct NotKept : std::runtime_error {
-  using std::runtime_error::runtime_error;
 };
 Adapted adapt_input(const Options& o, const AdaptOptions& ao, const PolicyChoice& policies,
                     const std::optional<AnalyticMetric>& analytic, const MetricBounds& bounds, int iterations) {
@@ -374,11 +371,7 @@ Adapted adapt_input(const Options& o, const AdaptOptions& ao, const PolicyChoice
                  count_text(outside), count_text(mesh.num_vertices()));
     background.reset();  // not beside the writers' copy of the mesh
   }
-  try {
-    check_adapted(mesh, model.get(), volume, adapted_volume_tolerance(iterations, ao.volume_budget), sweeps, talk);
-  } catch (const InputError& e) {
-    throw NotKept(e.what());
-  }
+  check_adapted(mesh, model.get(), volume, adapted_volume_tolerance(iterations, ao.volume_budget), sweeps, talk);
   return out;
 }
 
@@ -442,32 +435,15 @@ int run_adapt(const std::vector<std::string>& args) {
 
   Stopwatch clock;
   const bool talk = log::level() >= log::Level::normal;
-  std::optional<Adapted> adapted;
-  try {
-    adapted.emplace(adapt_input(o, ao, policies, analytic, bounds, iterations));
-  } catch (const NotKept& e) {
-    // A check at the end that the threads' order of operations failed
-    // (a vertex left off the model): the serial order, from the input
-    // read again, writes a mesh rather than nothing.
-    if (serial) throw InputError(e.what());
-    std::string what = e.what();
-    if (const auto at = what.find("; nothing written"); at != std::string::npos) what.erase(at, 17);
-    log::warn(
-        "{}\nadapting again from {} under --concurrency serial (the threads' order of operations left "
-        "this; the serial order writes the same mesh on every run)",
-        what, input);
-    PolicyChoice again = policies;
-    again.concurrency = std::string(Serial::name);
-    try {
-      adapted.emplace(adapt_input(o, ao, again, analytic, bounds, iterations));
-    } catch (const NotKept& e2) {
-      throw InputError(e2.what());
-    }
-  }
+  // The input read again for a serial run when the threads' fails its end
+  // check (adapted_check.hpp).
+  Adapted adapted = adapt_or_again_serially(
+      policies, fmt::format("from {} under --concurrency serial", input),
+      [&](const PolicyChoice& p) { return adapt_input(o, ao, p, analytic, bounds, iterations); });
   if (o.dry_run()) return kOk;
-  Mesh& mesh = adapted->mesh;
-  const auto& model = adapted->model;
-  const int input_version = adapted->input_version;
+  Mesh& mesh = adapted.mesh;
+  const auto& model = adapted.model;
+  const int input_version = adapted.input_version;
   const PartRunner sweeps = sweep_runner(mesh.tet_capacity(), serial);
   write_outputs(o, mesh, model.get(), output, input_version, sweeps);
   if (talk) {

@@ -22,8 +22,13 @@ void require_adapted(const Mesh& mesh, const CadModel* model, double volume, dou
   }
   const auto check = mesh.validate(vo);
   if (!check.ok())
-    throw InputError(fmt::format("adapt: the adapted mesh is invalid; nothing written\n{}", check.to_string()));
-  if (model) require_on_model(mesh, *model, "adapt");
+    throw NotAdapted(fmt::format("adapt: the adapted mesh is invalid; nothing written\n{}", check.to_string()));
+  if (!model) return;
+  try {
+    require_on_model(mesh, *model, "adapt");
+  } catch (const InputError& e) {
+    throw NotAdapted(e.what());
+  }
 }
 
 }  // namespace metrica

@@ -14,10 +14,10 @@ docs/python.md.
 import logging
 import os
 
-#OpenMP's threads sleep as soon as they wait unless the environment
-#chooses, as for the command(cli / main.cpp) : spinning, they slowed two
-#threads 1.6x beside a busy process.libgomp reads this when it is
-#loaded, by the import below unless something loaded it before.
+# OpenMP's threads sleep as soon as they wait unless the environment
+# chooses, as for the command (cli/main.cpp): spinning, they slowed two
+# threads 1.6x beside a busy process. libgomp reads this when it is
+# loaded, by the import below unless something loaded it before.
 os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
 from ._metrica import (
@@ -82,8 +82,8 @@ def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concu
     analytic:    "linear", "polar-1" or "polar-2": new vertices take the
                  exact metric, re-evaluated between `iterations`.
     concurrency: "speculative" (threads) or "serial" (the command's serial
-                 output, to the bit);
-space : "log-euclidean", "anisotropic", "isotropic"; precision (of the metric-Delaunay criterion's
+                 output, to the bit); space: "log-euclidean", "anisotropic",
+                 "isotropic"; precision (of the metric-Delaunay criterion's
                  insphere signs, the centroid rule's flips): "filtered", "exact", "fast".
     geometry:    a CAD model (.step, .iges, .brep, .geo) the boundary lies
                  on, as `metrica adapt --geometry`: its surface tags are the

@@ -257,7 +257,9 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
     throw InputError(fmt::format("adapt: threads must be in [1, 4096] (got {})", call.threads));
   const ThreadsForCall threads(call.threads);
 
-  for (;;) {
+  // One adaptation of the input; as the command, a threaded run that fails
+  // its end check is made again serially (adapted_check.hpp).
+  const auto attempt = [&](const PolicyChoice& chosen) -> py::tuple {
     Mesh mesh = m.mesh();  // the input stays as it was, whatever happens
     const double volume = mesh.volume();
     std::optional<AnalyticMetric> kind;
@@ -303,29 +305,21 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
           background = std::make_unique<BackgroundMetric>(mesh);
           inputs.background = background.get();
         }
-        const AdaptReport report = adapt_by_name(mesh, ao, policies, inputs);
+        const AdaptReport report = adapt_by_name(mesh, ao, chosen, inputs);
         ops += report.ops;
         seconds += report.seconds;
       }
       // The report (and the metric of the returned mesh) in the field given.
       if (background) background->assign(mesh);
-      try {
-        require_adapted(mesh, model.get(), volume, adapted_volume_tolerance(call.iterations, ao.volume_budget));
-      } catch (const InputError& e) {
-        // As the command: a check at the end that the threads' order of
-        // operations failed, the serial order from the input again.
-        if (policies.concurrency == Serial::name) throw;
-        log::warn("{}\nadapting again under concurrency=\"serial\"", e.what());
-        policies.concurrency = std::string(Serial::name);
-        continue;
-      }
-      q = quality_report(mesh, policies.space, {.cached_quality = true});
+      require_adapted(mesh, model.get(), volume, adapted_volume_tolerance(call.iterations, ao.volume_budget));
+      q = quality_report(mesh, chosen.space, {.cached_quality = true});
     } catch (const PythonError&) {
       throw py::error_already_set();
     }
     return py::make_tuple(py::cast(PyMesh(std::move(mesh), m.version()), py::return_value_policy::move),
                           adapt_report(cycles, ops, seconds, q));
-  }
+  };
+  return adapt_or_again_serially(policies, "from the input under concurrency=\"serial\"", attempt);
 }
 
 }  // namespace metrica::python
