@@ -18,11 +18,10 @@ namespace metrica::distributed {
 
 namespace {
 
-constexpr int kVerticesCode = 4, kTrianglesCode = 6, kTetrahedraCode = 8, kEndCode = 54, kSolCode = 62;
-// VerticesOnGeometricVertices and VerticesOnGeometricTriangles: what the
+namespace mb = io::meshb;
+// Of the records, VerticesOnGeometricVertices and ...Triangles: what the
 // association reads of the input (a vertex's model vertex, its (u, v));
 // VerticesOnGeometricEdges, between them, it does not need.
-constexpr int kOnModelVertexCode = 40, kOnSurfaceCode = 42;
 
 // Where each keyword of a native-order binary libMeshb file starts: its
 // row count and the offset of its first row.
@@ -66,9 +65,10 @@ struct Layout {
   int version = 0;
   bool native = false;
   std::map<int, Keyword> keywords;
-  int real() const { return version == 1 ? 4 : 8; }
-  int integer() const { return version == 4 ? 8 : 4; }
-  int offset() const { return version >= 3 ? 8 : 4; }
+  mb::Widths widths() const { return mb::Widths(version); }
+  int real() const { return widths().real; }
+  int integer() const { return widths().integer; }
+  int offset() const { return widths().offset; }
 };
 
 Layout scan(const BinaryFile& f, const std::string& path) {
@@ -84,13 +84,13 @@ Layout scan(const BinaryFile& f, const std::string& path) {
     const std::uint64_t next = l.offset() == 4 ? std::uint64_t(std::uint32_t(f.get<std::int32_t>(at + 4)))
                                                : std::uint64_t(f.get<std::int64_t>(at + 4));
     std::uint64_t body = at + 4 + std::uint64_t(l.offset());
-    if (code == kVerticesCode || code == kTrianglesCode || code == kTetrahedraCode || code == kSolCode ||
-        code == kOnModelVertexCode || code == kOnSurfaceCode) {
+    if (code == mb::kVertices || code == mb::kTriangles || code == mb::kTetrahedra || code == mb::kSolAtVertices ||
+        code == mb::kVerticesOnGeometricVertices || code == mb::kVerticesOnGeometricTriangles) {
       Keyword k;
       k.count = l.integer() == 4 ? f.get<std::int32_t>(body) : f.get<std::int64_t>(body);
       body += std::uint64_t(l.integer());
       if (k.count < 0) throw IoError(fmt::format("{}: negative count in keyword {}", path, code));
-      if (code == kSolCode) {
+      if (code == mb::kSolAtVertices) {
         const int n = f.get<std::int32_t>(body);
         if (n < 1 || n > 20) throw IoError(fmt::format("{}: SolAtVertices with {} fields", path, n));
         for (int i = 0; i < n; ++i) k.types.push_back(f.get<std::int32_t>(body + 4 + 4 * std::uint64_t(i)));
@@ -98,10 +98,10 @@ Layout scan(const BinaryFile& f, const std::string& path) {
       }
       k.rows = body;
       l.keywords[code] = k;
-    } else if (code != 3 && code != kEndCode) {
+    } else if (code != mb::kDimension && code != mb::kEnd) {
       l.keywords[code] = Keyword{};  // present, not read here
     }
-    if (code == kEndCode || next == 0 || next <= at) break;
+    if (code == mb::kEnd || next == 0 || next <= at) break;
     at = next;
   }
   return l;
@@ -168,9 +168,9 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
     auto it = l.keywords.find(code);
     return it == l.keywords.end() ? none : it->second;
   };
-  const Keyword& kv = kw(kVerticesCode);
-  const Keyword& kt = kw(kTetrahedraCode);
-  const Keyword& kf = kw(kTrianglesCode);
+  const Keyword& kv = kw(mb::kVertices);
+  const Keyword& kt = kw(mb::kTetrahedra);
+  const Keyword& kf = kw(mb::kTriangles);
   counts.vertices = kv.count, counts.tets = kt.count, counts.triangles = kf.count;
   if (kv.count == 0 || kt.count == 0) throw IoError(fmt::format("{}: no vertices or no tetrahedra", path));
   const auto n = std::size_t(comm.size()), r = std::size_t(comm.rank());
@@ -178,8 +178,9 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
   auto [v0, v1] = part_slice(std::size_t(kv.count), n, r);
   s.first_vertex = GlobalId(v0);
   const int R = l.real(), I = l.integer();
+  const mb::Widths w = l.widths();
   {
-    const std::size_t row = 3 * std::size_t(R) + std::size_t(I);
+    const std::size_t row = w.vertex_row();
     const auto bytes = rows(f, kv, row, std::int64_t(v0), std::int64_t(v1));
     for (std::size_t i = 0; i < v1 - v0; ++i) {
       const char* p = bytes.data() + i * row;
@@ -190,7 +191,7 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
   }
   {
     auto [t0, t1] = part_slice(std::size_t(kt.count), n, r);
-    const std::size_t row = 5 * std::size_t(I);
+    const std::size_t row = w.tet_row();
     const auto bytes = rows(f, kt, row, std::int64_t(t0), std::int64_t(t1));
     for (std::size_t i = 0; i < t1 - t0; ++i) {
       const char* p = bytes.data() + i * row;
@@ -205,7 +206,7 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
   }
   {
     auto [f0, f1] = part_slice(std::size_t(kf.count), n, r);
-    const std::size_t row = 4 * std::size_t(I);
+    const std::size_t row = w.triangle_row();
     const auto bytes = rows(f, kf, row, std::int64_t(f0), std::int64_t(f1));
     for (std::size_t i = 0; i < f1 - f0; ++i) {
       const char* p = bytes.data() + i * row;
@@ -216,11 +217,11 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
     }
   }
   if (records)
-    for (const int code : {kOnModelVertexCode, kOnSurfaceCode}) {
+    for (const int code : {mb::kVerticesOnGeometricVertices, mb::kVerticesOnGeometricTriangles}) {
       const Keyword& k = kw(code);
-      const int dim = code - kOnModelVertexCode;
+      const int dim = code - mb::kVerticesOnGeometricVertices;
       auto [a, b] = part_slice(std::size_t(k.count), n, r);
-      const std::size_t row = 2 * std::size_t(I) + (dim == 0 ? 0 : 3 * std::size_t(R));
+      const std::size_t row = w.on_geometry_row(dim);
       const auto bytes = rows(f, k, row, std::int64_t(a), std::int64_t(b));
       for (std::size_t i = 0; i < b - a; ++i) {
         const char* p = bytes.data() + i * row;
@@ -231,8 +232,8 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
       }
     }
   for (const auto& [code, k] : l.keywords)
-    if (code != kVerticesCode && code != kTetrahedraCode && code != kTrianglesCode &&
-        !(records && code >= kOnModelVertexCode && code <= kOnSurfaceCode)) {
+    if (code != mb::kVertices && code != mb::kTetrahedra && code != mb::kTriangles &&
+        !(records && code >= mb::kVerticesOnGeometricVertices && code <= mb::kVerticesOnGeometricTriangles)) {
       const auto name = io::meshb::keyword_name(code);
       counts.dropped.push_back(name.empty() ? fmt::format("keyword {}", code) : std::string(name));
     }
@@ -241,7 +242,7 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
     const Layout ml = scan(mf, metric_path);
     if (!ml.native)
       throw IoError(fmt::format("{}: a metric in the other byte order is not read under mpirun", metric_path));
-    auto it = ml.keywords.find(kSolCode);
+    auto it = ml.keywords.find(mb::kSolAtVertices);
     if (it == ml.keywords.end()) throw IoError(fmt::format("{}: no SolAtVertices keyword", metric_path));
     const Keyword& ks = it->second;
     if (ks.count != kv.count)

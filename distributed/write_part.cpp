@@ -23,9 +23,11 @@ struct Holder {
   std::int64_t rank;
 };
 
+// Rows of a binary file in the making: integers of the version's width,
+// reals of 8 bytes (versions 2 to 4).
 class Rows {
  public:
-  Rows(int integer, int real) : integer_(integer), real_(real) {}
+  explicit Rows(const io::meshb::Widths& w) : integer_(w.integer), offset_(w.offset) {}
   void integer(std::int64_t v) {
     if (integer_ == 4) {
       const auto x = std::int32_t(v);
@@ -34,8 +36,8 @@ class Rows {
       put(&v, 8);
     }
   }
-  void offset(std::uint64_t v, int width) {
-    if (width == 4) {
+  void offset(std::uint64_t v) {
+    if (offset_ == 4) {
       const auto x = std::int32_t(v);
       put(&x, 4);
     } else {
@@ -48,7 +50,7 @@ class Rows {
 
  private:
   void put(const void* p, std::size_t n) { out_.append(static_cast<const char*>(p), n); }
-  int integer_, real_;
+  int integer_, offset_;
   std::string out_;
 };
 
@@ -242,15 +244,20 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
     on_total[d] = comm.sum(std::int64_t(records.on_geometry[d].size()));
     on_first[d] = comm.exclusive_scan(std::int64_t(records.on_geometry[d].size()));
   }
+  using namespace io::meshb;
   if (version == 0) {
-    const auto rows_max = std::max({total.vertices, total.triangles, total.tets});
-    const double v2_bytes = double(total.vertices) * 28 + double(total.triangles) * 16 + double(total.tets) * 20 +
-                            double(on_total[0]) * 8 + double(on_total[1]) * 24 + double(on_total[2]) * 32;
-    version = rows_max >= std::numeric_limits<std::int32_t>::max() ? 4 : v2_bytes > 2.0e9 ? 3 : 2;
+    // The smallest version that holds the counts and the file's size.
+    const auto rows_max = std::uint64_t(std::max({total.vertices, total.triangles, total.tets}));
+    const Widths v2(2);
+    const std::uint64_t v2_bytes =
+        std::uint64_t(total.vertices) * v2.vertex_row() + std::uint64_t(total.triangles) * v2.triangle_row() +
+        std::uint64_t(total.tets) * v2.tet_row() + std::uint64_t(on_total[0]) * v2.on_geometry_row(0) +
+        std::uint64_t(on_total[1]) * v2.on_geometry_row(1) + std::uint64_t(on_total[2]) * v2.on_geometry_row(2);
+    version = rows_max > kMaxRowsOfShortIntegers ? 4 : v2_bytes > kMaxBytesOfShortOffsets ? 3 : 2;
   }
   total.version = version;
-  const int I = version == 4 ? 8 : 4, O = version >= 3 ? 8 : 4;
-  const std::uint64_t head = 4 + std::uint64_t(O) + std::uint64_t(I);  // code, next offset, count
+  const Widths w(version);
+  const std::uint64_t head = w.keyword_head();
   // Byte layout: header, Dimension, then each keyword with rows (Vertices,
   // Triangles, Tetrahedra, VerticesOnGeometric*), End.
   struct Block {
@@ -258,17 +265,14 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
     std::int64_t rows;
     std::uint64_t row_bytes, at = 0;
   };
-  const auto Iu = std::uint64_t(I);
-  using namespace io::meshb;
-  std::vector<Block> blocks{
-      {kVertices, total.vertices, 24 + Iu}, {kTriangles, total.triangles, 4 * Iu}, {kTetrahedra, total.tets, 5 * Iu}};
-  // (vertex, entity), then t and dist on a curve, u, v and dist on a surface.
+  std::vector<Block> blocks{{kVertices, total.vertices, w.vertex_row()},
+                            {kTriangles, total.triangles, w.triangle_row()},
+                            {kTetrahedra, total.tets, w.tet_row()}};
   for (int d = 0; d < 3; ++d)
-    blocks.push_back(
-        {kVerticesOnGeometricVertices + d, on_total[std::size_t(d)], 2 * Iu + 8 * std::uint64_t(d == 0 ? 0 : d + 1)});
+    blocks.push_back({kVerticesOnGeometricVertices + d, on_total[std::size_t(d)], w.on_geometry_row(d)});
   std::erase_if(blocks, [](const Block& b) { return b.rows == 0 && b.code != kVertices && b.code != kTetrahedra; });
   const std::uint64_t dimension_at = 8;
-  std::uint64_t end_at = dimension_at + 4 + std::uint64_t(O) + 4;
+  std::uint64_t end_at = dimension_at + 4 + std::uint64_t(w.offset) + 4;
   for (auto& b : blocks) {
     b.at = end_at;
     end_at += head + std::uint64_t(b.rows) * b.row_bytes;
@@ -284,25 +288,25 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
   MPI_File file = out.file();
   comm.step([&] {
     if (me == 0) {
-      Rows h(I, 8);
+      Rows h(w);
       h.int32(1), h.int32(version);
-      h.int32(kDimension), h.offset(blocks[0].at, O), h.int32(3);
+      h.int32(kDimension), h.offset(blocks[0].at), h.int32(3);
       write_at(file, 0, h.bytes());
       for (std::size_t i = 0; i < blocks.size(); ++i) {
-        Rows k(I, 8);
-        k.int32(blocks[i].code), k.offset(i + 1 < blocks.size() ? blocks[i + 1].at : end_at, O);
+        Rows k(w);
+        k.int32(blocks[i].code), k.offset(i + 1 < blocks.size() ? blocks[i + 1].at : end_at);
         k.integer(blocks[i].rows);
         write_at(file, blocks[i].at, k.bytes());
       }
-      Rows end(I, 8);
-      end.int32(kEnd), end.offset(0, O);
+      Rows end(w);
+      end.int32(kEnd), end.offset(0);
       write_at(file, end_at, end.bytes());
     }
     const auto rows_at = [&](int code, std::int64_t first) {
       const Block* b = block(code);
       return b->at + head + std::uint64_t(first) * b->row_bytes;
     };
-    Rows v(I, 8);
+    Rows v(w);
     for (std::size_t i = 0; i < owner.size(); ++i) {
       if (owner[i] != me) continue;
       const auto& p = part.points[i];
@@ -310,14 +314,14 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
     }
     write_at(file, rows_at(kVertices, first_vertex), v.bytes());
     if (total.triangles) {
-      Rows f(I, 8);
+      Rows f(w);
       for (auto i : triangles) {
         for (GlobalId g : part.triangles[i]) f.integer(number[std::size_t(index.find(g))]);
         f.integer(part.triangle_refs[i]);
       }
       write_at(file, rows_at(kTriangles, first_triangle), f.bytes());
     }
-    Rows t(I, 8);
+    Rows t(w);
     for (std::size_t i = 0; i < part.tets.size(); ++i) {
       for (auto l : part.tets[i]) t.integer(number[l]);
       t.integer(part.tet_refs[i]);
@@ -326,7 +330,7 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
     for (int d = 0; d < 3; ++d) {
       const auto& list = records.on_geometry[std::size_t(d)];
       if (on_total[std::size_t(d)] == 0) continue;
-      Rows g(I, 8);
+      Rows g(w);
       for (const auto& r : list) {
         g.integer(first_vertex + std::int64_t(r.vertex) + 1), g.integer(r.entity);
         if (d >= 1) g.real(r.u);
@@ -442,25 +446,25 @@ StagedFile write_part_metric(const Comm& comm, const VertexNumbering& numbering,
                              const std::function<Sym6(std::size_t)>& metric_of, const std::string& path, int version) {
   const int me = comm.rank();
   // Version 1 stores single-precision reals: the mesh's version from 2 on.
-  const int I = version == 4 ? 8 : 4, O = version >= 3 ? 8 : 4;
-  const std::uint64_t head = 4 + std::uint64_t(O) + std::uint64_t(I) + 8;  // code, next, count, 1 type, its code
-  const std::uint64_t dimension_at = 8, sol_at = dimension_at + 4 + std::uint64_t(O) + 4;
-  const std::uint64_t end_at = sol_at + head + std::uint64_t(numbering.total) * 48;
   using namespace io::meshb;
+  const Widths w(version);
+  const std::uint64_t head = w.one_field_sol_head(), row = w.sym_matrix_row();
+  const std::uint64_t dimension_at = 8, sol_at = dimension_at + 4 + std::uint64_t(w.offset) + 4;
+  const std::uint64_t end_at = sol_at + head + std::uint64_t(numbering.total) * row;
   SharedFile out(comm, path);
   comm.step([&] {
     if (me == 0) {
-      Rows h(I, 8);
+      Rows h(w);
       h.int32(1), h.int32(version);
-      h.int32(kDimension), h.offset(sol_at, O), h.int32(3);
-      h.int32(kSolAtVertices), h.offset(end_at, O), h.integer(numbering.total);
+      h.int32(kDimension), h.offset(sol_at), h.int32(3);
+      h.int32(kSolAtVertices), h.offset(end_at), h.integer(numbering.total);
       h.int32(1), h.int32(std::int32_t(io::SolType::sym_matrix));
       write_at(out.file(), 0, h.bytes());
-      Rows end(I, 8);
-      end.int32(kEnd), end.offset(0, O);
+      Rows end(w);
+      end.int32(kEnd), end.offset(0);
       write_at(out.file(), end_at, end.bytes());
     }
-    Rows rows(I, 8);
+    Rows rows(w);
     for (std::size_t v = 0; v < numbering.owner.size(); ++v) {
       if (numbering.owner[v] != me) continue;
       const Sym6 m = metric_of(v);
@@ -469,7 +473,7 @@ StagedFile write_part_metric(const Comm& comm, const VertexNumbering& numbering,
         rows.real(x);
       }
     }
-    write_at(out.file(), sol_at + head + std::uint64_t(numbering.first) * 48, rows.bytes());
+    write_at(out.file(), sol_at + head + std::uint64_t(numbering.first) * row, rows.bytes());
   });
   return out.close();
 }

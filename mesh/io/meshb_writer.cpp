@@ -294,8 +294,8 @@ std::string write_sol_to(Writer w, const SolData& s) {
 // offsets overflow and version 3 is needed.
 std::uint64_t binary_size_estimate(const MeshData& m, int version) {
   const Widths w(version);
-  return 64 + m.vertices.size() * (3ull * w.real + w.integer) + m.edges.size() * 3ull * w.integer +
-         m.triangles.size() * 4ull * w.integer + m.tets.size() * 5ull * w.integer +
+  return 64 + m.vertices.size() * w.vertex_row() + m.edges.size() * 3ull * w.integer +
+         m.triangles.size() * w.triangle_row() + m.tets.size() * w.tet_row() +
          (m.corners.size() + m.ridges.size() + m.required_vertices.size() + m.required_edges.size() +
           m.required_triangles.size()) *
              std::uint64_t(w.integer);
@@ -305,7 +305,7 @@ std::uint64_t binary_size_estimate(const MeshData& m, int version) {
 int choose_version(int requested, int data_version, Encoding enc, std::uint64_t v2_size) {
   int version = requested != 0 ? requested : data_version;
   if (version < 1 || version > 4) throw IoError(fmt::format("unsupported libMeshb version {} for writing", version));
-  if (enc == Encoding::binary && version <= 2 && v2_size > std::uint64_t(std::numeric_limits<std::int32_t>::max())) {
+  if (enc == Encoding::binary && version <= 2 && v2_size > kMaxBytesOfShortOffsets) {
     log::warn("output exceeds 2 GB: writing libMeshb version 3 (64-bit offsets) instead of {}", version);
     version = 3;
   }

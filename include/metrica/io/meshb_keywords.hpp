@@ -1,7 +1,12 @@
-// libMeshb keyword codes and names Metrica reads and writes (the codes are
-// fixed by the format; see libMeshb's GmfKwdFmt table). Internal header.
+// The libMeshb layout Metrica reads and writes: keyword codes and names
+// (fixed by the format; see libMeshb's GmfKwdFmt table), the widths of a
+// version's numbers and the bytes of each keyword's rows. The readers and
+// writers of one process and those of the ranks under MPI share it.
+// Internal header.
 #pragma once
 
+#include <cstdint>
+#include <limits>
 #include <string_view>
 
 namespace metrica::io::meshb {
@@ -58,13 +63,35 @@ inline int keyword_code(std::string_view name) {
   return 0;
 }
 
-// Sizes of one real, one integer and one keyword offset in a binary file.
+// Sizes of one real, one integer and one keyword offset in a binary file,
+// and of the rows built from them.
 struct Widths {
   int real;
   int integer;
   int offset;
   explicit Widths(int version)
       : real(version == 1 ? 4 : 8), integer(version == 4 ? 8 : 4), offset(version >= 3 ? 8 : 4) {}
+  // A keyword's code, the offset of the next keyword, its row count.
+  std::uint64_t keyword_head() const { return 4 + std::uint64_t(offset) + std::uint64_t(integer); }
+  // x y z ref; v1 v2 v3 ref; v1 v2 v3 v4 ref.
+  std::uint64_t vertex_row() const { return 3 * std::uint64_t(real) + std::uint64_t(integer); }
+  std::uint64_t triangle_row() const { return 4 * std::uint64_t(integer); }
+  std::uint64_t tet_row() const { return 5 * std::uint64_t(integer); }
+  // VerticesOnGeometric{Vertices, Edges, Triangles} (dim 0, 1, 2): the
+  // vertex and its entity, then t and dist on a curve, u, v and dist on a
+  // surface.
+  std::uint64_t on_geometry_row(int dim) const {
+    return 2 * std::uint64_t(integer) + std::uint64_t(dim == 0 ? 0 : dim + 1) * std::uint64_t(real);
+  }
+  // SolAtVertices of one symmetric matrix field: the keyword's head, the
+  // field count and its type, then six reals a vertex.
+  std::uint64_t one_field_sol_head() const { return keyword_head() + 8; }
+  std::uint64_t sym_matrix_row() const { return 6 * std::uint64_t(real); }
 };
+
+// The largest file a version 1 or 2 binary file's 32-bit offsets reach,
+// and the largest row count of versions 1 to 3's 32-bit integers.
+inline constexpr std::uint64_t kMaxBytesOfShortOffsets = std::uint64_t(std::numeric_limits<std::int32_t>::max());
+inline constexpr std::uint64_t kMaxRowsOfShortIntegers = std::uint64_t(std::numeric_limits<std::int32_t>::max());
 
 }  // namespace metrica::io::meshb
