@@ -435,8 +435,8 @@ int run_adapt(const std::vector<std::string>& args) {
 
   Stopwatch clock;
   const bool talk = log::level() >= log::Level::normal;
-  // The input read again for a serial run when the threads' fails its end
-  // check (adapted_check.hpp).
+  // A threaded run that fails its end check is made again serially from
+  // the input read again (adapted_check.hpp).
   Adapted adapted = adapt_or_again_serially(
       policies, fmt::format("from {} under --concurrency serial", input),
       [&](const PolicyChoice& p) { return adapt_input(o, ao, p, analytic, bounds, iterations); });
