@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <cstdio>
+#include <limits>
 
 namespace metrica::distributed {
 
@@ -11,27 +12,48 @@ Comm::Comm(MPI_Comm comm) : comm_(comm) {
   MPI_Comm_size(comm_, &size_);
 }
 
-// Point-to-point messages for the non-empty parts only, in pieces below
-// 2^31 bytes (MPI's counts are int): a part's neighbours are few, so most
-// pairs exchange nothing.
-void Comm::exchange_raw(const std::vector<const char*>& parts, const std::vector<std::int64_t>& send_bytes,
-                        const std::vector<std::int64_t>& recv_bytes, char* in) const {
-  constexpr std::int64_t kPiece = std::int64_t{1} << 30;
-  std::vector<MPI_Request> requests;
-  std::int64_t at = 0;
-  for (int r = 0; r < size_; ++r) {
-    for (std::int64_t off = 0; off < recv_bytes[r]; off += kPiece) {
-      requests.emplace_back();
-      MPI_Irecv(in + at + off, int(std::min(kPiece, recv_bytes[r] - off)), MPI_BYTE, r, 7, comm_, &requests.back());
-    }
-    at += recv_bytes[r];
-  }
+// MPI_Alltoallw over a record datatype: each rank's block, sent and
+// received, is one record run at its absolute address (MPI_BOTTOM), so no
+// side is packed into a buffer of its own and no byte displacement has to
+// fit an int; only a run's record count does.
+void Comm::exchange_records(std::size_t bytes, const std::vector<const void*>& send_at,
+                            const std::vector<std::int64_t>& send, const std::vector<void*>& recv_at,
+                            const std::vector<std::int64_t>& recv) const {
+  // Agreed before the collective, so that no rank waits in it alone.
+  int too_many = 0;
   for (int r = 0; r < size_; ++r)
-    for (std::int64_t off = 0; off < send_bytes[r]; off += kPiece) {
-      requests.emplace_back();
-      MPI_Isend(parts[r] + off, int(std::min(kPiece, send_bytes[r] - off)), MPI_BYTE, r, 7, comm_, &requests.back());
-    }
-  MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    too_many |= send[r] > std::numeric_limits<int>::max() || recv[r] > std::numeric_limits<int>::max();
+  int any = 0;
+  MPI_Allreduce(&too_many, &any, 1, MPI_INT, MPI_MAX, comm_);
+  if (any)
+    throw InputError(fmt::format("distributed: more than {} records of {} bytes between two ranks (MPI's int counts)",
+                                 std::numeric_limits<int>::max(), bytes));
+  MPI_Datatype record;
+  MPI_Type_contiguous(int(bytes), MPI_BYTE, &record);
+  MPI_Type_commit(&record);
+  std::vector<MPI_Datatype> made;
+  // One record run at `at` as a datatype placed from MPI_BOTTOM.
+  const auto run = [&](const void* at, std::int64_t records, int& count, MPI_Datatype& type) {
+    type = record, count = 0;
+    if (records == 0) return;
+    MPI_Aint address;
+    MPI_Get_address(at, &address);
+    const int length = int(records);
+    MPI_Type_create_hindexed(1, &length, &address, record, &type);
+    MPI_Type_commit(&type);
+    made.push_back(type);
+    count = 1;
+  };
+  std::vector<int> send_count(size_), recv_count(size_), displacement(size_, 0);
+  std::vector<MPI_Datatype> send_type(size_), recv_type(size_);
+  for (int r = 0; r < size_; ++r) {
+    run(send_at[r], send[r], send_count[r], send_type[r]);
+    run(recv_at[r], recv[r], recv_count[r], recv_type[r]);
+  }
+  MPI_Alltoallw(MPI_BOTTOM, send_count.data(), displacement.data(), send_type.data(), MPI_BOTTOM, recv_count.data(),
+                displacement.data(), recv_type.data(), comm_);
+  for (MPI_Datatype& t : made) MPI_Type_free(&t);
+  MPI_Type_free(&record);
 }
 
 namespace {

@@ -33,18 +33,22 @@ class Comm {
   template <class T>
   std::vector<T> exchange(const std::vector<std::vector<T>>& out, std::vector<std::int64_t>* from = nullptr) const {
     static_assert(std::is_trivially_copyable_v<T>);
-    std::vector<std::int64_t> send_bytes(size_), recv_bytes(size_);
-    for (int r = 0; r < size_; ++r) send_bytes[r] = std::int64_t(out[r].size() * sizeof(T));
-    MPI_Alltoall(send_bytes.data(), 1, MPI_INT64_T, recv_bytes.data(), 1, MPI_INT64_T, comm_);
-    std::vector<T> in;
+    std::vector<std::int64_t> send(size_), recv(size_);
+    for (int r = 0; r < size_; ++r) send[r] = std::int64_t(out[r].size());
+    MPI_Alltoall(send.data(), 1, MPI_INT64_T, recv.data(), 1, MPI_INT64_T, comm_);
     std::int64_t total = 0;
-    for (auto b : recv_bytes) total += b;
-    in.resize(std::size_t(total) / sizeof(T));
-    exchange_bytes(out, send_bytes, recv_bytes, reinterpret_cast<char*>(in.data()));
-    if (from) {
-      from->resize(size_);
-      for (int r = 0; r < size_; ++r) (*from)[r] = recv_bytes[r] / std::int64_t(sizeof(T));
+    for (auto n : recv) total += n;
+    std::vector<T> in(static_cast<std::size_t>(total));
+    std::vector<const void*> send_at(size_);
+    std::vector<void*> recv_at(size_);
+    std::int64_t at = 0;
+    for (int r = 0; r < size_; ++r) {
+      send_at[r] = out[r].data();
+      recv_at[r] = in.data() + at;
+      at += recv[r];
     }
+    exchange_records(sizeof(T), send_at, send, recv_at, recv);
+    if (from) *from = recv;
     return in;
   }
 
@@ -64,15 +68,11 @@ class Comm {
   void step(const std::function<void()>& body) const;
 
  private:
-  template <class T>
-  void exchange_bytes(const std::vector<std::vector<T>>& out, const std::vector<std::int64_t>& send_bytes,
-                      const std::vector<std::int64_t>& recv_bytes, char* in) const {
-    std::vector<const char*> parts(size_);
-    for (int r = 0; r < size_; ++r) parts[r] = reinterpret_cast<const char*>(out[r].data());
-    exchange_raw(parts, send_bytes, recv_bytes, in);
-  }
-  void exchange_raw(const std::vector<const char*>& parts, const std::vector<std::int64_t>& send_bytes,
-                    const std::vector<std::int64_t>& recv_bytes, char* in) const;
+  // One all-to-all of records of `bytes` bytes: send[r] records at
+  // send_at[r] to rank r, recv[r] from rank r into recv_at[r].
+  void exchange_records(std::size_t bytes, const std::vector<const void*>& send_at,
+                        const std::vector<std::int64_t>& send, const std::vector<void*>& recv_at,
+                        const std::vector<std::int64_t>& recv) const;
 
   MPI_Comm comm_;
   int rank_ = 0, size_ = 1;
