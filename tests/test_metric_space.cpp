@@ -196,6 +196,27 @@ TEST_SUITE("property") {
     }
   }
 
+  TEST_CASE_TEMPLATE(
+      "a tet's metric with one vertex's metric replaced: the same with its own, the new one's "
+      "share with another",
+      S, Isotropic, Anisotropic, LogEuclidean) {
+    auto r = test::rng(207);
+    Mesh mesh = box_with_metric(r, 1e2);
+    for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+      const auto& k = mesh.tet(t);
+      for (VertexId v : k) {
+        const VertexMetric own{mesh.metric(v), mesh.log_metric(v)};
+        CHECK(rel_diff(S::tet_metric_with(mesh, k, v, own), S::tet_metric(mesh, k)) < 1e-12);
+      }
+      // Another tet's metric at k[0]: as if that vertex stored it.
+      Mesh moved = mesh;
+      const VertexId u = mesh.tet(t == 0 ? 1 : 0)[2];
+      const VertexMetric other{mesh.metric(u), mesh.log_metric(u)};
+      moved.set_metric(k[0], other.m, other.log_m);
+      CHECK(rel_diff(S::tet_metric_with(mesh, k, k[0], other), S::tet_metric(moved, k)) < 1e-12);
+    }
+  }
+
   TEST_CASE("log-Euclidean mean: equal tensors give that tensor and the mean is symmetric and SPD") {
     auto r = test::rng(203);
     for (int i = 0; i < 200; ++i) {

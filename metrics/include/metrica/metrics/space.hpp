@@ -39,7 +39,8 @@ inline void set_vertex_metric(Mesh& mesh, VertexId v, const VertexMetric& m) {
 
 template <class S>
 concept MetricSpace = requires(const Mesh& mesh, VertexId a, const TetVertices& t, const TetPoints& p,
-                               std::span<const VertexId> ids, std::span<const double> w, const Sym6& m) {
+                               std::span<const VertexId> ids, std::span<const double> w, const Sym6& m,
+                               const VertexMetric& vm) {
   { S::name } -> std::convertible_to<std::string_view>;
   // The tensor the space sees at a vertex (Isotropic: the isotropic
   // metric of the same volume).
@@ -48,8 +49,11 @@ concept MetricSpace = requires(const Mesh& mesh, VertexId a, const TetVertices& 
   // alone, and with its logarithm (to store at a new vertex).
   { S::metric_at(mesh, ids, w) } -> std::same_as<Sym6>;
   { S::interpolate(mesh, ids, w) } -> std::same_as<VertexMetric>;
-  // The metric of a tet: interpolated at its centroid.
+  // The metric of a tet: interpolated at its centroid; and the same were
+  // its vertex a to take the metric vm (a move's preview, the metric
+  // sampled at the new position).
   { S::tet_metric(mesh, t) } -> std::same_as<Sym6>;
+  { S::tet_metric_with(mesh, t, a, vm) } -> std::same_as<Sym6>;
   { S::edge_length(mesh, a, a) } -> std::same_as<double>;
   // Is edge_length in the band (most edges decided without the length)?
   { S::edge_length_in(mesh, a, a, kUnitBand) } -> std::same_as<bool>;
@@ -122,6 +126,11 @@ struct Isotropic : detail::SpaceCommon<Isotropic> {
     for (std::size_t i = 0; i < ids.size(); ++i) h += w[i] * size(mesh.metric(ids[i]));
     return isotropic_metric(h);
   }
+  static Sym6 tet_metric_with(const Mesh& mesh, const TetVertices& t, VertexId v, const VertexMetric& vm) {
+    double h = 0.0;
+    for (VertexId u : t) h += 0.25 * size(u == v ? vm.m : mesh.metric(u));
+    return isotropic_metric(h);
+  }
   static VertexMetric interpolate(const Mesh& mesh, std::span<const VertexId> ids, std::span<const double> w) {
     const Sym6 m = metric_at(mesh, ids, w);
     const double l = std::log(m[0]);
@@ -138,6 +147,14 @@ struct Anisotropic : detail::SpaceCommon<Anisotropic> {
     Sym6 m{};
     for (std::size_t i = 0; i < ids.size(); ++i)
       for (int c = 0; c < 6; ++c) m[c] += w[i] * mesh.metric(ids[i])[c];
+    return m;
+  }
+  static Sym6 tet_metric_with(const Mesh& mesh, const TetVertices& t, VertexId v, const VertexMetric& vm) {
+    Sym6 m{};
+    for (VertexId u : t) {
+      const Sym6& mu = u == v ? vm.m : mesh.metric(u);
+      for (int c = 0; c < 6; ++c) m[c] += 0.25 * mu[c];
+    }
     return m;
   }
   static VertexMetric interpolate(const Mesh& mesh, std::span<const VertexId> ids, std::span<const double> w) {
@@ -161,6 +178,14 @@ struct LogEuclidean : detail::SpaceCommon<LogEuclidean> {
     Sym6 l{};
     for (std::size_t i = 0; i < ids.size(); ++i)
       for (int c = 0; c < 6; ++c) l[c] += w[i] * mesh.log_metric(ids[i])[c];
+    return spd_exp_fast(l);
+  }
+  static Sym6 tet_metric_with(const Mesh& mesh, const TetVertices& t, VertexId v, const VertexMetric& vm) {
+    Sym6 l{};
+    for (VertexId u : t) {
+      const Sym6& lu = u == v ? vm.log_m : mesh.log_metric(u);
+      for (int c = 0; c < 6; ++c) l[c] += 0.25 * lu[c];
+    }
     return spd_exp_fast(l);
   }
 };

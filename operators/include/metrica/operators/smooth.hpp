@@ -285,6 +285,21 @@ inline double ball_volume_change(const Mesh& mesh, VertexId v, std::span<const T
   return delta;
 }
 
+// Does moving v to p with the metric vm raise the smallest mean ratio of
+// its ball (every tet's metric interpolated with vm at v)?
+template <MetricSpace S>
+bool raises_worst_tet_with(const Mesh& mesh, VertexId v, std::span<const TetId> ball, const Point& p,
+                           const VertexMetric& vm) {
+  double before = std::numeric_limits<double>::infinity(), after = before;
+  for (TetId t : ball) {
+    const auto& tv = mesh.tet(t);
+    const double q = mesh.cached_quality(t);
+    before = std::min(before, q != Mesh::kUnknownQuality ? q : S::mean_ratio(mesh, tv));
+    after = std::min(after, mean_ratio(tet_points_moved(mesh, tv, v, p), S::tet_metric_with(mesh, tv, v, vm)));
+  }
+  return improves_min_quality(before, after);
+}
+
 // The best of s.trials under MinQuality (scores Q^3), from the ball terms:
 // the smallest mean ratio (cubed) of the ball with v at a trial, each
 // trial stopping at the first tet at or below the best so far (tested
@@ -425,11 +440,12 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
   else
     d = detail::best_trial_by_criterion(mesh, v, s, secondary, Acceptance<S, Criterion>(o.shape_floor), admissible);
   // With a background, v's metric at the chosen point is sampled here, once
-  // (the apply stores it), and the move may not leave more of v's edges
-  // outside the unit band in that metric than there were: the trials were
-  // measured in v's metric where it stands, which a field given on a coarse
-  // mesh may change much over the move. (An analytic metric is evaluated at
-  // the apply, as the UGAWG reference outputs were made.)
+  // (the apply stores it), and the move must still hold in that metric: no
+  // more of v's edges outside the unit band than there were, and (under
+  // MinQuality) the ball's worst tet raised. The trials were measured in v's metric where
+  // it stands, which a field given on a coarse mesh may change much over
+  // the move. (An analytic metric is evaluated at the apply, as the UGAWG
+  // reference outputs were made.)
   if (!d) return d;
   if (o.scope.metric.background != nullptr) {
     SmoothPlan plan = d.plan();
@@ -440,6 +456,8 @@ Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratc
     for (VertexId u : s.neighbours)
       n += !ugawg_length_in(kUnitBand, mesh.point(u) - plan.to, plan.metric.m, S::vertex_metric(mesh, u));
     if (n > bad_old) return Refusal::rejected;
+    if constexpr (CriterionTraits<Criterion>::score_is_mean_ratio_cubed)
+      if (!detail::raises_worst_tet_with<S>(mesh, v, view(s.ball), plan.to, plan.metric)) return Refusal::rejected;
     d = plan;
   }
   // Last, once nothing else refuses: a boundary move's change of volume
