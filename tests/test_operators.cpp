@@ -371,6 +371,7 @@ TEST_SUITE("invariant") {
           mesh.set_metric(v, m.m, m.log_m);
         }
         so.scope.metric = &background;
+        so.resample_below = 1.0;  // every ball checked in the sampled metric
       }
       SmoothScratch s;
       TetList ball;
