@@ -237,7 +237,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     if (!settings.keep_worst) drop_active_records();
     BuildOptions bo;
     bo.default_surface_id = settings.default_surface_id;
-    bo.ridge_angle = 180.0;  // the input's surfaces as given; the cut's faces keep their own id
+    bo.ridge_angle = kNoRidgeSplit;  // the input's surfaces as given; the cut's faces keep their own id
     bo.source = fmt::format("part {}", comm.rank());
     std::optional<Mesh> built(build_mesh(data, bo));
     Mesh& mesh = *built;
@@ -461,7 +461,7 @@ QualityTally part_quality(const Part& part, const PartAdaptSettings& settings) {
     for (auto v : numbered) local[v] = -1;
     BuildOptions bo;
     bo.default_surface_id = settings.default_surface_id;
-    bo.ridge_angle = 180.0;  // the cut's faces keep their own id
+    bo.ridge_angle = kNoRidgeSplit;  // the cut's faces keep their own id
     bo.untagged_expected = true;
     Mesh mesh = build_mesh(data, bo);
     data = io::MeshData{};

@@ -263,7 +263,7 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       const io::MeshData data = io::read_mesh_file(run.input);
       BuildOptions bo;
       bo.source = run.input;
-      bo.ridge_angle = 180.0;  // located in only: its surfaces do not matter
+      bo.ridge_angle = kNoRidgeSplit;  // located in only: its surfaces do not matter
       const Mesh whole = build_mesh(data, bo);
       auto field = metric_field_from_sol(io::read_sol(run.metric), data.vertices.size(), run.metric);
       clamp_metrics(field, run.bounds);

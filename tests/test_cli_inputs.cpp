@@ -30,7 +30,7 @@ std::string data(const std::string& name) { return std::string(METRICA_TEST_DATA
 // The surfaces as written (not split again by angle on reading).
 MeshSummary summary_of(const std::string& path) {
   BuildOptions as_written;
-  as_written.ridge_angle = 180.0;
+  as_written.ridge_angle = kNoRidgeSplit;
   return summarize(build_mesh(io::read_meshb(path), as_written));
 }
 

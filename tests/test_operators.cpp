@@ -587,7 +587,7 @@ TEST_SUITE("unit") {
                       {b, a, q1}, {q2, b, q1}, {x, b, q2}, {q1, x, q2}, {a, x, q1}};
     data.triangle_refs.assign(data.triangles.size(), 1);
     BuildOptions as_given;  // one surface, not split by angle
-    as_given.ridge_angle = 180.0;
+    as_given.ridge_angle = kNoRidgeSplit;
     Mesh mesh = build_mesh(data, as_given);
     REQUIRE(mesh.validate().ok());
     REQUIRE(mesh.vertex_class(a) == VertexClass::surface);

@@ -13,6 +13,8 @@
 namespace metrica {
 
 inline constexpr double kDefaultRidgeAngle = 45.0;
+// A ridge angle that splits nothing: the surfaces as the input gives them.
+inline constexpr double kNoRidgeSplit = 180.0;
 
 struct AngleSplit {
   std::size_t surfaces = 0;     // surfaces the split ids became

@@ -88,13 +88,12 @@ Stage<A> make_stage(const StageSpec& s) {
     o.take("face_flips", r.face_flips);
     o.number("face_flip_below", r.face_flip_below, 0.0, 1.0);
     o.done();
-    if (!FlipCriteria::contains(criterion))
-      throw InputError(
-          fmt::format("stage '{}': unknown criterion '{}' ({})", s.name, criterion, FlipCriteria::names()));
     const std::string key = s.name;
-    return with_policy<FlipCriteria>("criterion", criterion, [&]<class Criterion>() -> Stage<A> {
-      return {s.name, [r, key](A& a) { return a.template flips<Criterion>(r, key); }};
-    });
+    // "unknown criterion of stage 'flip' 'delaunay' (min-quality, ...)".
+    return with_policy<FlipCriteria>(fmt::format("criterion of stage '{}'", key), criterion,
+                                     [&]<class Criterion>() -> Stage<A> {
+                                       return {s.name, [r, key](A& a) { return a.template flips<Criterion>(r, key); }};
+                                     });
   }
   if (s.op == "smooth") {
     StageOptions o(s, "below, shape_floor");

@@ -310,7 +310,7 @@ def test_a_pipeline_composed_in_python(tmp_path):
         metrica.Pipeline(cycle=[("refine", {})]).run(mesh, analytic="linear")
     with pytest.raises(metrica.InputError, match="unknown option 'below'"):
         metrica.Pipeline(cycle=[("collapse", {"below": 1})]).run(mesh, analytic="linear")
-    with pytest.raises(metrica.InputError, match="unknown criterion"):
+    with pytest.raises(metrica.InputError, match="unknown criterion of stage 'flip' 'delaunay'"):
         metrica.Pipeline(cycle=[("flip", {"criterion": "delaunay"})]).run(mesh, analytic="linear")
     with pytest.raises(metrica.InputError, match="two stages named"):
         metrica.Pipeline(cycle=[("flip", {}), ("flip", {})]).run(mesh, analytic="linear")

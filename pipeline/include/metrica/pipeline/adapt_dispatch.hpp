@@ -9,6 +9,7 @@
 
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/pipeline/adapt.hpp>
+#include <metrica/pipeline/policy_choice.hpp>
 #include <metrica/policies/speculative.hpp>
 
 #include <string>
@@ -18,22 +19,6 @@ namespace metrica {
 
 PointRule point_rule_from_name(std::string_view name);
 const char* to_string(PointRule r);
-
-// The policies of an adaptation, by name (each one of its list's names).
-struct PolicyChoice {
-  std::string space{Spaces::at<0>::name};
-  std::string precision{Precisions::at<0>::name};
-  std::string concurrency{Concurrencies::at<0>::name};
-};
-
-// InputError naming the choices when a name is not in its list.
-void check_policy_choice(const PolicyChoice& choice);
-// False for a choice whose pipeline this build leaves out
-// (METRICA_DEFAULT_POLICIES_ONLY, METRICA_SPECULATIVE_ONLY: the sanitizer builds).
-bool policies_compiled(const PolicyChoice& choice);
-// "space 'isotropic': this build compiles the pipeline for the space
-// 'log-euclidean' only (...)".
-std::string not_compiled_message(std::string_view what, std::string_view name, std::string_view compiled);
 
 // The standard adaptation with its policies chosen by name (the CLI's
 // --space, --precision, --concurrency; inputs.model chooses the

@@ -9,7 +9,7 @@
 #include <metrica/log.hpp>
 #include <metrica/mesh.hpp>
 #include <metrica/part_runner.hpp>
-#include <metrica/pipeline/adapt_dispatch.hpp>
+#include <metrica/pipeline/policy_choice.hpp>
 
 #include <string>
 #include <string_view>
