@@ -7,6 +7,7 @@
 #include <metrica/io/output_set.hpp>
 #include <metrica/log.hpp>
 #include <metrica/mesh_build.hpp>
+#include <metrica/pipeline/adapt_settings.hpp>
 #include <metrica/policies/speculative.hpp>
 #include <metrica/policies/threads.hpp>
 #include <metrica/timer.hpp>
@@ -240,6 +241,20 @@ double check_predicted_size(const Options& o, double complexity, const std::stri
                     "memory holds)",
                     o.command(), what, complexity, predicted, bytes_text(predicted * kBytesPerTet), limit));
   return predicted;
+}
+
+void declare_setting(Options& o, const AdaptSetting& s, const AdaptOptions& defaults) {
+  const double d = s.get(defaults);
+  const std::string name(s.name), value_name(s.value_name), help(s.help);
+  o.add()(name.c_str(), po::value<double>()->default_value(d, fmt::format("{:.4g}", d))->value_name(value_name),
+          help.c_str());
+}
+
+void read_setting(const Options& o, const AdaptSetting& s, AdaptOptions& into) {
+  const std::string name(s.name);
+  const double x = o.get<double>(name.c_str());
+  if (!s.accepts(x)) o.throw_out_of_range(name.c_str(), s.domain(), fmt::format("{}", x));
+  s.set(into, x);
 }
 
 po::typed_value<double>* number_option(double default_value) {

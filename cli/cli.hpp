@@ -21,6 +21,11 @@
 #include <string>
 #include <vector>
 
+namespace metrica {
+struct AdaptOptions;
+struct AdaptSetting;
+}  // namespace metrica
+
 namespace metrica::cli {
 
 namespace po = boost::program_options;
@@ -187,6 +192,13 @@ std::string model_distance_text(const Mesh& mesh, const CadModel& model);
 // part_runner (the --threads threads, one below its sweep size), or the
 // calling thread alone when `serial` (--concurrency serial).
 PartRunner sweep_runner(std::size_t n, bool serial = false);
+
+// An option of the standard adaptation's settings table
+// (pipeline/adapt_settings.hpp): declared with the default `defaults`
+// hold, read back into `into` after the table's range check (a usage
+// error names the option, its domain and the value).
+void declare_setting(Options& o, const AdaptSetting& s, const AdaptOptions& defaults);
+void read_setting(const Options& o, const AdaptSetting& s, AdaptOptions& into);
 
 // A number option whose default the help shows as the library states it
 // ("0.3", not Boost's "0.29999999999999999").

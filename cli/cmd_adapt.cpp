@@ -15,6 +15,7 @@
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapt_settings.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
 #include <metrica/policies/speculative.hpp>
 #include <metrica/policies/threads.hpp>
@@ -104,27 +105,9 @@ void declare_options(Options& o) {
       "(one thread, the same output to the bit on every run)")(
       "points", po::value<std::string>()->default_value(to_string(d.points))->value_name("RULE"),
       "point creation: edge (split long edges at their metric midpoint) or centroid (the centroids "
-      "of tets with a long edge, moved to a boundary face or ridge they encroach)")(
-      "cycles", po::value<int>()->default_value(d.max_cycles)->value_name("N"),
-      "most adaptation cycles per adaptation")("quality-passes",
-                                               po::value<int>()->default_value(d.quality_passes)->value_name("N"),
-                                               "flip + smooth passes at the end")(
-      "repair-rounds", po::value<int>()->default_value(d.repair_rounds)->value_name("N"),
-      "after the quality passes, at most N rounds of collapse, split, flips and smoothing around the tets "
-      "still below --repair-below (none after two in a row that leave the worst tet)")(
-      "repair-below", number_option(d.repair_below)->value_name("Q"),
-      "mean ratio below which a tet left by the quality passes gets repair rounds")(
-      "max-length", po::value<double>()->value_name("L"),
-      fmt::format("split edges longer than L (default {:.4g}: sqrt 2)", d.refine.max_length).c_str())(
-      "min-length", po::value<double>()->value_name("L"),
-      fmt::format("collapse edges shorter than L (default {:.4g}: 1/sqrt 2)", d.collapse.min_length).c_str())(
-      "collapse-max-length", po::value<double>()->value_name("L"),
-      fmt::format("a collapse may not make an edge longer than L (default {})", d.collapse.max_new_length).c_str())(
-      "shape-floor", number_option(d.collapse.shape_floor)->value_name("Q"),
-      "a collapse may not make a tet worse than Q (unless the ball was already worse)")(
-      "smooth-below", number_option(d.smooth.below)->value_name("Q"),
-      "smooth the vertices of tets with mean ratio below Q during the cycles")(
-      "hmin", po::value<double>()->value_name("H"), "clamp the metric's sizes to at least H")(
+      "of tets with a long edge, moved to a boundary face or ridge they encroach)");
+  for (const AdaptSetting& s : adapt_settings()) declare_setting(o, s, d);
+  o.add()("hmin", po::value<double>()->value_name("H"), "clamp the metric's sizes to at least H")(
       "hmax", po::value<double>()->value_name("H"), "clamp the metric's sizes to at most H")(
       "geometry", po::value<std::string>()->value_name("MODEL"),
       "CAD model the boundary lies on (.step .stp .iges .igs .brep .geo): new boundary vertices go on it")(
@@ -153,19 +136,9 @@ void declare_options(Options& o) {
 // The adaptation's settings from the command line (checked).
 AdaptOptions adapt_options_from(const Options& o) {
   AdaptOptions ao;
-  ao.max_cycles = o.in_range("cycles", 0, 1000);
+  for (const AdaptSetting& s : adapt_settings()) read_setting(o, s, ao);
   ao.points = *o.named("points", point_rule_from_name);
-  ao.quality_passes = o.in_range("quality-passes", 0, 1000);
-  ao.repair_rounds = o.in_range("repair-rounds", 0, 1000);
-  ao.repair_below = o.in_range("repair-below", 0.0, 1.0);
-  if (o.has("max-length")) ao.refine.max_length = o.positive("max-length", 1e6);
-  if (o.has("min-length")) ao.collapse.min_length = o.positive("min-length", 1e6);
-  ao.collapse.shape_floor = o.in_range("shape-floor", 0.0, 1.0);
-  if (o.has("collapse-max-length")) ao.collapse.max_new_length = o.positive("collapse-max-length", 1e6);
-  ao.smooth.below = o.in_range("smooth-below", 0.0, 1.0);
-  if (!(ao.refine.max_length > ao.collapse.min_length))
-    throw UsageError(fmt::format("adapt: need --min-length < --max-length (got {} and {})", ao.collapse.min_length,
-                                 ao.refine.max_length));
+  o.as_usage([&] { check_length_band(ao, "--min-length", "--max-length"); });
   return ao;
 }
 

@@ -11,6 +11,7 @@
 #include <metrica/mesh_build.hpp>
 #include <metrica/metrics/analytic_field.hpp>
 #include <metrica/metrics/metric_field.hpp>
+#include <metrica/pipeline/adapt_settings.hpp>
 #include <metrica/pipeline/adaptive_loop.hpp>
 #include <metrica/policies/threads.hpp>
 #include <metrica/timer.hpp>
@@ -46,10 +47,9 @@ int run_loop(const std::vector<std::string>& args) {
       "iterations", po::value<int>()->default_value(d.iterations)->value_name("N"), "iterations in all")(
       "norm", number_option(d.norm)->value_name("P"), "L^p norm of the multiscale metric")(
       "gradation", number_option(d.gradation)->value_name("BETA"), "size gradation (0: none)")(
-      "quick", "6 iterations at complexity 1000, doubling every 3 (for CI)")(
-      "smooth-below", number_option(d.adapt.smooth.below)->value_name("Q"),
-      "smooth, in the adaptation's cycles, the vertices of tets with mean ratio below Q (as adapt's option)")(
-      "interpolate", "also transfer the previous field to each new mesh (a solver restart) and report its error")(
+      "quick", "6 iterations at complexity 1000, doubling every 3 (for CI)");
+  declare_setting(o, *adapt_setting("smooth-below"), d.adapt);
+  o.add()("interpolate", "also transfer the previous field to each new mesh (a solver restart) and report its error")(
       "concurrency", po::value<std::string>()->default_value(d.concurrency)->value_name("C"),
       "speculative (--threads threads) or serial")(
       "output-dir", po::value<std::string>()->value_name("DIR"),
@@ -70,7 +70,7 @@ int run_loop(const std::vector<std::string>& args) {
   lo.norm = o.in_range("norm", 1.0, 1e6);
   lo.gradation = o.in_range("gradation", 0.0, 1e6);
   lo.interpolate = o.has("interpolate");
-  lo.adapt.smooth.below = o.in_range("smooth-below", 0.0, 1.0);
+  read_setting(o, *adapt_setting("smooth-below"), lo.adapt);
   lo.concurrency = o.get<std::string>("concurrency");
   if (!Concurrencies::contains(lo.concurrency))
     throw UsageError(fmt::format("loop: unknown concurrency '{}' ({})", lo.concurrency, Concurrencies::names()));

@@ -88,10 +88,10 @@ def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concu
     geometry:    a CAD model (.step, .iges, .brep, .geo) the boundary lies
                  on, as `metrica adapt --geometry`: its surface tags are the
                  mesh's surface ids; new boundary vertices go on the model.
-    options:     those of `metrica adapt`, '-' written '_': cycles,
-                 quality_passes, repair_rounds, repair_below, max_length,
-                 min_length, collapse_max_length, shape_floor, smooth_below,
-                 points ("edge", "centroid"), hmin, hmax.
+    options:     those of `metrica adapt`, '-' written '_': points
+                 ("edge", "centroid"), hmin, hmax, and (the command's
+                 settings table: name, values, default)
+{settings}
 
     The adapted mesh is checked as the command checks it; if a run on
     threads fails that check, it is made again from the input with
@@ -111,6 +111,12 @@ def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concu
 
     return _metrica._adapt(mesh, metric, analytic or "", int(iterations), int(threads or 0), concurrency, space,
                            precision, str(geometry or ""), dict(options), each)
+
+
+if adapt.__doc__:  # none under python -OO
+    adapt.__doc__ = adapt.__doc__.replace("{settings}", "\n".join(
+        f"                   {name:<20} {domain}, default {default:g}: {help}"
+        for name, domain, default, help in _metrica._adapt_settings()))
 
 
 class Pipeline:

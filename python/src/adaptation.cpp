@@ -14,6 +14,7 @@
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
+#include <metrica/pipeline/adapt_settings.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
 #include <metrica/policies/threads.hpp>
 
@@ -78,52 +79,34 @@ py::dict quality_dict(const QualityReport& q) {
   return out;
 }
 
-// The options of `metrica adapt` by their Python names (the command's with
-// '_' for '-'), checked as the command checks them.
+// The options of `metrica adapt` by their Python names (the settings
+// table's, '_' for '-'), checked against the same ranges.
 AdaptOptions adapt_options(const py::dict& options, MetricBounds& bounds) {
   AdaptOptions o;
-  auto number = [](const py::handle& v, const std::string& name, double lo, double hi) {
-    const double x = v.cast<double>();
-    if (!(x >= lo && x <= hi)) throw InputError(fmt::format("adapt: {} must be in [{}, {}] (got {})", name, lo, hi, x));
-    return x;
-  };
-  auto count = [&](const py::handle& v, const std::string& name) { return static_cast<int>(number(v, name, 0, 1000)); };
   py::object hmin = py::none(), hmax = py::none();
   for (const auto& [key, value] : options) {
     const auto name = key.cast<std::string>();
-    if (name == "cycles")
-      o.max_cycles = count(value, name);
-    else if (name == "quality_passes")
-      o.quality_passes = count(value, name);
-    else if (name == "repair_rounds")
-      o.repair_rounds = count(value, name);
-    else if (name == "repair_below")
-      o.repair_below = number(value, name, 0, 1);
-    else if (name == "max_length")
-      o.refine.max_length = number(value, name, 1e-300, 1e6);
-    else if (name == "min_length")
-      o.collapse.min_length = number(value, name, 1e-300, 1e6);
-    else if (name == "collapse_max_length")
-      o.collapse.max_new_length = number(value, name, 1e-300, 1e6);
-    else if (name == "shape_floor")
-      o.collapse.shape_floor = number(value, name, 0, 1);
-    else if (name == "smooth_below")
-      o.smooth.below = number(value, name, 0, 1);
-    else if (name == "points")
+    const auto setting = name.find('-') == std::string::npos ? adapt_setting(name) : std::nullopt;
+    if (setting) {
+      const double x = value.cast<double>();
+      if (!setting->accepts(x))
+        throw InputError(fmt::format("adapt: {} must be {} (got {})", name, setting->domain(), x));
+      setting->set(o, x);
+    } else if (name == "points") {
       o.points = point_rule_from_name(value.cast<std::string>());
-    else if (name == "hmin")
+    } else if (name == "hmin") {
       hmin = py::reinterpret_borrow<py::object>(value);
-    else if (name == "hmax")
+    } else if (name == "hmax") {
       hmax = py::reinterpret_borrow<py::object>(value);
-    else
-      throw InputError(fmt::format(
-          "adapt: unknown option '{}' (cycles, quality_passes, repair_rounds, repair_below, max_length, min_length, "
-          "collapse_max_length, shape_floor, smooth_below, points, hmin, hmax)",
-          name));
+    } else {
+      throw InputError(fmt::format("adapt: unknown option '{}' ({}, points, hmin, hmax)", name, adapt_setting_names()));
+    }
   }
-  if (!(o.refine.max_length > o.collapse.min_length))
-    throw InputError(
-        fmt::format("adapt: need min_length < max_length (got {} and {})", o.collapse.min_length, o.refine.max_length));
+  try {
+    check_length_band(o, "min_length", "max_length");
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("adapt: {}", e.what()));
+  }
   bounds = bounds_of(hmin, hmax);
   return o;
 }

@@ -10,6 +10,8 @@
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/output_set.hpp>
 #include <metrica/mesh_build.hpp>
+#include <metrica/pipeline/adapt.hpp>
+#include <metrica/pipeline/adapt_settings.hpp>
 
 #include <fmt/core.h>
 
@@ -115,6 +117,15 @@ PYBIND11_MODULE(_metrica, m) {
         "The UGAWG quality report of the mesh in the metric, as a dict; with measures, also \"edge_ends\" "
         "(k, 2), \"edge_lengths\" (k,) and \"mean_ratios\" (one per tet, in the order of mesh.tets). With "
         "metric_mesh, the metric is given at that mesh's vertices and interpolated log-Euclidean at this one's.");
+  m.def(
+      "_adapt_settings",
+      [] {
+        py::list rows;
+        for (const AdaptSetting& s : adapt_settings())
+          rows.append(py::make_tuple(s.python_name(), s.domain(), s.get(AdaptOptions{}), std::string(s.help)));
+        return rows;
+      },
+      "The settings adapt takes by name: (name, domain, default, help) rows of the command's table.");
   m.def(
       "_adapt",
       [](const PyMesh& x, py::object metric, std::string analytic, int iterations, int threads, std::string concurrency,

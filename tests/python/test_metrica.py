@@ -169,6 +169,14 @@ def test_bad_adaptation_calls_raise(tmp_path):
         metrica.adapt(mesh)
     with pytest.raises(metrica.InputError, match="unknown option 'cycle'"):
         metrica.adapt(mesh, analytic="linear", cycle=3)
+    # The command's settings table, its domains: an integer count, a length > 0.
+    with pytest.raises(metrica.InputError, match=r"cycles must be an integer in \[0, 1000\]"):
+        metrica.adapt(mesh, analytic="linear", cycles=2.5)
+    with pytest.raises(metrica.InputError, match=r"max_length must be in \(0, 1000000\]"):
+        metrica.adapt(mesh, analytic="linear", max_length=0)
+    with pytest.raises(metrica.InputError, match="need min_length < max_length"):
+        metrica.adapt(mesh, analytic="linear", min_length=2, max_length=1.5)
+    assert "smooth_below" in metrica.adapt.__doc__ and "default 0.5" in metrica.adapt.__doc__
     with pytest.raises(metrica.InputError, match="unknown analytic metric"):
         metrica.adapt(mesh, analytic="quadratic")
     with pytest.raises(metrica.InputError, match="unknown concurrency"):
