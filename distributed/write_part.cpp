@@ -2,6 +2,7 @@
 #include <metrica/error.hpp>
 #include <metrica/geometry/association.hpp>
 #include <metrica/io/meshb_keywords.hpp>
+#include <metrica/io/vtu.hpp>
 
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -507,40 +508,19 @@ StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumber
   const int me = comm.rank();
   const auto tets = std::int64_t(part.tets.size());
   const std::int64_t total_tets = comm.sum(tets), first_tet = comm.exclusive_scan(tets);
-  const auto nv = std::uint64_t(numbering.total), nt = std::uint64_t(total_tets);
-  // The appended blocks (each a UInt64 byte count, then the values):
-  // points, connectivity, offsets, types, refs.
-  const std::array<std::uint64_t, 5> bytes{24 * nv, 32 * nt, 8 * nt, nt, 4 * nt};
-  std::array<std::uint64_t, 5> offset{};
-  for (std::size_t b = 1; b < offset.size(); ++b) offset[b] = offset[b - 1] + 8 + bytes[b - 1];
-  const auto array = [&](const char* type, const char* name, int components, std::size_t b) {
-    return fmt::format(
-        "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{}\"/>\n",
-        type, name, components, offset[b]);
-  };
-  const std::string head =
-      fmt::format(
-          "<?xml version=\"1.0\"?>\n"
-          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-          "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n      <Points>\n",
-          nv, nt) +
-      array("Float64", "Points", 3, 0) + "      </Points>\n      <Cells>\n" + array("Int64", "connectivity", 1, 1) +
-      array("Int64", "offsets", 1, 2) + array("UInt8", "types", 1, 3) +
-      "      </Cells>\n      <PointData>\n      </PointData>\n      <CellData>\n" + array("Int32", "ref", 1, 4) +
-      "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
-  const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
-  const std::uint64_t data_at = head.size();
-  const auto block_at = [&](std::size_t b, std::uint64_t skip) { return data_at + offset[b] + 8 + skip; };
+  // The single process's layout (io/vtu.hpp): rank 0 writes the head, the
+  // arrays' counts and the tail; each rank its slice of every array.
+  const io::VtuLayout layout(std::uint64_t(numbering.total), std::uint64_t(total_tets));
   SharedFile out(comm, path);
   comm.step([&] {
     if (me == 0) {
-      write_at(out.file(), 0, head);
-      for (std::size_t b = 0; b < bytes.size(); ++b) {
+      write_at(out.file(), 0, layout.head());
+      for (std::size_t k = 0; k < layout.arrays().size(); ++k) {
         std::string count(8, '\0');
-        std::memcpy(count.data(), &bytes[b], 8);
-        write_at(out.file(), data_at + offset[b], count);
+        std::memcpy(count.data(), &layout.arrays()[k].bytes, 8);
+        write_at(out.file(), layout.count_at(k), count);
       }
-      write_at(out.file(), block_at(4, bytes[4]), tail);
+      write_at(out.file(), layout.tail_at(), io::VtuLayout::tail());
     }
     std::string points;
     for (std::size_t v = 0; v < numbering.owner.size(); ++v) {
@@ -551,7 +531,7 @@ StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumber
         points.append(reinterpret_cast<const char*>(&x), 8);
       }
     }
-    write_at(out.file(), block_at(0, 24 * std::uint64_t(numbering.first)), points);
+    write_at(out.file(), layout.values_at(io::VtuLayout::kPoints) + 24 * std::uint64_t(numbering.first), points);
     std::string connectivity, offsets, types(part.tets.size(), char(10)), refs;  // 10: VTK_TETRA
     for (std::size_t t = 0; t < part.tets.size(); ++t) {
       for (auto v : part.tets[t]) {
@@ -564,10 +544,10 @@ StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumber
       refs.append(reinterpret_cast<const char*>(&ref), 4);
     }
     const auto first = std::uint64_t(first_tet);
-    write_at(out.file(), block_at(1, 32 * first), connectivity);
-    write_at(out.file(), block_at(2, 8 * first), offsets);
-    write_at(out.file(), block_at(3, first), types);
-    write_at(out.file(), block_at(4, 4 * first), refs);
+    write_at(out.file(), layout.values_at(io::VtuLayout::kConnectivity) + 32 * first, connectivity);
+    write_at(out.file(), layout.values_at(io::VtuLayout::kOffsets) + 8 * first, offsets);
+    write_at(out.file(), layout.values_at(io::VtuLayout::kTypes) + first, types);
+    write_at(out.file(), layout.values_at(layout.refs()) + 4 * first, refs);
   });
   return out.close();
 }

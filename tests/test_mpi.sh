@@ -276,6 +276,9 @@ assert offs == [4 * (k + 1) for k in range(len(tets))] and types == [10] * len(t
 assert refs == [t[4] for t in tets], "refs"
 assert raw.endswith(b"</AppendedData>\n</VTKFile>\n"), "the end"
 PY
+  # One layout: the single process writes the same file from the same mesh.
+  "$metrica" convert "$dir/v.meshb" "$dir/v1.vtu" -q
+  cmp -s "$dir/v.vtu" "$dir/v1.vtu" || fail "--vtu on 2 ranks: not the bytes the single process writes"
   # A run predicted past --max-tets: refused before any work, exit 1.
   set +e
   msg=$(run 2 adapt "$dir/cube.meshb" --analytic linear -o "$dir/big.meshb" --max-tets 1000 2>&1)

@@ -8,21 +8,13 @@
 
 #include <doctest/doctest.h>
 
+#include <cstdint>
+#include <cstring>
+
 using namespace metrica;
 using namespace metrica::io;
 
 TEST_SUITE("unit") {
-  TEST_CASE("base64 of the RFC 4648 test vectors") {
-    auto b64 = [](const std::string& s) { return base64(s.data(), s.size()); };
-    CHECK(b64("") == "");
-    CHECK(b64("f") == "Zg==");
-    CHECK(b64("fo") == "Zm8=");
-    CHECK(b64("foo") == "Zm9v");
-    CHECK(b64("foob") == "Zm9vYg==");
-    CHECK(b64("fooba") == "Zm9vYmE=");
-    CHECK(b64("foobar") == "Zm9vYmFy");
-  }
-
   TEST_CASE("vtu: counts - fields - and a wrong field size is an error") {
     const auto d = box_mesh_data({.nx = 1, .ny = 1, .nz = 1});
     VtuField q{"quality", 1, std::vector<double>(d.tets.size(), 0.5)};
@@ -31,6 +23,22 @@ TEST_SUITE("unit") {
     CHECK(xml.find("NumberOfPoints=\"8\" NumberOfCells=\"6\"") != std::string::npos);
     CHECK(xml.find("Name=\"quality\"") != std::string::npos);
     CHECK(xml.find("Name=\"metric\" NumberOfComponents=\"6\"") != std::string::npos);
+    // The appended block as the layout places it: each array's count,
+    // then its values (the metric's first entry, the quality of tet 6).
+    const VtuLayout layout(8, 6, {{"metric", 6}}, {{"quality", 1}});
+    CHECK(xml.compare(0, layout.head().size(), layout.head()) == 0);
+    CHECK(xml.size() == layout.tail_at() + std::string(VtuLayout::tail()).size());
+    std::uint64_t count = 0;
+    double value = 0.0;
+    std::memcpy(&count, xml.data() + layout.count_at(VtuLayout::kFirstPointField), 8);
+    CHECK(count == 8 * 6 * 8);
+    std::memcpy(&value, xml.data() + layout.values_at(VtuLayout::kFirstPointField), 8);
+    CHECK(value == 1.0);
+    std::memcpy(&value, xml.data() + layout.values_at(layout.refs() + 1) + 5 * 8, 8);
+    CHECK(value == 0.5);
+    std::int64_t last_offset = 0;
+    std::memcpy(&last_offset, xml.data() + layout.values_at(VtuLayout::kOffsets) + 5 * 8, 8);
+    CHECK(last_offset == 24);
     VtuField bad{"bad", 1, {1.0}};
     CHECK_THROWS_AS(format_vtu(d, {bad}, {}), InputError);
   }

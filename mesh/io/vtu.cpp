@@ -11,50 +11,64 @@
 
 namespace metrica::io {
 
-std::string base64(const void* data, std::size_t size) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  const auto* p = static_cast<const unsigned char*>(data);
-  std::string out;
-  out.reserve((size + 2) / 3 * 4);
-  std::size_t i = 0;
-  for (; i + 3 <= size; i += 3) {
-    const std::uint32_t w = (std::uint32_t(p[i]) << 16) | (std::uint32_t(p[i + 1]) << 8) | p[i + 2];
-    out += kAlphabet[w >> 18];
-    out += kAlphabet[(w >> 12) & 63];
-    out += kAlphabet[(w >> 6) & 63];
-    out += kAlphabet[w & 63];
-  }
-  if (i < size) {
-    std::uint32_t w = std::uint32_t(p[i]) << 16;
-    if (i + 1 < size) w |= std::uint32_t(p[i + 1]) << 8;
-    out += kAlphabet[w >> 18];
-    out += kAlphabet[(w >> 12) & 63];
-    out += i + 1 < size ? kAlphabet[(w >> 6) & 63] : '=';
-    out += '=';
-  }
-  return out;
+VtuLayout::VtuLayout(std::uint64_t vertices, std::uint64_t tets, const std::vector<FieldShape>& point_fields,
+                     const std::vector<FieldShape>& cell_fields)
+    : point_fields_(point_fields.size()) {
+  std::uint64_t offset = 0;
+  auto add = [&](const char* type, const std::string& name, int components, std::uint64_t bytes) {
+    arrays_.push_back({type, name, components, bytes, offset});
+    offset += 8 + bytes;
+  };
+  add("Float64", "Points", 3, 24 * vertices);
+  add("Int64", "connectivity", 1, 32 * tets);
+  add("Int64", "offsets", 1, 8 * tets);
+  add("UInt8", "types", 1, tets);
+  for (const auto& f : point_fields) add("Float64", f.name, f.components, 8 * vertices * std::uint64_t(f.components));
+  add("Int32", "ref", 1, 4 * tets);
+  for (const auto& f : cell_fields) add("Float64", f.name, f.components, 8 * tets * std::uint64_t(f.components));
+
+  fmt::memory_buffer out;
+  auto it = std::back_inserter(out);
+  auto array = [&](std::size_t k) {
+    const Array& a = arrays_[k];
+    fmt::format_to(it,
+                   "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" "
+                   "offset=\"{}\"/>\n",
+                   a.type, a.name, a.components, a.offset);
+  };
+  fmt::format_to(it,
+                 "<?xml version=\"1.0\"?>\n"
+                 "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+                 "header_type=\"UInt64\">\n  <UnstructuredGrid>\n"
+                 "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n      <Points>\n",
+                 vertices, tets);
+  array(kPoints);
+  fmt::format_to(it, "      </Points>\n      <Cells>\n");
+  for (std::size_t k : {kConnectivity, kOffsets, kTypes}) array(k);
+  fmt::format_to(it, "      </Cells>\n      <PointData>\n");
+  for (std::size_t k = kFirstPointField; k < refs(); ++k) array(k);
+  fmt::format_to(it, "      </PointData>\n      <CellData>\n");
+  for (std::size_t k = refs(); k < arrays_.size(); ++k) array(k);
+  fmt::format_to(it,
+                 "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n"
+                 "  <AppendedData encoding=\"raw\">\n   _");
+  head_ = fmt::to_string(out);
 }
+
+std::uint64_t VtuLayout::tail_at() const { return values_at(arrays_.size() - 1) + arrays_.back().bytes; }
 
 namespace {
-
-// One DataArray: a UInt64 byte count then the values, base64-encoded.
-template <class T>
-void data_array(fmt::memory_buffer& out, const char* type, const std::string& name, int components,
-                const std::vector<T>& values) {
-  std::string bytes(8 + values.size() * sizeof(T), '\0');
-  const std::uint64_t n = values.size() * sizeof(T);
-  std::memcpy(bytes.data(), &n, 8);
-  if (!values.empty()) std::memcpy(bytes.data() + 8, values.data(), n);
-  fmt::format_to(std::back_inserter(out),
-                 "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"binary\">\n"
-                 "          {}\n        </DataArray>\n",
-                 type, name, components, base64(bytes.data(), bytes.size()));
-}
 
 void check_field(const VtuField& f, std::size_t entities, const char* kind) {
   if (f.components < 1 || f.values.size() != entities * std::size_t(f.components))
     throw InputError(fmt::format("vtu field '{}': {} values for {} {} x {} components", f.name, f.values.size(),
                                  entities, kind, f.components));
+}
+
+std::vector<VtuLayout::FieldShape> shapes(const std::vector<VtuField>& fields) {
+  std::vector<VtuLayout::FieldShape> out;
+  for (const auto& f : fields) out.push_back({f.name, f.components});
+  return out;
 }
 
 }  // namespace
@@ -64,38 +78,31 @@ std::string format_vtu(const MeshData& m, const std::vector<VtuField>& point_fie
   const std::size_t nv = m.vertices.size(), nt = m.tets.size();
   for (const auto& f : point_fields) check_field(f, nv, "vertices");
   for (const auto& f : cell_fields) check_field(f, nt, "tets");
-
-  fmt::memory_buffer out;
-  auto it = std::back_inserter(out);
-  fmt::format_to(it,
-                 "<?xml version=\"1.0\"?>\n"
-                 "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-                 "header_type=\"UInt64\">\n  <UnstructuredGrid>\n"
-                 "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n      <Points>\n",
-                 nv, nt);
-  std::vector<double> xyz(3 * nv);
+  const VtuLayout layout(nv, nt, shapes(point_fields), shapes(cell_fields));
+  std::string out(layout.tail_at(), '\0');
+  std::memcpy(out.data(), layout.head().data(), layout.head().size());
+  // Each array: its byte count, then its values at values_at(k).
+  for (std::size_t k = 0; k < layout.arrays().size(); ++k)
+    std::memcpy(out.data() + layout.count_at(k), &layout.arrays()[k].bytes, 8);
+  auto put = [&](std::size_t k, std::size_t i, const auto& value) {
+    std::memcpy(out.data() + layout.values_at(k) + i * sizeof(value), &value, sizeof(value));
+  };
   for (std::size_t v = 0; v < nv; ++v)
-    for (int c = 0; c < 3; ++c) xyz[3 * v + c] = m.vertices[v][c];
-  data_array(out, "Float64", "Points", 3, xyz);
-  fmt::format_to(it, "      </Points>\n      <Cells>\n");
-  std::vector<std::int64_t> connectivity(4 * nt), offsets(nt);
-  std::vector<std::uint8_t> types(nt, 10);  // VTK_TETRA
+    for (int c = 0; c < 3; ++c) put(VtuLayout::kPoints, 3 * v + c, double(m.vertices[v][c]));
   for (std::size_t t = 0; t < nt; ++t) {
-    for (int i = 0; i < 4; ++i) connectivity[4 * t + i] = m.tets[t][i];
-    offsets[t] = static_cast<std::int64_t>(4 * (t + 1));
+    for (int i = 0; i < 4; ++i) put(VtuLayout::kConnectivity, 4 * t + i, std::int64_t(m.tets[t][i]));
+    put(VtuLayout::kOffsets, t, std::int64_t(4 * (t + 1)));
+    put(VtuLayout::kTypes, t, std::uint8_t(10));  // VTK_TETRA
+    put(layout.refs(), t, std::int32_t(t < m.tet_refs.size() ? m.tet_refs[t] : 0));
   }
-  data_array(out, "Int64", "connectivity", 1, connectivity);
-  data_array(out, "Int64", "offsets", 1, offsets);
-  data_array(out, "UInt8", "types", 1, types);
-  fmt::format_to(it, "      </Cells>\n      <PointData>\n");
-  for (const auto& f : point_fields) data_array(out, "Float64", f.name, f.components, f.values);
-  fmt::format_to(it, "      </PointData>\n      <CellData>\n");
-  std::vector<std::int32_t> refs(nt, 0);
-  for (std::size_t t = 0; t < nt && t < m.tet_refs.size(); ++t) refs[t] = m.tet_refs[t];
-  data_array(out, "Int32", "ref", 1, refs);
-  for (const auto& f : cell_fields) data_array(out, "Float64", f.name, f.components, f.values);
-  fmt::format_to(it, "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
-  return fmt::to_string(out);
+  for (std::size_t f = 0; f < point_fields.size(); ++f)
+    for (std::size_t i = 0; i < point_fields[f].values.size(); ++i)
+      put(VtuLayout::kFirstPointField + f, i, point_fields[f].values[i]);
+  for (std::size_t f = 0; f < cell_fields.size(); ++f)
+    for (std::size_t i = 0; i < cell_fields[f].values.size(); ++i)
+      put(layout.refs() + 1 + f, i, cell_fields[f].values[i]);
+  out += VtuLayout::tail();
+  return out;
 }
 
 void write_vtu(const std::string& path, const MeshData& mesh, const std::vector<VtuField>& point_fields,

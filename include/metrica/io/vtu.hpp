@@ -1,9 +1,13 @@
 // VTK unstructured grid (.vtu) for ParaView: tets with per-vertex and
-// per-tet fields, data base64-encoded inline (format="binary").
+// per-tet fields, the arrays as raw appended data. VtuLayout is the one
+// description of the file (its XML head, where each array's bytes go):
+// the single-process writer fills it at once, the MPI writer
+// (distributed/write_part.cpp) places each rank's slices in it.
 #pragma once
 
 #include <metrica/io/mesh_data.hpp>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -15,6 +19,44 @@ struct VtuField {
   std::vector<double> values;  // size = entities * components
 };
 
+// The arrays of a tet grid's .vtu, in file order: the points (Float64 x 3),
+// the cells (connectivity Int64 x 4 a tet, offsets Int64, types UInt8),
+// then the point fields (Float64), the tets' refs (Int32) and the cell
+// fields (Float64). Each array in the appended block is an 8-byte count
+// (UInt64) and its bytes.
+class VtuLayout {
+ public:
+  struct Array {
+    std::string type, name;
+    int components;
+    std::uint64_t bytes;   // of the values
+    std::uint64_t offset;  // of its count in the appended block
+  };
+  // The first arrays' indices.
+  enum : std::size_t { kPoints = 0, kConnectivity = 1, kOffsets = 2, kTypes = 3, kFirstPointField = 4 };
+  struct FieldShape {
+    std::string name;
+    int components;
+  };
+  VtuLayout(std::uint64_t vertices, std::uint64_t tets, const std::vector<FieldShape>& point_fields = {},
+            const std::vector<FieldShape>& cell_fields = {});
+
+  const std::vector<Array>& arrays() const { return arrays_; }
+  std::size_t refs() const { return kFirstPointField + point_fields_; }  // the "ref" array's index
+  // The XML up to the appended block's first byte, and after its last.
+  const std::string& head() const { return head_; }
+  static const char* tail() { return "\n  </AppendedData>\n</VTKFile>\n"; }
+  // Where array k's count and its values start in the file.
+  std::uint64_t count_at(std::size_t k) const { return head_.size() + arrays_[k].offset; }
+  std::uint64_t values_at(std::size_t k) const { return count_at(k) + 8; }
+  std::uint64_t tail_at() const;
+
+ private:
+  std::vector<Array> arrays_;
+  std::size_t point_fields_ = 0;
+  std::string head_;
+};
+
 // Writes the tets of `mesh` (with their reference as the cell field "ref"),
 // plus the given point fields (one entry per vertex) and cell fields (one
 // entry per tet). Written through a temporary file and renamed.
@@ -23,8 +65,5 @@ void write_vtu(const std::string& path, const MeshData& mesh, const std::vector<
 
 std::string format_vtu(const MeshData& mesh, const std::vector<VtuField>& point_fields,
                        const std::vector<VtuField>& cell_fields);
-
-// Base64 of raw bytes (RFC 4648, with padding), as VTK's binary mode wants.
-std::string base64(const void* data, std::size_t size);
 
 }  // namespace metrica::io
