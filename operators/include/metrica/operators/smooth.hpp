@@ -53,9 +53,10 @@ struct SmoothOptions {
   // flat faces are flat within flat_tolerance only.
   const VolumeBudget* volume_budget = nullptr;
   // With a background, a move of a vertex whose ball's worst tet is below
-  // this must also raise it in the metric sampled at the new point (one
-  // tet metric per ball tet). The balls above are far from the mesh's
-  // worst tets, and checking them too costs 7% of an adaptation.
+  // this must also raise it in the metric sampled at the new point. The
+  // check costs a tet metric per ball tet; the balls above are far from
+  // the mesh's worst tets (docs/benchmarks.md, "Smoothing checked in the
+  // metric sampled at the new point").
   double resample_below = 0.6;
   // The metric a moved vertex takes at its new position; only vertices
   // with a tet written since scope.changed_since (smoothing v reads only
@@ -334,10 +335,10 @@ Decision<SmoothPlan> best_trial_by_mean_ratio(const Mesh& mesh, VertexId v, Smoo
     }
     return num_min / den_min;
   };
-  // The ball's quality now (kept in s for the check in the sampled
-  // metric): the cache, or the terms (no tet metric; not
-  // stored, since a move, the usual outcome of smoothing every vertex,
-  // makes them stale at once). Cube roots only where a mean ratio meets
+  // The ball's quality now, kept in s for the check in the sampled
+  // metric: the cache, or the terms (no tet metric; not stored, since a
+  // move, the usual outcome of smoothing every vertex, makes them stale
+  // at once). Cube roots only where a mean ratio meets
   // the cache's: min and cbrt commute, so one for the uncached tets and
   // one for the best trial.
   double q_old = std::numeric_limits<double>::infinity(), q3_uncached = q_old;
