@@ -10,6 +10,7 @@
 #include <metrica/geometry/association.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
+#include <metrica/log.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/metrics/background_metric.hpp>
 #include <metrica/metrics/complexity.hpp>
@@ -272,13 +273,13 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
 
   PartAdaptSettings settings;
   settings.background = background.get();
-  settings.options = run.options;
-  // A part's poorest tets lie against the faces it keeps, and what its
-  // quality phase leaves there the next round adapts again: more sweeps
-  // and cycles per part take fewer rounds (docs/distributed.md, "Two
-  // settings differ on purpose").
-  settings.options.polish_sweeps = std::max(settings.options.polish_sweeps, 4);
-  settings.options.min_conformity_gain = std::min(settings.options.min_conformity_gain, 0.005);
+  settings.options = PartRoundRules{}.applied_to(run.options);
+  if (comm.rank() == 0 && log::level() >= log::Level::verbose)
+    fmt::print(
+        "distributed: each part's rounds after the first flip in up to {} sweeps a quality pass and cycle "
+        "down to a {} gain in the unit band (the settings given: {}, {})\n",
+        settings.options.polish_sweeps, settings.options.min_conformity_gain, run.options.polish_sweeps,
+        run.options.min_conformity_gain);
   settings.policies = run.policies;
   settings.exact = run.analytic ? &exact : nullptr;
   settings.default_surface_id = std::int32_t(comm.max(std::int64_t(max_ref))) + 1;

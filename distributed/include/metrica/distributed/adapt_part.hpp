@@ -14,11 +14,29 @@
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
 
+#include <algorithm>
+
 namespace metrica::distributed {
 
 // The surface id of the faces between parts while a part is adapted: the
 // largest id a mesh may have, which inputs may not use under mpirun.
 inline constexpr SurfaceId kPartFaceId = kMaxSurfaceId - 1;
+
+// Where a part's rounds differ from the single process on purpose
+// (docs/distributed.md, "Two settings differ on purpose"): a part's
+// poorest tets lie against the faces it keeps and the next round adapts
+// them again, so more flip sweeps a quality pass and cycles down to a
+// smaller gain in the unit band take fewer rounds. The settings given are
+// raised to these, never lowered.
+struct PartRoundRules {
+  int min_polish_sweeps = 4;
+  double max_min_conformity_gain = 0.005;
+  AdaptOptions applied_to(AdaptOptions o) const {
+    o.polish_sweeps = std::max(o.polish_sweeps, min_polish_sweeps);
+    o.min_conformity_gain = std::min(o.min_conformity_gain, max_min_conformity_gain);
+    return o;
+  }
+};
 
 struct PartAdaptSettings {
   AdaptOptions options;
