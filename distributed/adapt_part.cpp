@@ -15,23 +15,31 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <optional>
 
 namespace metrica::distributed {
 
 namespace {
 
-using Bits = std::array<std::uint64_t, 3>;
-Bits bits_of(const Point& p) {
-  Bits b;
-  for (int c = 0; c < 3; ++c) std::memcpy(&b[std::size_t(c)], &p[c], 8);
-  return b;
-}
+// The global id of each vertex of a part's mesh that had one before the
+// round: the kept faces' vertices (they neither move nor go); -1 for a
+// vertex the round made.
+constexpr std::string_view kGlobalId = "global_id";
+
+// Why a vertex of a round's mesh is unfinished (bits of a byte).
+enum Unfinished : std::uint8_t {
+  kOnEdgeOutOfBand = 1,      // on an edge out of [kShortEdge, kLongEdge]
+  kOnPoorTet = 2,            // on a tet below kPoorTet
+  kOnTetPoorAtKeptFace = 4,  // on a tet below kPoorAtKeptFace
+  kOffModel = 8,             // a boundary vertex off the model
+};
+// What the next rounds must reach wherever the vertex is; what keeps an
+// adaptation from ending.
+constexpr std::uint8_t kMustReach = kOnPoorTet | kOffModel;
+constexpr std::uint8_t kPoor = kOnPoorTet | kOnTetPoorAtKeptFace | kOffModel;
 
 // The quality of a mesh's tets and edges; with `unfinished`, each vertex
-// gets 1 when on an edge out of [kShortEdge, kLongEdge], 2 when on a tet
-// below kPoorTet, 4 when on a tet below kPoorAtKeptFace. The edges come
+// gets the Unfinished bits of its edges and tets. The edges come
 // from the adaptation's edge buckets and are tested against the bands
 // rather than measured (most need no root or logarithm); the mean ratios
 // come from the quality cache when an adaptation in `space` left it
@@ -46,7 +54,7 @@ QualityTally tally(const Mesh& mesh, std::string_view space, std::vector<std::ui
       for (VertexId b : upper) {
         q.edges_in_range += S::edge_length_in(mesh, a, b, kUnitBand);
         if (unfinished && !S::edge_length_in(mesh, a, b, finished))
-          (*unfinished)[std::size_t(a)] |= 1, (*unfinished)[std::size_t(b)] |= 1;
+          (*unfinished)[std::size_t(a)] |= kOnEdgeOutOfBand, (*unfinished)[std::size_t(b)] |= kOnEdgeOutOfBand;
       }
     });
     const bool cached = mesh.quality_cache_space() == S::name;
@@ -57,7 +65,8 @@ QualityTally tally(const Mesh& mesh, std::string_view space, std::vector<std::ui
       q.min_quality = std::min(q.min_quality, r);
       q.sum_quality += r;
       if (unfinished && r < kPoorAtKeptFace)
-        for (VertexId v : mesh.tet(t)) (*unfinished)[std::size_t(v)] |= r < kPoorTet ? 6 : 4;
+        for (VertexId v : mesh.tet(t))
+          (*unfinished)[std::size_t(v)] |= r < kPoorTet ? kOnPoorTet | kOnTetPoorAtKeptFace : kOnTetPoorAtKeptFace;
     }
     return q;
   });
@@ -199,7 +208,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     changed = true;
     // What the adaptation needs of the records besides `data`: the
     // metrics and model parameters of its vertices, and the kept faces'
-    // vertices by their coordinates (to find their global ids after).
+    // vertices' global ids (by their places in `data`).
     std::vector<Sym6> metrics;
     std::vector<GeoParam> params;
     if (!settings.exact) metrics.reserve(global_of.size());
@@ -208,11 +217,9 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       if (!settings.exact) metrics.push_back(part.metrics[v]);
       if (settings.model) params.push_back(part.geo[v]);
     }
-    std::vector<std::pair<Bits, GlobalId>> kept;
+    std::vector<std::pair<VertexId, GlobalId>> kept;
     for (const auto& k : frozen)
-      for (GlobalId g : k) kept.emplace_back(bits_of(part.points[std::size_t(index->find(g))]), g);
-    std::sort(kept.begin(), kept.end());
-    kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+      for (GlobalId g : k) kept.emplace_back(VertexId(local[std::size_t(index->find(g))]), g);
     // The active tets' records, their triangles and the vertices only they
     // hold go once the adapted tets are sure to take their place: before
     // the mesh is built (their content is in `data`), or with keep_worst
@@ -262,6 +269,11 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       if (model_vertex) mesh.classify();
     }
     if (settings.keep_surface) mesh.keep_surface();
+    {
+      auto& global = mesh.add_vertex_attribute<GlobalId>(std::string(kGlobalId), -1);
+      for (const auto& [l, g] : kept) global[l] = g;
+      kept = {};
+    }
     // With keep_worst, the tets as they came: their quality, and the
     // vertices of those below kPoorAtKeptFace or off the model.
     QualityTally before;
@@ -272,12 +284,12 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       before = tally(mesh, settings.policies.space, &flags);
       if (settings.model)
         for (VertexId v : vertices_off_model(mesh, *settings.model, kOnModel, kPartFaceId)) {
-          flags[std::size_t(v)] |= 2;
+          flags[std::size_t(v)] |= kOffModel;
           ++off_model_before;
         }
       // The mesh's vertices are `data`'s, in order (each on an active tet).
       for (std::size_t l = 0; l < global_of.size(); ++l)
-        if (flags[l] & 6) poor_before.push_back(part.vertex_ids[global_of[l]]);
+        if (flags[l] & kPoor) poor_before.push_back(part.vertex_ids[global_of[l]]);
     }
     AdaptInputs inputs;
     inputs.metric = settings.exact;
@@ -298,12 +310,11 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     if (settings.model) off_model = vertices_off_model(mesh, *settings.model, kOnModel, kPartFaceId);
     result.off_model = std::int64_t(off_model.size());
     result.volume_after = mesh.volume();
-    // The round's figures, and the vertices near what it could not finish.
-    // 1: an edge out of [kShortEdge, kLongEdge] (counts on a kept face);
-    // 2: a tet below kPoorTet (counts anywhere).
+    // The round's figures, and the vertices near what it could not finish:
+    // an edge out of the band counts on a kept face, kMustReach anywhere.
     std::vector<std::uint8_t> unfinished(std::size_t(mesh.vertex_capacity()), 0);
     result.quality = tally(mesh, settings.policies.space, &unfinished);
-    for (VertexId v : off_model) unfinished[std::size_t(v)] |= 2;
+    for (VertexId v : off_model) unfinished[std::size_t(v)] |= kOffModel;
     if (settings.keep_worst) {
       // A round that leaves a tet poorer than the poorest it was given, and
       // below kPoorAtKeptFace, is undone on this part: its tets stay as they
@@ -324,7 +335,7 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       }
       drop_active_records();
     }
-    // Back to global ids: the kept faces' vertices by their coordinates.
+    // Back to global ids: the kept faces' vertices kept theirs.
     io::MeshData out = extract_mesh_data(mesh);
     // Sized once: grown by doubling beside the mesh and its file content,
     // the copies set a rank's peak.
@@ -338,23 +349,24 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
         if (mesh.vertex_alive(v)) adapted.geo.push_back(mesh.geo_param(v));
     }
-    std::vector<bool> alive(std::size_t(mesh.vertex_capacity()));
-    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) alive[std::size_t(v)] = mesh.vertex_alive(v);
+    // out.vertices are the live vertices in id order.
+    std::vector<GlobalId> ids;
+    std::vector<std::uint8_t> why;
+    ids.reserve(out.vertices.size());
+    why.reserve(out.vertices.size());
+    const auto& global = *mesh.find_vertex_attribute<GlobalId>(kGlobalId);
+    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
+      if (mesh.vertex_alive(v)) ids.push_back(global[v]), why.push_back(unfinished[std::size_t(v)]);
     built.reset();  // the file content is all that is needed now
-    std::vector<GlobalId> ids(out.vertices.size(), -1);
-    VertexId live = 0;  // the mesh's vertex written as out.vertices[v] (live ones in id order)
-    for (std::size_t v = 0; v < out.vertices.size(); ++v, ++live) {
-      while (!alive[std::size_t(live)]) ++live;
-      const auto b = bits_of(out.vertices[v]);
-      auto it = std::lower_bound(kept.begin(), kept.end(), std::pair<Bits, GlobalId>{b, -1});
-      if (it != kept.end() && it->first == b) {
-        ids[v] = it->second;
-        if (unfinished[std::size_t(live)]) result.kept_vertices.push_back(it->second);
-        if (unfinished[std::size_t(live)] & 6) result.poor_vertices.push_back(it->second);
+    unfinished = {};
+    for (std::size_t v = 0; v < ids.size(); ++v) {
+      if (ids[v] >= 0) {
+        if (why[v]) result.kept_vertices.push_back(ids[v]);
+        if (why[v] & kPoor) result.poor_vertices.push_back(ids[v]);
       } else {
         ++fresh;
-        if (unfinished[std::size_t(live)] & 2) fresh_unfinished.push_back(std::uint32_t(v));
-        if (unfinished[std::size_t(live)] & 6) fresh_poor.push_back(std::uint32_t(v));
+        if (why[v] & kMustReach) fresh_unfinished.push_back(std::uint32_t(v));
+        if (why[v] & kPoor) fresh_poor.push_back(std::uint32_t(v));
       }
     }
     // The faces kept (their vertices all kept), to check them below.

@@ -55,15 +55,54 @@ class Rows {
   std::string out_;
 };
 
-void write_at(MPI_File file, std::uint64_t at, std::string_view bytes) {
-  constexpr std::size_t kPiece = std::size_t{1} << 30;
-  for (std::size_t off = 0; off < bytes.size(); off += kPiece) {
-    const int n = int(std::min(kPiece, bytes.size() - off));
-    if (MPI_File_write_at(file, MPI_Offset(at + off), bytes.data() + off, n, MPI_BYTE, MPI_STATUS_IGNORE) !=
-        MPI_SUCCESS)
-      throw IoError(fmt::format("cannot write {} bytes at {}", n, at + off));
+// Bytes a rank writes at an offset of the shared file.
+struct Piece {
+  std::uint64_t at;
+  std::string_view bytes;
+};
+
+// Writes every rank's pieces together: piece i of every rank in one
+// MPI_File_write_at_all (MPI-IO may gather the ranks' slices into large
+// requests), a rank with fewer pieces or an empty one taking part with no
+// bytes; a piece in parts of at most 1 GiB (an int of bytes), as many on
+// every rank. Throws on every rank when a write failed on one.
+void write_together(const Comm& comm, MPI_File file, const std::vector<Piece>& pieces) {
+  constexpr std::size_t kPart = std::size_t{1} << 30;
+  const auto n = std::size_t(comm.max(std::int64_t(pieces.size())));
+  std::vector<std::int64_t> parts(n, 0);
+  for (std::size_t i = 0; i < pieces.size(); ++i) parts[i] = std::int64_t((pieces[i].bytes.size() + kPart - 1) / kPart);
+  MPI_Allreduce(MPI_IN_PLACE, parts.data(), int(n), MPI_INT64_T, MPI_MAX, comm.get());
+  std::string failed;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Piece piece = i < pieces.size() ? pieces[i] : Piece{0, {}};
+    for (std::size_t k = 0; k < std::size_t(parts[i]); ++k) {
+      const std::size_t off = std::min(piece.bytes.size(), k * kPart);
+      const int bytes = int(std::min(kPart, piece.bytes.size() - off));
+      if (MPI_File_write_at_all(file, MPI_Offset(piece.at + off), piece.bytes.data() + off, bytes, MPI_BYTE,
+                                MPI_STATUS_IGNORE) != MPI_SUCCESS &&
+          failed.empty())
+        failed = fmt::format("cannot write {} bytes at {}", bytes, piece.at + off);
+    }
   }
+  comm.step([&] {
+    if (!failed.empty()) throw IoError(failed);
+  });
 }
+
+// Pieces whose bytes they hold: made inside a step (where a rank may
+// throw), written together after it.
+class OwnedPieces {
+ public:
+  void add(std::uint64_t at, std::string bytes) { pieces_.emplace_back(at, std::move(bytes)); }
+  void write(const Comm& comm, MPI_File file) const {
+    std::vector<Piece> views;
+    for (const auto& [at, bytes] : pieces_) views.push_back({at, bytes});
+    write_together(comm, file, views);
+  }
+
+ private:
+  std::vector<std::pair<std::uint64_t, std::string>> pieces_;
+};
 
 }  // namespace
 
@@ -286,22 +325,22 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
 
   // An error on any rank: every rank throws, and `out` removes the temporary.
   SharedFile out(comm, path);
-  MPI_File file = out.file();
+  OwnedPieces pieces;  // rank 0's heads, then every rank's rows
   comm.step([&] {
     if (me == 0) {
       Rows h(w);
       h.int32(1), h.int32(version);
       h.int32(kDimension), h.offset(blocks[0].at), h.int32(3);
-      write_at(file, 0, h.bytes());
+      pieces.add(0, std::move(h.bytes()));
       for (std::size_t i = 0; i < blocks.size(); ++i) {
         Rows k(w);
         k.int32(blocks[i].code), k.offset(i + 1 < blocks.size() ? blocks[i + 1].at : end_at);
         k.integer(blocks[i].rows);
-        write_at(file, blocks[i].at, k.bytes());
+        pieces.add(blocks[i].at, std::move(k.bytes()));
       }
       Rows end(w);
       end.int32(kEnd), end.offset(0);
-      write_at(file, end_at, end.bytes());
+      pieces.add(end_at, std::move(end.bytes()));
     }
     const auto rows_at = [&](int code, std::int64_t first) {
       const Block* b = block(code);
@@ -313,21 +352,21 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
       const auto& p = part.points[i];
       v.real(p.x()), v.real(p.y()), v.real(p.z()), v.integer(0);
     }
-    write_at(file, rows_at(kVertices, first_vertex), v.bytes());
+    pieces.add(rows_at(kVertices, first_vertex), std::move(v.bytes()));
     if (total.triangles) {
       Rows f(w);
       for (auto i : triangles) {
         for (GlobalId g : part.triangles[i]) f.integer(number[std::size_t(index.find(g))]);
         f.integer(part.triangle_refs[i]);
       }
-      write_at(file, rows_at(kTriangles, first_triangle), f.bytes());
+      pieces.add(rows_at(kTriangles, first_triangle), std::move(f.bytes()));
     }
     Rows t(w);
     for (std::size_t i = 0; i < part.tets.size(); ++i) {
       for (auto l : part.tets[i]) t.integer(number[l]);
       t.integer(part.tet_refs[i]);
     }
-    write_at(file, rows_at(kTetrahedra, first_tet), t.bytes());
+    pieces.add(rows_at(kTetrahedra, first_tet), std::move(t.bytes()));
     for (int d = 0; d < 3; ++d) {
       const auto& list = records.on_geometry[std::size_t(d)];
       if (on_total[std::size_t(d)] == 0) continue;
@@ -338,9 +377,10 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
         if (d == 2) g.real(r.v);
         if (d >= 1) g.real(r.dist);
       }
-      write_at(file, rows_at(kVerticesOnGeometricVertices + d, on_first[std::size_t(d)]), g.bytes());
+      pieces.add(rows_at(kVerticesOnGeometricVertices + d, on_first[std::size_t(d)]), std::move(g.bytes()));
     }
   });
+  pieces.write(comm, out.file());
   if (counts != nullptr) *counts = total;
   return out.close();
 }
@@ -355,16 +395,14 @@ class TextPlacer {
  public:
   TextPlacer(const Comm& comm, MPI_File file) : comm_(comm), file_(file) {}
   void head(const std::string& text) {
-    comm_.step([&] {
-      if (comm_.rank() == 0) write_at(file_, at_, text);
-    });
+    write_together(comm_, file_, {{at_, comm_.rank() == 0 ? std::string_view(text) : std::string_view()}});
     at_ += text.size();
   }
   void rows(const fmt::memory_buffer& text) {
     const auto mine = std::int64_t(text.size());
     const auto before = std::uint64_t(comm_.exclusive_scan(mine));
     const auto all = std::uint64_t(comm_.sum(mine));
-    comm_.step([&] { write_at(file_, at_ + before, std::string_view(text.data(), text.size())); });
+    write_together(comm_, file_, {{at_ + before, std::string_view(text.data(), text.size())}});
     at_ += all;
   }
 
@@ -453,6 +491,7 @@ StagedFile write_part_metric(const Comm& comm, const VertexNumbering& numbering,
   const std::uint64_t dimension_at = 8, sol_at = dimension_at + 4 + std::uint64_t(w.offset) + 4;
   const std::uint64_t end_at = sol_at + head + std::uint64_t(numbering.total) * row;
   SharedFile out(comm, path);
+  OwnedPieces pieces;
   comm.step([&] {
     if (me == 0) {
       Rows h(w);
@@ -460,10 +499,10 @@ StagedFile write_part_metric(const Comm& comm, const VertexNumbering& numbering,
       h.int32(kDimension), h.offset(sol_at), h.int32(3);
       h.int32(kSolAtVertices), h.offset(end_at), h.integer(numbering.total);
       h.int32(1), h.int32(std::int32_t(io::SolType::sym_matrix));
-      write_at(out.file(), 0, h.bytes());
+      pieces.add(0, std::move(h.bytes()));
       Rows end(w);
       end.int32(kEnd), end.offset(0);
-      write_at(out.file(), end_at, end.bytes());
+      pieces.add(end_at, std::move(end.bytes()));
     }
     Rows rows(w);
     for (std::size_t v = 0; v < numbering.owner.size(); ++v) {
@@ -474,8 +513,9 @@ StagedFile write_part_metric(const Comm& comm, const VertexNumbering& numbering,
         rows.real(x);
       }
     }
-    write_at(out.file(), sol_at + head + std::uint64_t(numbering.first) * row, rows.bytes());
+    pieces.add(sol_at + head + std::uint64_t(numbering.first) * row, std::move(rows.bytes()));
   });
+  pieces.write(comm, out.file());
   return out.close();
 }
 
@@ -512,15 +552,12 @@ StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumber
   // arrays' counts and the tail; each rank its slice of every array.
   const io::VtuLayout layout(std::uint64_t(numbering.total), std::uint64_t(total_tets));
   SharedFile out(comm, path);
+  OwnedPieces pieces;
   comm.step([&] {
     if (me == 0) {
-      write_at(out.file(), 0, layout.head());
-      for (std::size_t k = 0; k < layout.arrays().size(); ++k) {
-        std::string count(8, '\0');
-        std::memcpy(count.data(), &layout.arrays()[k].bytes, 8);
-        write_at(out.file(), layout.count_at(k), count);
-      }
-      write_at(out.file(), layout.tail_at(), io::VtuLayout::tail());
+      pieces.add(0, layout.head());
+      for (std::size_t k = 0; k < layout.arrays().size(); ++k) pieces.add(layout.count_at(k), layout.count_bytes(k));
+      pieces.add(layout.tail_at(), std::string(io::VtuLayout::tail()));
     }
     std::string points;
     for (std::size_t v = 0; v < numbering.owner.size(); ++v) {
@@ -531,7 +568,7 @@ StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumber
         points.append(reinterpret_cast<const char*>(&x), 8);
       }
     }
-    write_at(out.file(), layout.values_at(io::VtuLayout::kPoints) + 24 * std::uint64_t(numbering.first), points);
+    pieces.add(layout.values_at(io::VtuLayout::kPoints) + 24 * std::uint64_t(numbering.first), std::move(points));
     std::string connectivity, offsets, types(part.tets.size(), char(10)), refs;  // 10: VTK_TETRA
     for (std::size_t t = 0; t < part.tets.size(); ++t) {
       for (auto v : part.tets[t]) {
@@ -544,11 +581,12 @@ StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumber
       refs.append(reinterpret_cast<const char*>(&ref), 4);
     }
     const auto first = std::uint64_t(first_tet);
-    write_at(out.file(), layout.values_at(io::VtuLayout::kConnectivity) + 32 * first, connectivity);
-    write_at(out.file(), layout.values_at(io::VtuLayout::kOffsets) + 8 * first, offsets);
-    write_at(out.file(), layout.values_at(io::VtuLayout::kTypes) + first, types);
-    write_at(out.file(), layout.values_at(layout.refs()) + 4 * first, refs);
+    pieces.add(layout.values_at(io::VtuLayout::kConnectivity) + 32 * first, std::move(connectivity));
+    pieces.add(layout.values_at(io::VtuLayout::kOffsets) + 8 * first, std::move(offsets));
+    pieces.add(layout.values_at(io::VtuLayout::kTypes) + first, std::move(types));
+    pieces.add(layout.values_at(layout.refs()) + 4 * first, std::move(refs));
   });
+  pieces.write(comm, out.file());
   return out.close();
 }
 

@@ -32,34 +32,6 @@ std::uint64_t spread_bits(std::uint64_t x) {
   return x;
 }
 
-// a[new_of_old[i]] = old a[i] for the i with new_of_old[i] != kNoId, into
-// an array of `size`. A scatter, so the old array is read once, front to
-// back, and each 2 MiB read is handed back to the kernel at once (in a
-// block of allocate_large): the new array fills as the old one empties
-// (the order changes little from one compaction to the next) instead of
-// both being whole at the peak, which compaction was.
-template <class T>
-void permute_to(MeshArray<T>& a, std::span<const std::uint32_t> new_of_old, std::size_t size, const PartRunner& run) {
-  if (a.empty()) return;
-  MeshArray<T> out;
-  // Room for a pass to grow into without moving the array (a copy beside
-  // the old block at the peak): untouched, it is not resident.
-  out.reserve(size + size / 4);
-  out.resize(size);
-  const bool large = a.capacity() * sizeof(T) >= kLargeBlock;
-  constexpr std::size_t kChunk = (std::size_t{2} << 20) / sizeof(T);
-  run(run.parts, [&](std::size_t p) {
-    const auto [first, last] = part_slice(new_of_old.size(), run.parts, p);
-    for (std::size_t lo = first; lo < last; lo += kChunk) {
-      const std::size_t hi = std::min(last, lo + kChunk);
-      for (std::size_t i = lo; i < hi; ++i)
-        if (new_of_old[i] != kNoId) out[new_of_old[i]] = a[i];
-      if (large) release_large_pages(a.data() + lo, (hi - lo) * sizeof(T));
-    }
-  });
-  a = std::move(out);
-}
-
 // Turns key[i] (below `keys`, or kNoId) into i's place in the order of
 // the items by key, ties in order of i, in place: a stable counting sort
 // in run.parts parts (bucket_cursors), the order of one thread for any
@@ -183,11 +155,8 @@ void Mesh::compact(const PartRunner& given) {
   permute_to(vert2tet_, new_vertex, nv, run);
   permute_to(vertex_class_, new_vertex, nv, run);
   permute_to(vertex_flags_, new_vertex, nv, run);
-  permute_to(metric_, new_vertex, nv, run);
-  permute_to(log_metric_, new_vertex, nv, run);
   permute_to(vertex_stamp_, new_vertex, nv, run);
-  permute_to(geo_, new_vertex, nv, run);
-  permute_to(background_, new_vertex, nv, run);
+  attributes_.vertices.renumber(new_vertex, nv, run);
   run(parts, [&](std::size_t p) {
     const auto [first, last] = part_slice(nv, parts, p);
     for (std::size_t v = first; v < last; ++v) vert2tet_[v] = vert2tet_[v] < tcap ? new_tet[vert2tet_[v]] : kNoId;
@@ -197,7 +166,7 @@ void Mesh::compact(const PartRunner& given) {
   permute_to(tet2tets_, new_tet, live, run);
   permute_to(tet_ref_, new_tet, live, run);
   permute_to(tet_stamp_, new_tet, live, run);
-  permute_to(tet_quality_, new_tet, live, run);
+  attributes_.tets.renumber(new_tet, live, run);
   if (has_internal_surfaces()) permute_to(internal_, new_tet, live, run);
   run(parts, [&](std::size_t p) {
     const auto [first, last] = part_slice(live, parts, p);

@@ -28,6 +28,81 @@ namespace {
 }
 }  // namespace
 
+Mesh::Attributes::Attributes() {
+  quality = &tets.add<double>(std::string(attribute_name::mean_ratio_cache), 0, kUnknownQuality);
+}
+
+Mesh::Attributes::Attributes(const Attributes& o) : vertices(o.vertices), tets(o.tets), quality_space(o.quality_space) {
+  bind();
+}
+
+Mesh::Attributes& Mesh::Attributes::operator=(const Attributes& o) {
+  if (this != &o) {
+    vertices = o.vertices;
+    tets = o.tets;
+    quality_space = o.quality_space;
+    bind();
+  }
+  return *this;
+}
+
+Mesh::Attributes::Attributes(Attributes&& o) noexcept
+    : vertices(std::move(o.vertices)), tets(std::move(o.tets)), quality_space(o.quality_space) {
+  bind();
+  o.bind();
+}
+
+Mesh::Attributes& Mesh::Attributes::operator=(Attributes&& o) noexcept {
+  if (this != &o) {
+    vertices = std::move(o.vertices);
+    tets = std::move(o.tets);
+    quality_space = o.quality_space;
+    bind();
+    o.bind();
+  }
+  return *this;
+}
+
+void Mesh::Attributes::bind() {
+  metric = vertices.find<Sym6>(attribute_name::metric);
+  log_metric = vertices.find<Sym6>(attribute_name::log_metric);
+  geo = vertices.find<GeoParam>(attribute_name::cad_parameters);
+  background = vertices.find<TetId>(attribute_name::background_tet);
+  quality = tets.find<double>(attribute_name::mean_ratio_cache);
+}
+
+namespace {
+bool library_attribute(std::string_view name) {
+  using namespace attribute_name;
+  return name == metric || name == log_metric || name == cad_parameters || name == background_tet ||
+         name == mean_ratio_cache;
+}
+}  // namespace
+
+bool Mesh::remove_vertex_attribute(std::string_view name) {
+  if (library_attribute(name))
+    throw std::invalid_argument(fmt::format("the attribute '{}' is the library's own: it cannot be removed", name));
+  return attributes_.vertices.remove(name);
+}
+
+bool Mesh::remove_tet_attribute(std::string_view name) {
+  if (library_attribute(name))
+    throw std::invalid_argument(fmt::format("the attribute '{}' is the library's own: it cannot be removed", name));
+  return attributes_.tets.remove(name);
+}
+
+void Mesh::enable_geo_params() {
+  if (!attributes_.geo)
+    attributes_.geo = &attributes_.vertices.add(std::string(attribute_name::cad_parameters), points_.size(), GeoParam{},
+                                                DeadRoomFill::initial);
+}
+
+void Mesh::enable_background_tets() {
+  if (!attributes_.background)
+    attributes_.background =
+        &attributes_.vertices.add(std::string(attribute_name::background_tet), points_.size(), TetId{kNoId});
+}
+
 void Mesh::reserve(std::size_t vertices, std::size_t tets) {
   points_.reserve(vertices);
   vertex_ref_.reserve(vertices);
@@ -35,17 +110,12 @@ void Mesh::reserve(std::size_t vertices, std::size_t tets) {
   vertex_class_.reserve(vertices);
   vertex_flags_.reserve(vertices);
   vertex_stamp_.reserve(vertices);
-  if (has_metric()) {
-    metric_.reserve(vertices);
-    log_metric_.reserve(vertices);
-  }
-  if (has_geo_params()) geo_.reserve(vertices);
-  if (has_background_tets()) background_.reserve(vertices);
+  attributes_.vertices.reserve(vertices);
   tets_.reserve(tets);
   tet2tets_.reserve(tets);
   tet_ref_.reserve(tets);
   tet_stamp_.reserve(tets);
-  tet_quality_.reserve(tets);
+  attributes_.tets.reserve(tets);
   if (has_internal_surfaces()) internal_.reserve(tets);
 }
 
@@ -56,12 +126,7 @@ void Mesh::init_vertex(VertexId v, const Point& p, int ref) {
   vertex_class_[v] = VertexClass::interior;
   vertex_flags_[v] = kAlive;
   vertex_stamp_[v] = epoch_;
-  if (has_metric()) {
-    metric_[v] = Sym6{};
-    log_metric_[v] = Sym6{};
-  }
-  if (has_geo_params()) geo_[v] = GeoParam{};
-  if (has_background_tets()) background_[v] = kNoId;
+  attributes_.vertices.set_initial(v);
 }
 
 VertexId Mesh::add_vertex(const Point& p, int ref) {
@@ -85,12 +150,7 @@ VertexId Mesh::add_vertex(const Point& p, int ref) {
   vertex_class_.push_back(VertexClass::interior);
   vertex_flags_.push_back(kAlive);
   vertex_stamp_.push_back(epoch_);
-  if (has_metric()) {
-    metric_.push_back(Sym6{});
-    log_metric_.push_back(Sym6{});
-  }
-  if (has_geo_params()) geo_.push_back(GeoParam{});
-  if (has_background_tets()) background_.push_back(kNoId);
+  attributes_.vertices.append_initial();
   return v;
 }
 
@@ -166,12 +226,12 @@ Mesh Mesh::location_copy() const {
 }
 
 void Mesh::set_metric(VertexId v, const Sym6& m, const Sym6& log_m) {
-  if (metric_.empty()) {
-    metric_.assign(points_.size(), Sym6{});
-    log_metric_.assign(points_.size(), Sym6{});
+  if (!attributes_.metric) {
+    attributes_.metric = &attributes_.vertices.add(std::string(attribute_name::metric), points_.size(), Sym6{});
+    attributes_.log_metric = &attributes_.vertices.add(std::string(attribute_name::log_metric), points_.size(), Sym6{});
   }
-  metric_[v] = m;
-  log_metric_[v] = log_m;
+  (*attributes_.metric)[v] = m;
+  (*attributes_.log_metric)[v] = log_m;
 }
 
 void Mesh::init_tet(TetId t, const TetVertices& vertices, int ref) {
@@ -179,7 +239,7 @@ void Mesh::init_tet(TetId t, const TetVertices& vertices, int ref) {
   tet2tets_[t] = {};
   tet_ref_[t] = ref;
   tet_stamp_[t] = epoch_;
-  cache_quality(t, kUnknownQuality);
+  attributes_.tets.set_initial(t);
   if (has_internal_surfaces()) internal_[t] = {};
 }
 
@@ -202,7 +262,7 @@ TetId Mesh::add_tet(const TetVertices& vertices, int ref) {
   tet2tets_.push_back({});
   tet_ref_.push_back(ref);
   tet_stamp_.push_back(epoch_);
-  tet_quality_.push_back(kUnknownQuality);
+  attributes_.tets.append_initial();
   if (has_internal_surfaces()) internal_.push_back({});
   return t;
 }
@@ -228,8 +288,8 @@ DeadRoom Mesh::add_dead_room(std::size_t vertex_room, std::size_t tet_room, cons
   if (t_size > kMaxTets) throw_too_many_tets(t_size);
   const std::size_t v_cap = v_size + nv / 8, t_cap = t_size + nt / 8;
   // Only what tells a dead entity is written (its vertices, its flags,
-  // its hint, its model association); add_vertex and add_tet write the
-  // rest. Room that no operation takes is then never resident: a split
+  // its hint, the attributes of DeadRoomFill::initial: the model
+  // association); add_vertex and add_tet write the rest. Room that no operation takes is then never resident: a split
   // pass reserves 3.5 tets per candidate edge and takes about one.
   extend_array(points_, v_size, v_cap, run);
   extend_array(vertex_ref_, v_size, v_cap, run);
@@ -237,17 +297,12 @@ DeadRoom Mesh::add_dead_room(std::size_t vertex_room, std::size_t tet_room, cons
   extend_array(vertex_class_, v_size, v_cap, run);
   grow_array(vertex_flags_, v_size, std::uint8_t{0}, v_cap, run);
   extend_array(vertex_stamp_, v_size, v_cap, run);
-  if (has_metric()) {
-    extend_array(metric_, v_size, v_cap, run);
-    extend_array(log_metric_, v_size, v_cap, run);
-  }
-  if (has_geo_params()) grow_array(geo_, v_size, GeoParam{}, v_cap, run);
-  if (has_background_tets()) extend_array(background_, v_size, v_cap, run);  // add_vertex writes it
+  attributes_.vertices.add_room(v_size, v_cap, run);
   grow_array(tets_, t_size, TetVertices{kNoId, kNoId, kNoId, kNoId}, t_cap, run);
   extend_array(tet2tets_, t_size, t_cap, run);
   extend_array(tet_ref_, t_size, t_cap, run);
   extend_array(tet_stamp_, t_size, t_cap, run);
-  extend_array(tet_quality_, t_size, t_cap, run);
+  attributes_.tets.add_room(t_size, t_cap, run);
   if (has_internal_surfaces()) extend_array(internal_, t_size, t_cap, run);
   return {nv, nt};
 }

@@ -1,11 +1,13 @@
 // The tetrahedral mesh: flat arrays indexed by 32-bit ids.
 //
-// Vertices carry a position, a metric tensor and its logarithm (6 numbers
-// each, filled by metrics/), a hint to one incident tet, a classification
+// Vertices carry a position, a hint to one incident tet, a classification
 // (interior / surface / ridge / corner) and flags. Tets carry 4 vertex ids
 // (positively oriented), across each face the neighbour or, on the
 // boundary, the surface id (tet2tets, one word a face: FaceRef), and a
-// domain reference.
+// domain reference. What the layers above keep per entity (the metric and
+// its logarithm, CAD parameters, a background's tets, the quality cache,
+// a distributed part's global ids, a user's own) are attributes
+// (attributes.hpp), which follow the entities through every operation.
 // Deleted entities are recycled through free lists; compact() renumbers.
 //
 // The invariants of docs/architecture.md are checked by validate() (validate.hpp).
@@ -13,6 +15,7 @@
 // none of them allocates per call once capacity is reserved.
 #pragma once
 
+#include <metrica/attributes.hpp>
 #include <metrica/edge_tags.hpp>
 #include <metrica/geometry.hpp>
 #include <metrica/id_source.hpp>
@@ -38,6 +41,16 @@ const char* to_string(VertexClass c);
 
 class ValidationReport;
 struct ValidateOptions;
+
+// The names of the attributes the library itself keeps (a user's own
+// columns take other names).
+namespace attribute_name {
+inline constexpr std::string_view metric = "metric";
+inline constexpr std::string_view log_metric = "log_metric";
+inline constexpr std::string_view cad_parameters = "cad_parameters";
+inline constexpr std::string_view background_tet = "background_tet";
+inline constexpr std::string_view mean_ratio_cache = "mean_ratio_cache";
+}  // namespace attribute_name
 
 class Mesh {
  public:
@@ -107,40 +120,71 @@ class Mesh {
   void keep_surface();
   bool keeps_surface() const { return keep_surface_; }
 
-  // Metric field: empty until set (metrics/ fills it).
-  bool has_metric() const { return !metric_.empty(); }
-  const Sym6& metric(VertexId v) const { return metric_[v]; }
-  const Sym6& log_metric(VertexId v) const { return log_metric_[v]; }
-  // Sets M and log M of a vertex; allocates the arrays on first use.
+  // --- attributes ----------------------------------------------------------
+  // Named per-vertex and per-tet columns (attributes.hpp). A new column
+  // has a value for every id (dead ones too), each `initial`; made or
+  // reused entities take `initial`, compaction carries the values along.
+  // Outside parallel passes. The library's own (attribute_name) are read
+  // through the accessors below and may not be removed.
+  template <class T>
+  Attribute<T>& add_vertex_attribute(std::string name, const T& initial) {
+    return attributes_.vertices.add<T>(std::move(name), points_.size(), initial);
+  }
+  template <class T>
+  Attribute<T>& add_tet_attribute(std::string name, const T& initial) {
+    return attributes_.tets.add<T>(std::move(name), tets_.size(), initial);
+  }
+  template <class T>
+  Attribute<T>* find_vertex_attribute(std::string_view name) {
+    return attributes_.vertices.find<T>(name);
+  }
+  template <class T>
+  const Attribute<T>* find_vertex_attribute(std::string_view name) const {
+    return attributes_.vertices.find<T>(name);
+  }
+  template <class T>
+  Attribute<T>* find_tet_attribute(std::string_view name) {
+    return attributes_.tets.find<T>(name);
+  }
+  template <class T>
+  const Attribute<T>* find_tet_attribute(std::string_view name) const {
+    return attributes_.tets.find<T>(name);
+  }
+  bool remove_vertex_attribute(std::string_view name);
+  bool remove_tet_attribute(std::string_view name);
+  const AttributeTable& vertex_attributes() const { return attributes_.vertices; }
+  const AttributeTable& tet_attributes() const { return attributes_.tets; }
+
+  // Metric field: absent until set (metrics/ fills it).
+  bool has_metric() const { return attributes_.metric != nullptr; }
+  const Sym6& metric(VertexId v) const { return (*attributes_.metric)[v]; }
+  const Sym6& log_metric(VertexId v) const { return (*attributes_.log_metric)[v]; }
+  // Sets M and log M of a vertex; adds the attributes on first use.
   void set_metric(VertexId v, const Sym6& m, const Sym6& log_m);
 
   // Geometric parameters of the vertices (GeoParam): empty until a model
   // is attached (geometry/ fills them); interior vertices keep dim -1.
-  bool has_geo_params() const { return !geo_.empty(); }
-  const GeoParam& geo_param(VertexId v) const { return geo_[v]; }
-  // Allocates the array (every vertex unassociated); outside parallel passes.
-  void enable_geo_params() {
-    if (geo_.empty()) geo_.assign(points_.size(), GeoParam{});
-  }
-  void set_geo_param(VertexId v, const GeoParam& g) { geo_[v] = g; }
+  bool has_geo_params() const { return attributes_.geo != nullptr; }
+  const GeoParam& geo_param(VertexId v) const { return (*attributes_.geo)[v]; }
+  // Adds the attribute (every vertex unassociated); outside parallel passes.
+  void enable_geo_params();
+  void set_geo_param(VertexId v, const GeoParam& g) { (*attributes_.geo)[v] = g; }
 
   // The tet of a background mesh (the user's metric on the input mesh,
   // metrics/background_metric.hpp) where each vertex's metric was sampled:
   // where the walk for a vertex made from it starts. Empty until enabled;
   // kNoId for a vertex not sampled there.
-  bool has_background_tets() const { return !background_.empty(); }
-  TetId background_tet(VertexId v) const { return background_.empty() ? kNoId : background_[v]; }
-  // Allocates the array (every vertex kNoId); outside parallel passes.
-  void enable_background_tets() {
-    if (background_.empty()) background_.assign(points_.size(), kNoId);
-  }
+  bool has_background_tets() const { return attributes_.background != nullptr; }
+  TetId background_tet(VertexId v) const { return attributes_.background ? (*attributes_.background)[v] : kNoId; }
+  // Adds the attribute (every vertex kNoId); outside parallel passes.
+  void enable_background_tets();
   void set_background_tet(VertexId v, TetId t) {
-    if (!background_.empty()) background_[v] = t;
+    if (attributes_.background) (*attributes_.background)[v] = t;
   }
   // A copy that holds only what point location reads (point_location.hpp):
   // the points, the vertices' flags and tet hints, the tets and their
   // neighbours (a background's, metrics/background_metric.hpp: 32 bytes a
-  // tet and 29 a vertex). Nothing else may be asked of it.
+  // tet and 29 a vertex), no attribute. Nothing else may be asked of it.
   Mesh location_copy() const;
 
   // --- tets --------------------------------------------------------------
@@ -220,20 +264,20 @@ class Mesh {
   // Atomic (relaxed) so that two threads each holding a different vertex
   // of t may both measure it and store the same number.
   double cached_quality(TetId t) const {
-    return std::atomic_ref<double>(tet_quality_[t]).load(std::memory_order_relaxed);
+    return std::atomic_ref<double>((*attributes_.quality)[t]).load(std::memory_order_relaxed);
   }
   void cache_quality(TetId t, double q) const {
-    std::atomic_ref<double>(tet_quality_[t]).store(q, std::memory_order_relaxed);
+    std::atomic_ref<double>((*attributes_.quality)[t]).store(q, std::memory_order_relaxed);
   }
   // Forgets every number; `space` names the Space whose mean ratios the
   // cache holds from now on (empty: not said), which cached_mean_ratio
   // checks in debug builds.
   void clear_quality_cache(std::string_view space = {}) {
-    std::fill(tet_quality_.begin(), tet_quality_.end(), kUnknownQuality);
-    quality_space_ = space;
+    attributes_.quality->fill(kUnknownQuality);
+    attributes_.quality_space = space;
   }
   // The Space the cache holds mean ratios of (empty: not said).
-  std::string_view quality_cache_space() const { return quality_space_; }
+  std::string_view quality_cache_space() const { return attributes_.quality_space; }
 
   // --- ridges ------------------------------------------------------------
   // Ridge edges: between faces of two different surface ids, plus the
@@ -262,9 +306,12 @@ class Mesh {
   // Adds a tet with no neighbours and interior faces; the caller links it.
   TetId add_tet(const TetVertices& vertices, int ref = 0);
   void remove_tet(TetId t);
+  // Gives t other vertices: a tet made again in its place (its attributes
+  // take their initial values).
   void set_tet_vertices(TetId t, const TetVertices& vertices) {
     store_tet(t, vertices);
-    touch_tet(t);
+    tet_stamp_[t] = epoch_;
+    attributes_.tets.set_initial(t);
   }
   // Makes a and b neighbours of each other (both slots written).
   void link(FaceRef a, FaceRef b) {
@@ -328,26 +375,41 @@ class Mesh {
   void init_vertex(VertexId v, const Point& p, int ref);
   void init_tet(TetId t, const TetVertices& vertices, int ref);
 
+  // The attribute tables, and the library's own columns in them (null:
+  // absent), which a copy finds again in its own tables.
+  struct Attributes {
+    AttributeTable vertices, tets;
+    Attribute<Sym6>* metric = nullptr;
+    Attribute<Sym6>* log_metric = nullptr;
+    Attribute<GeoParam>* geo = nullptr;
+    Attribute<TetId>* background = nullptr;
+    // Written through const access (a cache), one writer per tet at a
+    // time: the holder of the tet's vertices' locks.
+    Attribute<double>* quality = nullptr;
+    std::string_view quality_space;  // a policy's static name
+
+    Attributes();
+    Attributes(const Attributes& o);
+    Attributes& operator=(const Attributes& o);
+    // The moved-from tables are empty, its columns null.
+    Attributes(Attributes&& o) noexcept;
+    Attributes& operator=(Attributes&& o) noexcept;
+    void bind();
+  };
+
   MeshArray<Point> points_;
   MeshArray<int> vertex_ref_;
   MeshArray<TetId> vert2tet_;
   MeshArray<VertexClass> vertex_class_;
   MeshArray<std::uint8_t> vertex_flags_;
-  MeshArray<Sym6> metric_;
-  MeshArray<Sym6> log_metric_;
   MeshArray<Epoch> vertex_stamp_;
-  MeshArray<GeoParam> geo_;
-  MeshArray<TetId> background_;  // empty: no background
 
   MeshArray<TetVertices> tets_;
   MeshArray<std::array<FaceRef, 4>> tet2tets_;
   MeshArray<int> tet_ref_;
   MeshArray<Epoch> tet_stamp_;
   MeshArray<std::array<SurfaceId, 4>> internal_;  // empty: no internal surface
-  // Written through const access (a cache), one writer per tet at a time:
-  // the holder of the tet's vertices' locks.
-  mutable MeshArray<double> tet_quality_;
-  std::string_view quality_space_;  // a policy's static name
+  Attributes attributes_;
   Epoch epoch_ = 0;
   std::uint32_t renumberings_ = 0;
 
@@ -362,8 +424,6 @@ class Mesh {
   bool keep_surface_ = false;
 
   IdSource* id_source_ = nullptr;
-
-  friend class MeshCompactor;
 };
 
 // The axis-aligned bounding box of the live vertices.

@@ -10,12 +10,15 @@
 #pragma once
 
 #include <metrica/allocator.hpp>
+#include <metrica/ids.hpp>
 #include <metrica/part_runner.hpp>
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <new>
+#include <span>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -102,6 +105,34 @@ void grow_array(MeshArray<T>& a, std::size_t size, const std::type_identity_t<T>
     std::fill(a.begin() + static_cast<std::ptrdiff_t>(old + first), a.begin() + static_cast<std::ptrdiff_t>(old + last),
               fill);
   });
+}
+
+// a[new_of_old[i]] = old a[i] for the i with new_of_old[i] != kNoId, into
+// an array of `size`. A scatter, so the old array is read once, front to
+// back, and each 2 MiB read is handed back to the kernel at once (in a
+// block of allocate_large): the new array fills as the old one empties
+// (the order changes little from one compaction to the next) instead of
+// both being whole at the peak, which compaction was.
+template <class T>
+void permute_to(MeshArray<T>& a, std::span<const std::uint32_t> new_of_old, std::size_t size, const PartRunner& run) {
+  if (a.empty()) return;
+  MeshArray<T> out;
+  // Room for a pass to grow into without moving the array (a copy beside
+  // the old block at the peak): untouched, it is not resident.
+  out.reserve(size + size / 4);
+  out.resize(size);
+  const bool large = a.capacity() * sizeof(T) >= kLargeBlock;
+  constexpr std::size_t kChunk = (std::size_t{2} << 20) / sizeof(T);
+  run(run.parts, [&](std::size_t p) {
+    const auto [first, last] = part_slice(new_of_old.size(), run.parts, p);
+    for (std::size_t lo = first; lo < last; lo += kChunk) {
+      const std::size_t hi = std::min(last, lo + kChunk);
+      for (std::size_t i = lo; i < hi; ++i)
+        if (new_of_old[i] != kNoId) out[new_of_old[i]] = a[i];
+      if (large) release_large_pages(a.data() + lo, (hi - lo) * sizeof(T));
+    }
+  });
+  a = std::move(out);
 }
 
 }  // namespace metrica

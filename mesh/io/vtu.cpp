@@ -82,8 +82,7 @@ std::string format_vtu(const MeshData& m, const std::vector<VtuField>& point_fie
   std::string out(layout.tail_at(), '\0');
   std::memcpy(out.data(), layout.head().data(), layout.head().size());
   // Each array: its byte count, then its values at values_at(k).
-  for (std::size_t k = 0; k < layout.arrays().size(); ++k)
-    std::memcpy(out.data() + layout.count_at(k), &layout.arrays()[k].bytes, 8);
+  for (std::size_t k = 0; k < layout.arrays().size(); ++k) out.replace(layout.count_at(k), 8, layout.count_bytes(k));
   auto put = [&](std::size_t k, std::size_t i, const auto& value) {
     std::memcpy(out.data() + layout.values_at(k) + i * sizeof(value), &value, sizeof(value));
   };

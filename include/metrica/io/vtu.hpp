@@ -49,6 +49,11 @@ class VtuLayout {
   // Where array k's count and its values start in the file.
   std::uint64_t count_at(std::size_t k) const { return head_.size() + arrays_[k].offset; }
   std::uint64_t values_at(std::size_t k) const { return count_at(k) + 8; }
+  // Array k's count as it is written at count_at(k) (8 bytes, this
+  // machine's order, as the values are).
+  std::string count_bytes(std::size_t k) const {
+    return std::string(reinterpret_cast<const char*>(&arrays_[k].bytes), sizeof(std::uint64_t));
+  }
   std::uint64_t tail_at() const;
 
  private:

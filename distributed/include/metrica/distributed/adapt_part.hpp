@@ -2,9 +2,9 @@
 // shared with other parts are required boundary faces (a reserved surface
 // id, kept exactly as the input's RequiredTriangles are: their vertices
 // and edges neither move, split nor go), the standard pipeline adapts the
-// rest, and the result goes back to global ids. The shared faces' vertices
-// keep theirs (found again by their unchanged coordinates); every other
-// vertex gets a new one.
+// rest, and the result goes back to global ids. The kept faces' vertices
+// keep theirs (a vertex attribute of the part's mesh, which they carry
+// through the adaptation); every other vertex gets a new one.
 #pragma once
 
 #include <metrica/distributed/comm.hpp>
