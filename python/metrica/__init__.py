@@ -135,13 +135,7 @@ class Pipeline:
         adapted, report = p.run(mesh, analytic="polar-2", concurrency="serial")
 
     Operations and their options:
-      collapse   min_length, max_new_length, shape_floor
-      split      max_length, min_new_distance, shape_floor (edge splits)
-      centroids  the same (centroid insertion)
-      flip       criterion ("min-quality", "metric-delaunay", "edge-weight"),
-                 seed_below, max_sweeps, face_flips, face_flip_below
-      smooth     below, shape_floor
-      swap       none (the internal surfaces' swaps and 2-2 flips)
+{stages}
     Rules (keyword arguments): max_cycles, quality_passes, repair_rounds,
     repair_below, min_change, min_conformity_gain, near_unit_conformity.
     The cycles run until the rules stop them, then the polish stages
@@ -180,6 +174,18 @@ class Pipeline:
 
         return _metrica._run_pipeline(mesh, metric, analytic or "", self._specs(self.cycle), self._specs(self.polish),
                                       self._specs(self.repair), dict(self.rules), concurrency, int(threads or 0), each)
+
+
+def _stage_help():
+    lines = []
+    for op, help, options in _metrica._stage_kinds():
+        lines.append(f"      {op:<10} {help}")
+        lines.extend(f"        {name:<18} {domain}: {text}" for name, domain, text in options)
+    return "\n".join(lines)
+
+
+if Pipeline.__doc__:  # none under python -OO
+    Pipeline.__doc__ = Pipeline.__doc__.replace("{stages}", _stage_help())
 
 
 def to_meshio(mesh):

@@ -12,6 +12,7 @@
 #include <metrica/mesh_build.hpp>
 #include <metrica/pipeline/adapt.hpp>
 #include <metrica/pipeline/adapt_settings.hpp>
+#include <metrica/pipeline/stage_registry.hpp>
 
 #include <fmt/core.h>
 
@@ -126,6 +127,19 @@ PYBIND11_MODULE(_metrica, m) {
         return rows;
       },
       "The settings adapt takes by name: (name, domain, default, help) rows of the command's table.");
+  m.def(
+      "_stage_kinds",
+      [] {
+        py::list kinds;
+        for (const auto& k : stage_kinds<Adapter<LogEuclidean, Serial>>()) {
+          py::list options;
+          for (const StageOption& o : k.options)
+            options.append(py::make_tuple(std::string(o.name), o.domain(), std::string(o.help)));
+          kinds.append(py::make_tuple(std::string(k.op), std::string(k.help), options));
+        }
+        return kinds;
+      },
+      "The kinds of stage a Pipeline takes: (operation, help, [(option, domain, help)]) rows of the registry.");
   m.def(
       "_adapt",
       [](const PyMesh& x, py::object metric, std::string analytic, int iterations, int threads, std::string concurrency,

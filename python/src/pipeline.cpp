@@ -9,10 +9,12 @@
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/pipeline/adapt.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
+#include <metrica/pipeline/stage_registry.hpp>
 #include <metrica/policies/threads.hpp>
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <set>
@@ -21,95 +23,33 @@ namespace metrica::python {
 
 namespace {
 
-// The options of one stage, each taken once: unknown names are an error
-// naming the stage and the names it knows.
-class StageOptions {
- public:
-  StageOptions(const StageSpec& s, std::string known) : spec_(s), known_(std::move(known)) {
-    for (const auto& [k, v] : s.options) left_.insert(k.cast<std::string>());
+// A stage's options as its kind reads them (pipeline/stage_registry.hpp):
+// each value cast to its option's type; a name the kind has not is left
+// for the registry to refuse, naming the options it has.
+StageValues stage_values(const StageSpec& s, const std::vector<StageOption>& options) {
+  StageValues values;
+  for (const auto& [key, value] : s.options) {
+    const auto name = key.cast<std::string>();
+    const auto it = std::find_if(options.begin(), options.end(), [&](const StageOption& o) { return o.name == name; });
+    const auto wrong = [&](const StageOption& o) {
+      return InputError(fmt::format("stage '{}': {} must be {} (got {})", s.name, name, o.domain(),
+                                    py::repr(value).cast<std::string>()));
+    };
+    if (it == options.end()) {
+      values[name] = std::string();
+    } else if (it->kind == StageOption::Kind::flag) {
+      if (!py::isinstance<py::bool_>(value)) throw wrong(*it);
+      values[name] = value.cast<bool>();
+    } else if (it->kind == StageOption::Kind::choice) {
+      if (!py::isinstance<py::str>(value)) throw wrong(*it);
+      values[name] = value.cast<std::string>();
+    } else {
+      if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)))
+        throw wrong(*it);
+      values[name] = value.cast<double>();
+    }
   }
-  template <class T>
-  void take(const char* name, T& into) {
-    if (!left_.erase(name)) return;
-    into = spec_.options[name].template cast<T>();
-  }
-  void number(const char* name, double& into, double lo, double hi) {
-    if (!left_.count(name)) return;
-    take(name, into);
-    if (!(into >= lo && into <= hi))
-      throw InputError(fmt::format("stage '{}': {} must be in [{}, {}] (got {})", spec_.name, name, lo, hi, into));
-  }
-  std::string text(const char* name, std::string fallback) {
-    take(name, fallback);
-    return fallback;
-  }
-  void done() const {
-    if (!left_.empty())
-      throw InputError(fmt::format("stage '{}' ({}): unknown option '{}' ({})", spec_.name, spec_.op, *left_.begin(),
-                                   known_.empty() ? std::string("none") : known_));
-  }
-
- private:
-  const StageSpec& spec_;
-  std::string known_;
-  std::set<std::string> left_;
-};
-
-template <class A>
-Stage<A> make_stage(const StageSpec& s) {
-  constexpr double kBig = 1e6;
-  if (s.op == "collapse") {
-    StageOptions o(s, "min_length, max_new_length, shape_floor");
-    CollapseOptions c;
-    o.number("min_length", c.min_length, 0.0, kBig);
-    o.number("max_new_length", c.max_new_length, 0.0, kBig);
-    o.number("shape_floor", c.shape_floor, 0.0, 1.0);
-    o.done();
-    return {s.name, [c](A& a) { return a.collapse(c); }};
-  }
-  if (s.op == "split" || s.op == "centroids") {
-    StageOptions o(s, "max_length, min_new_distance, shape_floor");
-    RefineOptions r;
-    o.number("max_length", r.max_length, 0.0, kBig);
-    o.number("min_new_distance", r.min_new_distance, 0.0, kBig);
-    o.number("shape_floor", r.shape_floor, 0.0, 1.0);
-    o.done();
-    if (s.op == "split") return {s.name, [r](A& a) { return a.split(r); }};
-    return {s.name, [r](A& a) { return a.insert_centroids(r); }};
-  }
-  if (s.op == "flip") {
-    StageOptions o(s, "criterion, seed_below, max_sweeps, face_flips, face_flip_below");
-    ReconnectOptions r;
-    const std::string criterion = o.text("criterion", "min-quality");
-    o.number("seed_below", r.seed_below, 0.0, 1.0);
-    double sweeps = r.max_sweeps;
-    o.number("max_sweeps", sweeps, 1.0, 1000.0);
-    r.max_sweeps = static_cast<int>(sweeps);
-    o.take("face_flips", r.face_flips);
-    o.number("face_flip_below", r.face_flip_below, 0.0, 1.0);
-    o.done();
-    const std::string key = s.name;
-    // "unknown criterion of stage 'flip' 'delaunay' (min-quality, ...)".
-    return with_policy<FlipCriteria>(fmt::format("criterion of stage '{}'", key), criterion,
-                                     [&]<class Criterion>() -> Stage<A> {
-                                       return {s.name, [r, key](A& a) { return a.template flips<Criterion>(r, key); }};
-                                     });
-  }
-  if (s.op == "smooth") {
-    StageOptions o(s, "below, shape_floor");
-    SmoothOptions m;
-    o.number("below", m.below, 0.0, 1.0);
-    o.number("shape_floor", m.shape_floor, 0.0, 1.0);
-    o.done();
-    const std::string key = s.name;
-    return {s.name, [m, key](A& a) { return a.smooth(m, key); }};
-  }
-  if (s.op == "swap") {
-    StageOptions(s, "").done();
-    return {s.name, [](A& a) { return a.swap_interfaces(); }};
-  }
-  throw InputError(
-      fmt::format("stage '{}': unknown operation '{}' (collapse, split, centroids, flip, smooth, swap)", s.name, s.op));
+  return values;
 }
 
 template <class A>
@@ -119,7 +59,7 @@ Stages<A> make_stages(const std::vector<StageSpec>& specs) {
   for (const auto& s : specs) {
     if (!names.insert(s.name).second)
       throw InputError(fmt::format("two stages named '{}' in one list (a stage's name is its report key)", s.name));
-    out.push_back(make_stage<A>(s));
+    out.push_back(make_stage<A>(s.name, s.op, stage_values(s, stage_kind<A>(s.op, s.name).options)));
   }
   return out;
 }

@@ -322,3 +322,13 @@ def test_a_pipeline_composed_in_python(tmp_path):
         metrica.Pipeline(cycle=[("flip", {"criterion": "delaunay"})]).run(mesh, analytic="linear")
     with pytest.raises(metrica.InputError, match="two stages named"):
         metrica.Pipeline(cycle=[("flip", {}), ("flip", {})]).run(mesh, analytic="linear")
+    with pytest.raises(metrica.InputError, match=r"seed_below must be a number in \[0, 1\]"):
+        metrica.Pipeline(cycle=[("flip", {"seed_below": 1.5})]).run(mesh, analytic="linear")
+    with pytest.raises(metrica.InputError, match=r"max_sweeps must be a whole number in \[1, 1000\]"):
+        metrica.Pipeline(cycle=[("flip", {"max_sweeps": 2.5})]).run(mesh, analytic="linear")
+    with pytest.raises(metrica.InputError, match="face_flips must be true or false"):
+        metrica.Pipeline(cycle=[("flip", {"face_flips": 1})]).run(mesh, analytic="linear")
+    # The docstring lists every kind of stage the registry has, with its options.
+    for op, _, options in metrica._metrica._stage_kinds():
+        assert op in metrica.Pipeline.__doc__
+        assert all(name in metrica.Pipeline.__doc__ for name, _, _ in options)
