@@ -136,144 +136,258 @@ ActiveBounds active_bounds(const Part& part, const VertexIndex& index, const std
   return b;
 }
 
+// The round's tets as the content of a mesh file, numbered locally, with
+// what the mesh needs besides: the metrics and model parameters of its
+// vertices, and the kept faces' vertices' global ids.
+struct RoundInput {
+  io::MeshData data;
+  std::vector<std::uint32_t> part_vertex;  // the part's vertex of each of data's
+  std::vector<Sym6> metrics;               // none with an analytic metric
+  std::vector<GeoParam> params;            // none without a model
+  std::vector<std::pair<VertexId, GlobalId>> kept;
+};
+
+RoundInput round_input(const Part& part, const VertexIndex& index, const std::vector<bool>& active,
+                       const ActiveBounds& bounds, const PartAdaptSettings& settings) {
+  RoundInput in;
+  std::vector<std::int64_t> local(part.vertex_ids.size(), -1);
+  auto& data = in.data;
+  auto number_local = [&](std::size_t v) {
+    if (local[v] < 0) {
+      local[v] = std::int64_t(in.part_vertex.size());
+      in.part_vertex.push_back(std::uint32_t(v));
+      data.vertices.push_back(part.points[v]);
+    }
+    return VertexId(local[v]);
+  };
+  auto number = [&](GlobalId g) { return number_local(std::size_t(index.find(g))); };
+  for (std::size_t t = 0; t < part.tets.size(); ++t) {
+    if (!active[t]) continue;
+    TetVertices l;
+    for (int c = 0; c < 4; ++c) l[std::size_t(c)] = number_local(part.tets[t][std::size_t(c)]);
+    data.tets.push_back(l);
+    data.tet_refs.push_back(part.tet_refs[t]);
+  }
+  auto local_face = [&](const std::array<GlobalId, 3>& k) {
+    return TriangleVertices{number(k[0]), number(k[1]), number(k[2])};
+  };
+  for (std::size_t i = 0; i < part.triangles.size(); ++i) {
+    if (!bounds.triangle_active[i]) continue;
+    data.triangles.push_back(local_face(part.triangles[i]));
+    data.triangle_refs.push_back(part.triangle_refs[i]);
+  }
+  for (const auto& k : bounds.frozen) {
+    data.required_triangles.push_back(std::uint32_t(data.triangles.size()));
+    data.triangles.push_back(local_face(k));
+    data.triangle_refs.push_back(kPartFaceId);
+  }
+  if (!settings.exact) in.metrics.reserve(in.part_vertex.size());
+  if (settings.model) in.params.reserve(in.part_vertex.size());
+  for (auto v : in.part_vertex) {
+    if (!settings.exact) in.metrics.push_back(part.metrics[v]);
+    if (settings.model) in.params.push_back(part.geo[v]);
+  }
+  for (const auto& k : bounds.frozen)
+    for (GlobalId g : k) in.kept.emplace_back(VertexId(local[std::size_t(index.find(g))]), g);
+  return in;
+}
+
+// The active tets' records, their triangles and the vertices only they
+// hold leave the part: the adapted tets take their place.
+void drop_active_records(Part& part, const std::vector<bool>& active, const ActiveBounds& bounds) {
+  std::vector<bool> kept_tets(part.tets.size());
+  for (std::size_t t = 0; t < kept_tets.size(); ++t) kept_tets[t] = !active[t];
+  keep_tets(part, kept_tets);
+  part.focus.clear();
+  std::vector<bool> used(part.vertex_ids.size(), false);
+  for (const auto& t : part.tets)
+    for (auto v : t) used[v] = true;
+  keep_vertices(part, used);
+  std::vector<bool> untouched(part.triangles.size());
+  for (std::size_t i = 0; i < untouched.size(); ++i) untouched[i] = !bounds.triangle_active[i];
+  keep_triangles(part, untouched);
+  release_freed_memory();
+}
+
+// The round's mesh: built with the cut's faces as they are, its metric,
+// its vertices' model parameters, and the kept faces' vertices' global ids
+// as the attribute kGlobalId. Takes in.data, in.metrics and in.params.
+Mesh round_mesh(RoundInput& in, const PartAdaptSettings& settings, int rank) {
+  BuildOptions bo;
+  bo.default_surface_id = settings.default_surface_id;
+  bo.ridge_angle = kNoRidgeSplit;  // the input's surfaces as given; the cut's faces keep their own id
+  bo.source = fmt::format("part {}", rank);
+  Mesh mesh = build_mesh(in.data, bo);
+  in.data = io::MeshData{};
+  release_freed_memory();  // the build's work under the adaptation's peak
+  if (settings.exact) {
+    assign_metric(mesh, *settings.exact);
+  } else {
+    assign_metric(mesh, in.metrics);
+    in.metrics = {};
+  }
+  if (settings.model) {
+    // A vertex at a model vertex is a corner whatever the faces around it.
+    mesh.enable_geo_params();
+    bool model_vertex = false;
+    for (std::size_t l = 0; l < in.params.size(); ++l) {
+      mesh.set_geo_param(VertexId(l), in.params[l]);
+      model_vertex |= in.params[l].dim == 0;
+    }
+    in.params = {};
+    if (model_vertex) mesh.classify();
+  }
+  if (settings.keep_surface) mesh.keep_surface();
+  auto& global = mesh.add_vertex_attribute<GlobalId>(std::string(kGlobalId), -1);
+  for (const auto& [l, g] : in.kept) global[l] = g;
+  in.kept = {};
+  return mesh;
+}
+
+// The adapted mesh as part records (its vertices numbered as in `records`,
+// the kept faces' vertices with their global ids, the new ones -1 for
+// now), and what the next rounds need of it.
+struct Adapted {
+  Part records;
+  std::int64_t fresh = 0;
+  std::vector<std::uint32_t> fresh_unfinished;  // new vertices with kMustReach (local numbers)
+  std::vector<std::uint32_t> fresh_poor;        // new vertices with kPoor (local numbers)
+  std::vector<FaceKey> faces_kept;              // faces whose vertices were all kept
+};
+
+// Frees the mesh once its content is taken. `unfinished` holds each
+// vertex's Unfinished bits; the kept vertices among them join the
+// result's lists.
+Adapted adapted_records(std::optional<Mesh>& built, const std::vector<std::uint8_t>& unfinished,
+                        const PartAdaptSettings& settings, PartAdaptResult& result) {
+  Adapted a;
+  Part& adapted = a.records;
+  const Mesh& mesh = *built;
+  io::MeshData out = extract_mesh_data(mesh);
+  // Sized once: grown by doubling beside the mesh and its file content,
+  // the copies set a rank's peak.
+  if (!settings.exact) adapted.metrics.reserve(mesh.num_vertices());
+  if (settings.model) adapted.geo.reserve(mesh.num_vertices());
+  // out.vertices are the live vertices in id order.
+  std::vector<GlobalId> ids;
+  std::vector<std::uint8_t> why;
+  ids.reserve(out.vertices.size());
+  why.reserve(out.vertices.size());
+  const auto& global = *mesh.find_vertex_attribute<GlobalId>(kGlobalId);
+  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
+    if (!mesh.vertex_alive(v)) continue;
+    ids.push_back(global[v]), why.push_back(unfinished[std::size_t(v)]);
+    if (!settings.exact) adapted.metrics.push_back(mesh.metric(v));
+    if (settings.model) adapted.geo.push_back(mesh.geo_param(v));
+  }
+  built.reset();  // the file content is all that is needed now
+  for (std::size_t v = 0; v < ids.size(); ++v) {
+    if (ids[v] >= 0) {
+      if (why[v]) result.kept_vertices.push_back(ids[v]);
+      if (why[v] & kPoor) result.poor_vertices.push_back(ids[v]);
+    } else {
+      ++a.fresh;
+      if (why[v] & kMustReach) a.fresh_unfinished.push_back(std::uint32_t(v));
+      if (why[v] & kPoor) a.fresh_poor.push_back(std::uint32_t(v));
+    }
+  }
+  for (const auto& l : out.triangles)
+    if (ids[l[0]] >= 0 && ids[l[1]] >= 0 && ids[l[2]] >= 0)
+      a.faces_kept.push_back(face_key(ids[l[0]], ids[l[1]], ids[l[2]]));
+  adapted.vertex_ids = std::move(ids);
+  adapted.points = std::move(out.vertices);
+  adapted.tets.reserve(out.tets.size());
+  for (const auto& l : out.tets) adapted.tets.push_back({l[0], l[1], l[2], l[3]});
+  out.tets = {};
+  adapted.tet_refs = std::move(out.tet_refs);
+  // The triangles by local number until the new vertices have their ids.
+  for (std::size_t f = 0; f < out.triangles.size(); ++f) {
+    if (out.triangle_refs[f] == kPartFaceId) continue;
+    const auto& l = out.triangles[f];
+    adapted.triangles.push_back({GlobalId(l[0]), GlobalId(l[1]), GlobalId(l[2])});
+    adapted.triangle_refs.push_back(out.triangle_refs[f]);
+  }
+  return a;
+}
+
+// The tets the round kept, the vertices only they hold and their
+// triangles stay in the part, the adapted ones join them (the kept faces'
+// vertices come back with the adapted tets: the kept tets name those
+// copies, after the part's own vertices).
+void join_adapted(Part& part, Part& adapted) {
+  {
+    const VertexIndex have(adapted.vertex_ids);
+    const std::size_t nv = part.vertex_ids.size();
+    std::vector<bool> apart(nv);
+    std::vector<std::int64_t> copy(nv);  // the vertex's place in `adapted`, -1: none
+    std::size_t own = 0;
+    for (std::size_t v = 0; v < nv; ++v)
+      copy[v] = have.find(part.vertex_ids[v]), apart[v] = copy[v] < 0, own += apart[v];
+    std::vector<std::uint32_t> place(nv);
+    std::uint32_t next = 0;
+    for (std::size_t v = 0; v < nv; ++v) place[v] = apart[v] ? next++ : std::uint32_t(own + std::size_t(copy[v]));
+    for (auto& t : part.tets)
+      for (auto& v : t) v = place[v];
+    keep_vertex_records(part, apart);
+    for (auto& t : adapted.tets)
+      for (auto& v : t) v += std::uint32_t(own);
+  }
+  const auto append = [](auto& to, auto& from) {
+    to.reserve(to.size() + from.size());  // once, to the size (a doubling would hold both copies)
+    to.insert(to.end(), from.begin(), from.end());
+    from = {};
+  };
+  append(part.vertex_ids, adapted.vertex_ids);
+  append(part.points, adapted.points);
+  append(part.metrics, adapted.metrics);
+  append(part.geo, adapted.geo);
+  append(part.tets, adapted.tets);
+  append(part.tet_refs, adapted.tet_refs);
+  append(part.triangles, adapted.triangles);
+  append(part.triangle_refs, adapted.triangle_refs);
+}
+
 }  // namespace
 
 PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings& settings, GlobalId& next_id) {
   PartAdaptResult result;
-  std::int64_t fresh = 0;
-  Part adapted;
-  std::vector<std::uint32_t> fresh_unfinished;  // new vertices of tets below kPoorTet (local numbers)
-  std::vector<std::uint32_t> fresh_poor;        // new vertices of tets below kPoorAtKeptFace (local numbers)
-  std::vector<bool> active;
+  Adapted adapted;
   ActiveBounds bounds;
-  std::vector<FaceKey> faces_kept;  // faces of the adapted mesh whose vertices were all kept
-  bool changed = false;             // this rank adapted some tets
+  bool changed = false;  // this rank adapted some tets
   comm.step([&] {
     if (part.tets.empty()) return;
     Stopwatch clock;
     std::vector<bool> wanted(part.tets.size(), true);
     if (!part.focus.empty())
       for (std::size_t t = 0; t < wanted.size(); ++t) wanted[t] = part.focus[t] != 0;
-    active = adaptable_tets(part, wanted);
-    for (std::size_t t = 0; t < part.tets.size(); ++t)
+    const std::vector<bool> active = adaptable_tets(part, wanted);
+    for (std::size_t t = 0; t < part.tets.size(); ++t) {
+      result.adapted += active[t];
       if (wanted[t] && !active[t]) {
         ++result.kept_out;
         const auto g = global_tet(part, t);
         result.kept_vertices.insert(result.kept_vertices.end(), g.begin(), g.end());
         result.held.insert(result.held.end(), g.begin(), g.end());
       }
-    // The part's records as they came in, until the active tets' go.
-    std::optional<VertexIndex> index(std::in_place, part.vertex_ids);
-    bounds = active_bounds(part, *index, active);
-    const auto& frozen = bounds.frozen;
-    for (const auto& k : frozen) result.held.insert(result.held.end(), k.begin(), k.end());
-    std::sort(result.held.begin(), result.held.end());
-    result.held.erase(std::unique(result.held.begin(), result.held.end()), result.held.end());
-
-    // The adapted tets' mesh, numbered locally.
-    std::vector<std::int64_t> local(part.vertex_ids.size(), -1);
-    std::vector<std::uint32_t> global_of;  // local -> part vertex
-    io::MeshData data;
-    auto number_local = [&](std::size_t v) {
-      if (local[v] < 0) {
-        local[v] = std::int64_t(global_of.size());
-        global_of.push_back(std::uint32_t(v));
-        data.vertices.push_back(part.points[v]);
-      }
-      return VertexId(local[v]);
-    };
-    auto number = [&](GlobalId g) { return number_local(std::size_t(index->find(g))); };
-    for (std::size_t t = 0; t < part.tets.size(); ++t) {
-      if (!active[t]) continue;
-      ++result.adapted;
-      TetVertices l;
-      for (int c = 0; c < 4; ++c) l[std::size_t(c)] = number_local(part.tets[t][std::size_t(c)]);
-      data.tets.push_back(l);
-      data.tet_refs.push_back(part.tet_refs[t]);
     }
-    auto local_face = [&](const std::array<GlobalId, 3>& k) {
-      return TriangleVertices{number(k[0]), number(k[1]), number(k[2])};
-    };
-    for (std::size_t i = 0; i < part.triangles.size(); ++i) {
-      if (!bounds.triangle_active[i]) continue;
-      data.triangles.push_back(local_face(part.triangles[i]));
-      data.triangle_refs.push_back(part.triangle_refs[i]);
-    }
-    for (const auto& k : frozen) {
-      data.required_triangles.push_back(std::uint32_t(data.triangles.size()));
-      data.triangles.push_back(local_face(k));
-      data.triangle_refs.push_back(kPartFaceId);
-    }
-    if (data.tets.empty()) return;
-    changed = true;
-    // What the adaptation needs of the records besides `data`: the
-    // metrics and model parameters of its vertices, and the kept faces'
-    // vertices' global ids (by their places in `data`).
-    std::vector<Sym6> metrics;
-    std::vector<GeoParam> params;
-    if (!settings.exact) metrics.reserve(global_of.size());
-    if (settings.model) params.reserve(global_of.size());
-    for (auto v : global_of) {
-      if (!settings.exact) metrics.push_back(part.metrics[v]);
-      if (settings.model) params.push_back(part.geo[v]);
-    }
-    std::vector<std::pair<VertexId, GlobalId>> kept;
-    for (const auto& k : frozen)
-      for (GlobalId g : k) kept.emplace_back(VertexId(local[std::size_t(index->find(g))]), g);
-    // The active tets' records, their triangles and the vertices only they
-    // hold go once the adapted tets are sure to take their place: before
-    // the mesh is built (their content is in `data`), or with keep_worst
-    // once the round is taken.
-    const auto drop_active_records = [&] {
-      std::vector<bool> kept_tets(part.tets.size());
-      for (std::size_t t = 0; t < kept_tets.size(); ++t) kept_tets[t] = !active[t];
-      keep_tets(part, kept_tets);
-      part.focus.clear();
-      std::vector<bool> used(part.vertex_ids.size(), false);
-      for (const auto& t : part.tets)
-        for (auto v : t) used[v] = true;
-      keep_vertices(part, used);
-      std::vector<bool> untouched(part.triangles.size());
-      for (std::size_t i = 0; i < untouched.size(); ++i) untouched[i] = !bounds.triangle_active[i];
-      keep_triangles(part, untouched);
-      index.reset();
-      local = {};
-      global_of = {};
-      release_freed_memory();
-    };
-    if (!settings.keep_worst) drop_active_records();
-    BuildOptions bo;
-    bo.default_surface_id = settings.default_surface_id;
-    bo.ridge_angle = kNoRidgeSplit;  // the input's surfaces as given; the cut's faces keep their own id
-    bo.source = fmt::format("part {}", comm.rank());
-    std::optional<Mesh> built(build_mesh(data, bo));
-    Mesh& mesh = *built;
-    data = io::MeshData{};
-    release_freed_memory();  // the build's work under the adaptation's peak
-    result.volume_before = mesh.volume();
-    if (settings.exact) {
-      assign_metric(mesh, *settings.exact);
-    } else {
-      assign_metric(mesh, metrics);
-      metrics = {};
-    }
-    if (settings.model) {
-      // A vertex at a model vertex is a corner whatever the faces around it.
-      mesh.enable_geo_params();
-      bool model_vertex = false;
-      for (std::size_t l = 0; l < params.size(); ++l) {
-        mesh.set_geo_param(VertexId(l), params[l]);
-        model_vertex |= params[l].dim == 0;
-      }
-      params = {};
-      if (model_vertex) mesh.classify();
-    }
-    if (settings.keep_surface) mesh.keep_surface();
+    RoundInput in;
     {
-      auto& global = mesh.add_vertex_attribute<GlobalId>(std::string(kGlobalId), -1);
-      for (const auto& [l, g] : kept) global[l] = g;
-      kept = {};
+      const VertexIndex index(part.vertex_ids);
+      bounds = active_bounds(part, index, active);
+      for (const auto& k : bounds.frozen) result.held.insert(result.held.end(), k.begin(), k.end());
+      std::sort(result.held.begin(), result.held.end());
+      result.held.erase(std::unique(result.held.begin(), result.held.end()), result.held.end());
+      in = round_input(part, index, active, bounds, settings);
     }
+    if (in.data.tets.empty()) return;
+    changed = true;
+    // The active tets' records go once the adapted tets are sure to take
+    // their place: before the mesh is built (their content is in `in`),
+    // or with keep_worst once the round is taken.
+    if (!settings.keep_worst) drop_active_records(part, active, bounds);
+    std::optional<Mesh> built(round_mesh(in, settings, comm.rank()));
+    Mesh& mesh = *built;
+    result.volume_before = mesh.volume();
     // With keep_worst, the tets as they came: their quality, and the
     // vertices of those below kPoorAtKeptFace or off the model.
     QualityTally before;
@@ -287,10 +401,11 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
           flags[std::size_t(v)] |= kOffModel;
           ++off_model_before;
         }
-      // The mesh's vertices are `data`'s, in order (each on an active tet).
-      for (std::size_t l = 0; l < global_of.size(); ++l)
-        if (flags[l] & kPoor) poor_before.push_back(part.vertex_ids[global_of[l]]);
+      // The mesh's vertices are in.part_vertex's, in order.
+      for (std::size_t l = 0; l < in.part_vertex.size(); ++l)
+        if (flags[l] & kPoor) poor_before.push_back(part.vertex_ids[in.part_vertex[l]]);
     }
+    in.part_vertex = {};
     AdaptInputs inputs;
     inputs.metric = settings.exact;
     inputs.background = settings.background;
@@ -333,114 +448,33 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
         result.seconds = clock.seconds();
         return;
       }
-      drop_active_records();
+      drop_active_records(part, active, bounds);
     }
-    // Back to global ids: the kept faces' vertices kept theirs.
-    io::MeshData out = extract_mesh_data(mesh);
-    // Sized once: grown by doubling beside the mesh and its file content,
-    // the copies set a rank's peak.
-    if (!settings.exact) adapted.metrics.reserve(mesh.num_vertices());
-    if (settings.model) adapted.geo.reserve(mesh.num_vertices());
-    if (!settings.exact) {
-      for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-        if (mesh.vertex_alive(v)) adapted.metrics.push_back(mesh.metric(v));
-    }
-    if (settings.model) {
-      for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-        if (mesh.vertex_alive(v)) adapted.geo.push_back(mesh.geo_param(v));
-    }
-    // out.vertices are the live vertices in id order.
-    std::vector<GlobalId> ids;
-    std::vector<std::uint8_t> why;
-    ids.reserve(out.vertices.size());
-    why.reserve(out.vertices.size());
-    const auto& global = *mesh.find_vertex_attribute<GlobalId>(kGlobalId);
-    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-      if (mesh.vertex_alive(v)) ids.push_back(global[v]), why.push_back(unfinished[std::size_t(v)]);
-    built.reset();  // the file content is all that is needed now
-    unfinished = {};
-    for (std::size_t v = 0; v < ids.size(); ++v) {
-      if (ids[v] >= 0) {
-        if (why[v]) result.kept_vertices.push_back(ids[v]);
-        if (why[v] & kPoor) result.poor_vertices.push_back(ids[v]);
-      } else {
-        ++fresh;
-        if (why[v] & kMustReach) fresh_unfinished.push_back(std::uint32_t(v));
-        if (why[v] & kPoor) fresh_poor.push_back(std::uint32_t(v));
-      }
-    }
-    // The faces kept (their vertices all kept), to check them below.
-    for (const auto& l : out.triangles)
-      if (ids[l[0]] >= 0 && ids[l[1]] >= 0 && ids[l[2]] >= 0)
-        faces_kept.push_back(face_key(ids[l[0]], ids[l[1]], ids[l[2]]));
-    adapted.vertex_ids = std::move(ids);
-    adapted.points = std::move(out.vertices);
-    // Numbered as in `adapted` (placed after the part's own vertices below).
-    adapted.tets.reserve(out.tets.size());
-    for (const auto& l : out.tets) adapted.tets.push_back({l[0], l[1], l[2], l[3]});
-    out.tets = {};
-    adapted.tet_refs = std::move(out.tet_refs);
-    for (std::size_t f = 0; f < out.triangles.size(); ++f) {
-      if (out.triangle_refs[f] == kPartFaceId) continue;
-      const auto& l = out.triangles[f];
-      adapted.triangles.push_back({GlobalId(l[0]), GlobalId(l[1]), GlobalId(l[2])});
-      adapted.triangle_refs.push_back(out.triangle_refs[f]);
-    }
+    adapted = adapted_records(built, unfinished, settings, result);
     result.seconds = clock.seconds();
   });
-  const std::int64_t base = next_id + comm.exclusive_scan(fresh);
-  next_id += comm.sum(fresh);
+  const std::int64_t base = next_id + comm.exclusive_scan(adapted.fresh);
+  next_id += comm.sum(adapted.fresh);
   if (!changed) {
     comm.step([] {});  // the others' check below
     return result;
   }
+  Part& records = adapted.records;
   GlobalId at = base;
-  for (auto& g : adapted.vertex_ids)
+  for (auto& g : records.vertex_ids)
     if (g < 0) g = at++;
-  for (auto v : fresh_unfinished) result.kept_vertices.push_back(adapted.vertex_ids[v]);
-  for (auto v : fresh_poor) result.poor_vertices.push_back(adapted.vertex_ids[v]);
-  for (auto& f : adapted.triangles)
-    for (auto& v : f) v = adapted.vertex_ids[std::size_t(v)];
-  // The tets the round kept, the vertices only they hold and their
-  // triangles stay in the part, the adapted ones join them (the kept
-  // faces' vertices come back with the adapted tets: the kept tets name
-  // those copies, after the part's own vertices).
-  {
-    const VertexIndex have(adapted.vertex_ids);
-    const std::size_t nv = part.vertex_ids.size();
-    std::vector<bool> apart(nv);
-    std::vector<std::int64_t> copy(nv);  // the vertex's place in `adapted`, -1: none
-    std::size_t own = 0;
-    for (std::size_t v = 0; v < nv; ++v)
-      copy[v] = have.find(part.vertex_ids[v]), apart[v] = copy[v] < 0, own += apart[v];
-    std::vector<std::uint32_t> place(nv);
-    std::uint32_t next = 0;
-    for (std::size_t v = 0; v < nv; ++v) place[v] = apart[v] ? next++ : std::uint32_t(own + std::size_t(copy[v]));
-    for (auto& t : part.tets)
-      for (auto& v : t) v = place[v];
-    keep_vertex_records(part, apart);
-    for (auto& t : adapted.tets)
-      for (auto& v : t) v += std::uint32_t(own);
-  }
-  const auto append = [](auto& to, auto& from) {
-    to.reserve(to.size() + from.size());  // once, to the size (a doubling would hold both copies)
-    to.insert(to.end(), from.begin(), from.end());
-    from = {};
-  };
-  append(part.vertex_ids, adapted.vertex_ids);
-  append(part.points, adapted.points);
-  append(part.metrics, adapted.metrics);
-  append(part.geo, adapted.geo);
-  append(part.tets, adapted.tets);
-  append(part.tet_refs, adapted.tet_refs);
-  append(part.triangles, adapted.triangles);
-  append(part.triangle_refs, adapted.triangle_refs);
+  for (auto v : adapted.fresh_unfinished) result.kept_vertices.push_back(records.vertex_ids[v]);
+  for (auto v : adapted.fresh_poor) result.poor_vertices.push_back(records.vertex_ids[v]);
+  for (auto& f : records.triangles)
+    for (auto& v : f) v = records.vertex_ids[std::size_t(v)];
+  join_adapted(part, records);
   // The faces between parts must come out as they went in: the rank
   // across relies on them.
   comm.step([&] {
-    std::sort(faces_kept.begin(), faces_kept.end());
+    auto& kept = adapted.faces_kept;
+    std::sort(kept.begin(), kept.end());
     std::size_t lost = 0;
-    for (const auto& k : bounds.shared_active) lost += !holds(faces_kept, k);
+    for (const auto& k : bounds.shared_active) lost += !holds(kept, k);
     if (lost > 0)
       throw std::runtime_error(fmt::format("{} of the {} faces kept between parts changed in the adaptation", lost,
                                            bounds.shared_active.size()));

@@ -167,6 +167,7 @@ void Mesh::compact(const PartRunner& given) {
   permute_to(tet_ref_, new_tet, live, run);
   permute_to(tet_stamp_, new_tet, live, run);
   attributes_.tets.renumber(new_tet, live, run);
+  attributes_.refresh();
   if (has_internal_surfaces()) permute_to(internal_, new_tet, live, run);
   run(parts, [&](std::size_t p) {
     const auto [first, last] = part_slice(live, parts, p);

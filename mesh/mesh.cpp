@@ -29,7 +29,8 @@ namespace {
 }  // namespace
 
 Mesh::Attributes::Attributes() {
-  quality = &tets.add<double>(std::string(attribute_name::mean_ratio_cache), 0, kUnknownQuality);
+  tets.add<double>(std::string(attribute_name::mean_ratio_cache), 0, kUnknownQuality);
+  bind();
 }
 
 Mesh::Attributes::Attributes(const Attributes& o) : vertices(o.vertices), tets(o.tets), quality_space(o.quality_space) {
@@ -63,14 +64,6 @@ Mesh::Attributes& Mesh::Attributes::operator=(Attributes&& o) noexcept {
   return *this;
 }
 
-void Mesh::Attributes::bind() {
-  metric = vertices.find<Sym6>(attribute_name::metric);
-  log_metric = vertices.find<Sym6>(attribute_name::log_metric);
-  geo = vertices.find<GeoParam>(attribute_name::cad_parameters);
-  background = vertices.find<TetId>(attribute_name::background_tet);
-  quality = tets.find<double>(attribute_name::mean_ratio_cache);
-}
-
 namespace {
 bool library_attribute(std::string_view name) {
   using namespace attribute_name;
@@ -79,28 +72,52 @@ bool library_attribute(std::string_view name) {
 }
 }  // namespace
 
+void Mesh::Attributes::bind() {
+  metric = vertices.find<Sym6>(attribute_name::metric);
+  log_metric = vertices.find<Sym6>(attribute_name::log_metric);
+  geo = vertices.find<GeoParam>(attribute_name::cad_parameters);
+  background = vertices.find<TetId>(attribute_name::background_tet);
+  quality = tets.find<double>(attribute_name::mean_ratio_cache);
+  user_vertices.clear();
+  user_tets.clear();
+  vertices.for_each([&](AttributeColumn& c) {
+    if (!library_attribute(c.name())) user_vertices.push_back(&c);
+  });
+  tets.for_each([&](AttributeColumn& c) {
+    if (!library_attribute(c.name())) user_tets.push_back(&c);
+  });
+  // A moved-from table has no quality column: an empty one takes its place.
+  if (!quality) quality = &tets.add<double>(std::string(attribute_name::mean_ratio_cache), 0, kUnknownQuality);
+  refresh();
+}
+
 bool Mesh::remove_vertex_attribute(std::string_view name) {
   if (library_attribute(name))
     throw std::invalid_argument(fmt::format("the attribute '{}' is the library's own: it cannot be removed", name));
-  return attributes_.vertices.remove(name);
+  const bool removed = attributes_.vertices.remove(name);
+  attributes_.bind();
+  return removed;
 }
 
 bool Mesh::remove_tet_attribute(std::string_view name) {
   if (library_attribute(name))
     throw std::invalid_argument(fmt::format("the attribute '{}' is the library's own: it cannot be removed", name));
-  return attributes_.tets.remove(name);
+  const bool removed = attributes_.tets.remove(name);
+  attributes_.bind();
+  return removed;
 }
 
 void Mesh::enable_geo_params() {
-  if (!attributes_.geo)
-    attributes_.geo = &attributes_.vertices.add(std::string(attribute_name::cad_parameters), points_.size(), GeoParam{},
-                                                DeadRoomFill::initial);
+  if (attributes_.geo) return;
+  attributes_.vertices.add(std::string(attribute_name::cad_parameters), points_.size(), GeoParam{},
+                           DeadRoomFill::initial);
+  attributes_.bind();
 }
 
 void Mesh::enable_background_tets() {
-  if (!attributes_.background)
-    attributes_.background =
-        &attributes_.vertices.add(std::string(attribute_name::background_tet), points_.size(), TetId{kNoId});
+  if (attributes_.background) return;
+  attributes_.vertices.add(std::string(attribute_name::background_tet), points_.size(), TetId{kNoId});
+  attributes_.bind();
 }
 
 void Mesh::reserve(std::size_t vertices, std::size_t tets) {
@@ -111,11 +128,12 @@ void Mesh::reserve(std::size_t vertices, std::size_t tets) {
   vertex_flags_.reserve(vertices);
   vertex_stamp_.reserve(vertices);
   attributes_.vertices.reserve(vertices);
+  attributes_.tets.reserve(tets);
+  attributes_.refresh();
   tets_.reserve(tets);
   tet2tets_.reserve(tets);
   tet_ref_.reserve(tets);
   tet_stamp_.reserve(tets);
-  attributes_.tets.reserve(tets);
   if (has_internal_surfaces()) internal_.reserve(tets);
 }
 
@@ -126,7 +144,7 @@ void Mesh::init_vertex(VertexId v, const Point& p, int ref) {
   vertex_class_[v] = VertexClass::interior;
   vertex_flags_[v] = kAlive;
   vertex_stamp_[v] = epoch_;
-  attributes_.vertices.set_initial(v);
+  attributes_.init_vertex(v);
 }
 
 VertexId Mesh::add_vertex(const Point& p, int ref) {
@@ -150,7 +168,7 @@ VertexId Mesh::add_vertex(const Point& p, int ref) {
   vertex_class_.push_back(VertexClass::interior);
   vertex_flags_.push_back(kAlive);
   vertex_stamp_.push_back(epoch_);
-  attributes_.vertices.append_initial();
+  attributes_.append_vertex();
   return v;
 }
 
@@ -227,11 +245,12 @@ Mesh Mesh::location_copy() const {
 
 void Mesh::set_metric(VertexId v, const Sym6& m, const Sym6& log_m) {
   if (!attributes_.metric) {
-    attributes_.metric = &attributes_.vertices.add(std::string(attribute_name::metric), points_.size(), Sym6{});
-    attributes_.log_metric = &attributes_.vertices.add(std::string(attribute_name::log_metric), points_.size(), Sym6{});
+    attributes_.vertices.add(std::string(attribute_name::metric), points_.size(), Sym6{});
+    attributes_.vertices.add(std::string(attribute_name::log_metric), points_.size(), Sym6{});
+    attributes_.bind();
   }
-  (*attributes_.metric)[v] = m;
-  (*attributes_.log_metric)[v] = log_m;
+  attributes_.metric_at[v] = m;
+  attributes_.log_metric_at[v] = log_m;
 }
 
 void Mesh::init_tet(TetId t, const TetVertices& vertices, int ref) {
@@ -239,7 +258,7 @@ void Mesh::init_tet(TetId t, const TetVertices& vertices, int ref) {
   tet2tets_[t] = {};
   tet_ref_[t] = ref;
   tet_stamp_[t] = epoch_;
-  attributes_.tets.set_initial(t);
+  attributes_.init_tet(t);
   if (has_internal_surfaces()) internal_[t] = {};
 }
 
@@ -262,7 +281,7 @@ TetId Mesh::add_tet(const TetVertices& vertices, int ref) {
   tet2tets_.push_back({});
   tet_ref_.push_back(ref);
   tet_stamp_.push_back(epoch_);
-  attributes_.tets.append_initial();
+  attributes_.append_tet();
   if (has_internal_surfaces()) internal_.push_back({});
   return t;
 }
@@ -303,6 +322,7 @@ DeadRoom Mesh::add_dead_room(std::size_t vertex_room, std::size_t tet_room, cons
   extend_array(tet_ref_, t_size, t_cap, run);
   extend_array(tet_stamp_, t_size, t_cap, run);
   attributes_.tets.add_room(t_size, t_cap, run);
+  attributes_.refresh();
   if (has_internal_surfaces()) extend_array(internal_, t_size, t_cap, run);
   return {nv, nt};
 }

@@ -155,6 +155,10 @@ class AttributeTable {
     return false;
   }
   std::size_t size() const { return columns_.size(); }
+  template <class F>
+  void for_each(F&& f) {
+    for (auto& c : columns_) f(*c);
+  }
   std::vector<std::string> names() const {
     std::vector<std::string> n;
     for (const auto& c : columns_) n.push_back(c->name());

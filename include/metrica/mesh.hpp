@@ -128,11 +128,15 @@ class Mesh {
   // through the accessors below and may not be removed.
   template <class T>
   Attribute<T>& add_vertex_attribute(std::string name, const T& initial) {
-    return attributes_.vertices.add<T>(std::move(name), points_.size(), initial);
+    Attribute<T>& a = attributes_.vertices.add<T>(std::move(name), points_.size(), initial);
+    attributes_.bind();
+    return a;
   }
   template <class T>
   Attribute<T>& add_tet_attribute(std::string name, const T& initial) {
-    return attributes_.tets.add<T>(std::move(name), tets_.size(), initial);
+    Attribute<T>& a = attributes_.tets.add<T>(std::move(name), tets_.size(), initial);
+    attributes_.bind();
+    return a;
   }
   template <class T>
   Attribute<T>* find_vertex_attribute(std::string_view name) {
@@ -157,29 +161,29 @@ class Mesh {
 
   // Metric field: absent until set (metrics/ fills it).
   bool has_metric() const { return attributes_.metric != nullptr; }
-  const Sym6& metric(VertexId v) const { return (*attributes_.metric)[v]; }
-  const Sym6& log_metric(VertexId v) const { return (*attributes_.log_metric)[v]; }
+  const Sym6& metric(VertexId v) const { return attributes_.metric_at[v]; }
+  const Sym6& log_metric(VertexId v) const { return attributes_.log_metric_at[v]; }
   // Sets M and log M of a vertex; adds the attributes on first use.
   void set_metric(VertexId v, const Sym6& m, const Sym6& log_m);
 
   // Geometric parameters of the vertices (GeoParam): empty until a model
   // is attached (geometry/ fills them); interior vertices keep dim -1.
   bool has_geo_params() const { return attributes_.geo != nullptr; }
-  const GeoParam& geo_param(VertexId v) const { return (*attributes_.geo)[v]; }
+  const GeoParam& geo_param(VertexId v) const { return attributes_.geo_at[v]; }
   // Adds the attribute (every vertex unassociated); outside parallel passes.
   void enable_geo_params();
-  void set_geo_param(VertexId v, const GeoParam& g) { (*attributes_.geo)[v] = g; }
+  void set_geo_param(VertexId v, const GeoParam& g) { attributes_.geo_at[v] = g; }
 
   // The tet of a background mesh (the user's metric on the input mesh,
   // metrics/background_metric.hpp) where each vertex's metric was sampled:
   // where the walk for a vertex made from it starts. Empty until enabled;
   // kNoId for a vertex not sampled there.
   bool has_background_tets() const { return attributes_.background != nullptr; }
-  TetId background_tet(VertexId v) const { return attributes_.background ? (*attributes_.background)[v] : kNoId; }
+  TetId background_tet(VertexId v) const { return attributes_.background_at ? attributes_.background_at[v] : kNoId; }
   // Adds the attribute (every vertex kNoId); outside parallel passes.
   void enable_background_tets();
   void set_background_tet(VertexId v, TetId t) {
-    if (attributes_.background) (*attributes_.background)[v] = t;
+    if (attributes_.background_at) attributes_.background_at[v] = t;
   }
   // A copy that holds only what point location reads (point_location.hpp):
   // the points, the vertices' flags and tet hints, the tets and their
@@ -264,10 +268,10 @@ class Mesh {
   // Atomic (relaxed) so that two threads each holding a different vertex
   // of t may both measure it and store the same number.
   double cached_quality(TetId t) const {
-    return std::atomic_ref<double>((*attributes_.quality)[t]).load(std::memory_order_relaxed);
+    return std::atomic_ref<double>(attributes_.quality_at[t]).load(std::memory_order_relaxed);
   }
   void cache_quality(TetId t, double q) const {
-    std::atomic_ref<double>((*attributes_.quality)[t]).store(q, std::memory_order_relaxed);
+    std::atomic_ref<double>(attributes_.quality_at[t]).store(q, std::memory_order_relaxed);
   }
   // Forgets every number; `space` names the Space whose mean ratios the
   // cache holds from now on (empty: not said), which cached_mean_ratio
@@ -311,7 +315,7 @@ class Mesh {
   void set_tet_vertices(TetId t, const TetVertices& vertices) {
     store_tet(t, vertices);
     tet_stamp_[t] = epoch_;
-    attributes_.tets.set_initial(t);
+    attributes_.init_tet(t);
   }
   // Makes a and b neighbours of each other (both slots written).
   void link(FaceRef a, FaceRef b) {
@@ -376,17 +380,53 @@ class Mesh {
   void init_tet(TetId t, const TetVertices& vertices, int ref);
 
   // The attribute tables, and the library's own columns in them (null:
-  // absent), which a copy finds again in its own tables.
+  // absent), which a copy finds again in its own tables. The accessors
+  // read those columns' values through one pointer each, which every
+  // change that may move them refreshes; a made or reused entity's
+  // library values are written directly, the user's columns' through
+  // their virtual set_initial.
   struct Attributes {
     AttributeTable vertices, tets;
     Attribute<Sym6>* metric = nullptr;
     Attribute<Sym6>* log_metric = nullptr;
     Attribute<GeoParam>* geo = nullptr;
     Attribute<TetId>* background = nullptr;
+    Attribute<double>* quality = nullptr;
+    std::vector<AttributeColumn*> user_vertices, user_tets;
+    Sym6* metric_at = nullptr;
+    Sym6* log_metric_at = nullptr;
+    GeoParam* geo_at = nullptr;
+    TetId* background_at = nullptr;
     // Written through const access (a cache), one writer per tet at a
     // time: the holder of the tet's vertices' locks.
-    Attribute<double>* quality = nullptr;
+    double* quality_at = nullptr;
     std::string_view quality_space;  // a policy's static name
+
+    void refresh() {
+      metric_at = metric ? metric->data() : nullptr;
+      log_metric_at = log_metric ? log_metric->data() : nullptr;
+      geo_at = geo ? geo->data() : nullptr;
+      background_at = background ? background->data() : nullptr;
+      quality_at = quality->data();
+    }
+    void init_vertex(VertexId v) {
+      if (metric_at) metric_at[v] = log_metric_at[v] = Sym6{};
+      if (geo_at) geo_at[v] = GeoParam{};
+      if (background_at) background_at[v] = kNoId;
+      for (AttributeColumn* c : user_vertices) c->set_initial(v);
+    }
+    void init_tet(TetId t) {
+      std::atomic_ref<double>(quality_at[t]).store(kUnknownQuality, std::memory_order_relaxed);
+      for (AttributeColumn* c : user_tets) c->set_initial(t);
+    }
+    void append_vertex() {
+      vertices.append_initial();
+      refresh();
+    }
+    void append_tet() {
+      tets.append_initial();
+      quality_at = quality->data();
+    }
 
     Attributes();
     Attributes(const Attributes& o);
