@@ -201,46 +201,51 @@ struct Spread {
 };
 Spread spread(const Comm& comm, std::int64_t local) { return {comm.sum(local), -comm.max(-local), comm.max(local)}; }
 
-}  // namespace
-
-void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
-  const bool talk = run.talk && comm.rank() == 0;
-  Stopwatch clock;
-  ReadCounts counts;
-  // Every rank opens the model, rank 0 first: an error is said once.
+// The input as the ranks hold it once read: each rank's slice, the model
+// every rank opened, what the file held.
+struct Input {
   std::unique_ptr<CadModel> model;
+  Part part;
+  ReadCounts counts;
+  std::int32_t max_ref = 0;  // the largest surface id, over all ranks
+};
+
+Input read_input(const Comm& comm, const DistributedAdapt& run, bool talk, const Stopwatch& clock) {
+  Input in;
+  // Every rank opens the model, rank 0 first: an error is said once.
   if (!run.geometry.empty())
     for (const bool first : {true, false})
       comm.step([&] {
-        if ((comm.rank() == 0) == first) model = std::make_unique<CadModel>(run.geometry);
+        if ((comm.rank() == 0) == first) in.model = std::make_unique<CadModel>(run.geometry);
       });
   AssociationReport associated;
-  Part part =
-      read_part(comm, run.input, run.metric, counts, model ? associate_on(*model, associated) : AssociateVertex{});
+  in.part = read_part(comm, run.input, run.metric, in.counts,
+                      in.model ? associate_on(*in.model, associated) : AssociateVertex{});
   const std::int64_t on_model = comm.sum(std::int64_t(associated.vertices)),
                      from_file = comm.sum(std::int64_t(associated.from_file));
   const double farthest_in = comm.max(associated.max_distance);
-  std::int32_t max_ref = 0;
   comm.step([&] {
-    for (int r : part.triangle_refs) {
+    for (int r : in.part.triangle_refs) {
       if (r >= kPartFaceId)
         throw InputError(
             fmt::format("{}: surface id {} is reserved under mpirun (ids up to {})", run.input, r, kPartFaceId - 1));
-      max_ref = std::max(max_ref, r);
+      in.max_ref = std::max(in.max_ref, r);
     }
     if (!run.metric.empty()) {
-      clamp_metrics(part.metrics, run.bounds);
-      check_metric_field(part.metrics, run.metric);
+      clamp_metrics(in.part.metrics, run.bounds);
+      check_metric_field(in.part.metrics, run.metric);
     }
   });
+  in.max_ref = std::int32_t(comm.max(std::int64_t(in.max_ref)));
   if (talk) {
+    const ReadCounts& counts = in.counts;
     fmt::print("distributed: {} ranks read {} vertices, {} tets, {} triangles of {} in slices ({:.2f} s)\n",
                comm.size(), counts.vertices, counts.tets, counts.triangles, run.input, clock.seconds());
-    if (model)
+    if (in.model)
       fmt::print(
           "distributed: {} boundary vertices associated with {} ({} with the input's parameters), "
           "farthest {:.3g} from its entity\n",
-          on_model, model->source(), from_file, farthest_in);
+          on_model, in.model->source(), from_file, farthest_in);
     if (!counts.dropped.empty()) {
       std::string names;
       for (const auto& d : counts.dropped) names += (names.empty() ? "" : ", ") + d;
@@ -248,16 +253,14 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
     }
     std::fflush(stdout);
   }
-  MetricFunction exact;
-  if (run.analytic)
-    exact = [kind = *run.analytic, b = run.bounds](const Point& p) {
-      return b.active() ? clamp_metric(evaluate(kind, p), b) : evaluate(kind, p);
-    };
+  return in;
+}
 
-  // A metric file's field stays the background of the whole run, as in one
-  // process: every rank holds the input mesh and its metric whole (a
-  // rank's slice alone would leave the vertices a later round brings it
-  // outside), so this costs each rank the input's size.
+// A metric file's field stays the background of the whole run, as in one
+// process: every rank holds the input mesh and its metric whole (a rank's
+// slice alone would leave the vertices a later round brings it outside),
+// so this costs each rank the input's size. None for an analytic metric.
+std::unique_ptr<BackgroundMetric> whole_background(const Comm& comm, const DistributedAdapt& run) {
   std::unique_ptr<BackgroundMetric> background;
   if (!run.metric.empty() && run.background && !run.dry_run && run.rounds > 0)
     comm.step([&] {
@@ -270,9 +273,20 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       clamp_metrics(field, run.bounds);
       background = std::make_unique<BackgroundMetric>(whole, field);
     });
+  return background;
+}
 
-  PartAdaptSettings settings;
-  settings.background = background.get();
+// The settings of a part's rounds: the later rounds' (PartRoundRules) and
+// the first round's of an adaptation on several parts.
+struct RoundSettings {
+  PartAdaptSettings later, first;
+};
+
+RoundSettings round_settings(const Comm& comm, const DistributedAdapt& run, const Input& in,
+                             const MetricFunction* exact, const BackgroundMetric* background) {
+  RoundSettings s;
+  PartAdaptSettings& settings = s.later;
+  settings.background = background;
   settings.options = PartRoundRules{}.applied_to(run.options);
   if (comm.rank() == 0 && log::level() >= log::Level::verbose)
     fmt::print(
@@ -281,9 +295,9 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
         settings.options.polish_sweeps, settings.options.min_conformity_gain, run.options.polish_sweeps,
         run.options.min_conformity_gain);
   settings.policies = run.policies;
-  settings.exact = run.analytic ? &exact : nullptr;
-  settings.default_surface_id = std::int32_t(comm.max(std::int64_t(max_ref))) + 1;
-  settings.model = model.get();
+  settings.exact = exact;
+  settings.default_surface_id = in.max_ref + 1;
+  settings.model = in.model.get();
   settings.keep_surface = run.keep_surface;
   // The first round of an adaptation on several parts, on a mesh far from
   // its predicted size, keeps the input's faces between them, coarse where
@@ -292,34 +306,66 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   // no repair rounds: they cannot lift the tets the kept faces hold (at 1M
   // tets on 2 ranks the round took 7.7 s with four of them and the parts'
   // settings, 6.4 s without).
-  PartAdaptSettings first_round = settings;
-  first_round.options = run.options;
-  first_round.options.repair_rounds = 0;
-  const double predicted_out = predicted_output(comm, part, settings.exact, counts.tets);
-  comm.step([&] {
-    if (comm.rank() == 0 && run.max_tets > 0 && !(predicted_out <= run.max_tets))
-      throw InputError(fmt::format("adapt: the metric predicts about {:.3g} tets; the limit is {:.3g} tets ({})",
-                                   predicted_out, run.max_tets, run.max_tets_reason));
-  });
-  if (run.dry_run) {
-    if (comm.rank() == 0)
-      fmt::print("adapt: {} vertices, {} tets in; about {:.3g} tets out on {} ranks, about {:.3g} a rank\n",
-                 counts.vertices, counts.tets, predicted_out, comm.size(), predicted_out / comm.size());
-    return;
-  }
-  GlobalId next_id = counts.vertices;
-  const double volume_in = comm.sum(part_volume(part));
+  s.first = settings;
+  s.first.options = run.options;
+  s.first.options.repair_rounds = 0;
+  return s;
+}
+
+// A round's figures over all ranks.
+struct RoundFigures {
+  double volume_before, volume_after;
+  Spread tets;
+  std::int64_t kept_out, adapted, undone, off_model;
+  double in_range, min_q;
+};
+
+RoundFigures round_figures(const Comm& comm, const PartAdaptResult& result, const Part& part) {
+  RoundFigures f;
+  f.volume_before = comm.sum(result.volume_before), f.volume_after = comm.sum(result.volume_after);
+  f.tets = spread(comm, std::int64_t(part.tets.size()));
+  f.kept_out = comm.sum(result.kept_out), f.adapted = comm.sum(result.adapted);
+  f.undone = comm.sum(std::int64_t(result.undone));
+  // The quality of the tets adapted this round.
+  const double edges = double(comm.sum(result.quality.edges));
+  f.in_range = double(comm.sum(result.quality.edges_in_range)) / std::max(1.0, edges);
+  f.min_q = comm.min(result.quality.min_quality);
+  f.off_model = comm.sum(result.off_model);
+  return f;
+}
+
+// How long a round's steps took on this rank.
+struct RoundTimes {
+  double cut = 0, move = 0, adapt = 0, all = 0;
+};
+
+void print_round(const DistributedAdapt& run, int it, int round, int parts, bool recut, const RoundFigures& f,
+                 std::int64_t unfinished, const RoundTimes& time) {
+  fmt::print(
+      "  {}round {}: {} tets ({} part{}{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
+      "adapted: in range {:5.1f}% min Q {:.3f} | {} vertices unfinished{} | volume change {:.2g} | "
+      "{}adapt {:.2f} s (rank 0), {:.2f} s in all\n",
+      run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, f.tets.total, parts,
+      parts == 1 ? "" : "s", f.undone > 0 ? fmt::format(", {} undone", f.undone) : "", f.tets.low, f.tets.high,
+      f.adapted, f.kept_out, 100.0 * f.in_range, f.min_q, unfinished,
+      f.off_model > 0 ? fmt::format(" ({} off the model)", f.off_model) : "",
+      f.volume_before > 0 ? std::abs(f.volume_after - f.volume_before) / f.volume_before : 0.0,
+      recut ? fmt::format("cut {:.2f} s, move {:.2f} s, ", time.cut, time.move) : "no cut, ", time.adapt, time.all);
+  std::fflush(stdout);
+}
+
+// The iterations' rounds on the part (docs/distributed.md): each cuts and
+// moves the mesh (unless what the last left unfinished lies inside
+// parts), adapts every part, and says what the next adapts around; the
+// adaptation ends when nothing poor is left. Returns the number of parts
+// the last round ran on.
+int adapt_rounds(const Comm& comm, const DistributedAdapt& run, Part& part, const RoundSettings& s,
+                 const CadModel* model, GlobalId next_id, double volume_in, bool talk) {
+  const PartAdaptSettings& settings = s.later;
   std::vector<GlobalId> frozen_before;
-  // --rounds 0: cut and move once, no adaptation (the parallel read and
-  // write round trip).
-  if (run.rounds == 0) {
-    PartitionWeights weights;
-    weights.tets.assign(part.tets.size(), 1);
-    move_to_parts(comm, part, weights, comm.size());
-  }
   int last_parts = comm.size();
   bool inside_parts = false;
-  for (int it = 0; it < run.iterations && run.rounds > 0; ++it)
+  for (int it = 0; it < run.iterations; ++it)
     for (int round = 0; round < run.rounds; ++round) {
       Stopwatch round_clock;
       // A new metric (the first round of an adaptation): every tet.
@@ -341,44 +387,25 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       // the faces between them, in parts still balanced: the next round
       // adapts around it where it is.
       const bool recut = round == 0 || !inside_parts || parts != last_parts;
+      RoundTimes time;
       Stopwatch step_clock;
-      const double cut_seconds = recut ? move_to_parts(comm, part, weights, parts) : 0.0;
-      const double move_seconds = step_clock.seconds() - cut_seconds;
+      time.cut = recut ? move_to_parts(comm, part, weights, parts) : 0.0;
+      time.move = step_clock.seconds() - time.cut;
       // The last round a run allows, on a mesh adapted before, is undone on
       // a part where it leaves a tet poorer than it was given (adapt_part):
       // no round after it would adapt there again.
-      PartAdaptSettings this_round = round == 0 && parts > 1 && !near_size ? first_round : settings;
+      PartAdaptSettings this_round = round == 0 && parts > 1 && !near_size ? s.first : settings;
       this_round.keep_worst = near_size && round > 0 && round + 1 == run.rounds;
       const auto result = adapt_part(comm, part, this_round, next_id);
-      const double adapt_seconds = step_clock.seconds() - cut_seconds - move_seconds;
-      const double before = comm.sum(result.volume_before), after = comm.sum(result.volume_after);
+      time.adapt = step_clock.seconds() - time.cut - time.move;
+      const RoundFigures f = round_figures(comm, result, part);
       const std::int64_t rekept = round > 0 ? held_again(comm, frozen_before, result.held) : -1;
       // The next cut stays away from what this round left unfinished, and
       // the next round adapts only around it: the rest is adapted already.
       frozen_before = unfinished_on_both_sides(comm, part, result.kept_vertices);
       const std::int64_t unfinished = comm.sum(std::int64_t(frozen_before.size()));
-      const auto tets = spread(comm, std::int64_t(part.tets.size()));
-      const std::int64_t kept_out = comm.sum(result.kept_out), adapted = comm.sum(result.adapted),
-                         undone = comm.sum(std::int64_t(result.undone));
-      // The quality of the tets adapted this round.
-      const double edges = double(comm.sum(result.quality.edges));
-      const double in_range = double(comm.sum(result.quality.edges_in_range)) / std::max(1.0, edges);
-      const double min_q = comm.min(result.quality.min_quality);
-      const std::int64_t off_model = comm.sum(result.off_model);
-      if (talk) {
-        fmt::print(
-            "  {}round {}: {} tets ({} part{}{}, {} .. {} per rank; {} adapted, {} kept out at pinches) | "
-            "adapted: in range {:5.1f}% min Q {:.3f} | {} vertices unfinished{} | volume change {:.2g} | "
-            "{}adapt {:.2f} s (rank 0), {:.2f} s in all\n",
-            run.iterations > 1 ? fmt::format("iteration {} ", it + 1) : "", round + 1, tets.total, parts,
-            parts == 1 ? "" : "s", undone > 0 ? fmt::format(", {} undone", undone) : "", tets.low, tets.high, adapted,
-            kept_out, 100.0 * in_range, min_q, unfinished,
-            off_model > 0 ? fmt::format(" ({} off the model)", off_model) : "",
-            before > 0 ? std::abs(after - before) / before : 0.0,
-            recut ? fmt::format("cut {:.2f} s, move {:.2f} s, ", cut_seconds, move_seconds) : "no cut, ", adapt_seconds,
-            round_clock.seconds());
-        std::fflush(stdout);
-      }
+      time.all = round_clock.seconds();
+      if (talk) print_round(run, it, round, parts, recut, f, unfinished, time);
       // On a model the boundary moves onto it: the volume follows.
       const double volume_now = comm.sum(part_volume(part));
       comm.step([&] {
@@ -394,7 +421,7 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
       // keeps are its poorest; the next round has them inside a part.
       last_parts = parts;
       const bool settled = round + 1 >= kFewestRounds || rekept == 0;
-      if (parts == 1 || unfinished == 0 || (settled && min_q >= kPoorAtKeptFace && off_model == 0)) break;
+      if (parts == 1 || unfinished == 0 || (settled && f.min_q >= kPoorAtKeptFace && f.off_model == 0)) break;
       // Once settled only the poor tets keep the adaptation from ending:
       // the next round adapts around them alone (4.3M tets on 2 ranks: the
       // third round around one sliver's vertices instead of 240).
@@ -403,32 +430,42 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
         const auto near = tets_near(part, frozen_before, kFocusLayers);
         part.focus.assign(near.begin(), near.end());
         inside_parts = !on_faces_between_parts(comm, part, frozen_before) &&
-                       double(tets.high) * parts <= kMostWithoutCut * double(tets.total);
+                       double(f.tets.high) * parts <= kMostWithoutCut * double(f.tets.total);
       }
     }
-  // The output spread over every rank when the last round ran on fewer.
-  if (run.rounds > 0 && last_parts < comm.size() && comm.sum(std::int64_t(part.tets.size())) >= comm.size()) {
-    PartitionWeights weights;
-    weights.tets.assign(part.tets.size(), 1);
-    move_to_parts(comm, part, weights, comm.size());
-  }
-  // The quality of the whole output (the edges between parts counted on
-  // each side), for the report (none with -q, as the single process),
-  // measured before the file is written: a failure here leaves no output.
-  const auto tets = spread(comm, std::int64_t(part.tets.size()));
+  return last_parts;
+}
+
+// The whole output's figures for the report and the checks before it is
+// written.
+struct OutputFigures {
+  Spread tets;
+  double in_range = 0, min_q = 0, mean_q = 0;
+  double farthest = 0;  // a boundary vertex's largest distance to its entity
+};
+
+// Measured before anything is written: a failure here leaves no output,
+// and an output `check --geometry` would refuse (its tolerance) is not
+// written.
+OutputFigures output_figures(const Comm& comm, const DistributedAdapt& run, const Part& part,
+                             const PartAdaptSettings& settings, const CadModel* model) {
+  OutputFigures out;
+  // The quality (the edges between parts counted on each side), for the
+  // report (none with -q, as the single process).
+  out.tets = spread(comm, std::int64_t(part.tets.size()));
   QualityTally q;
   if (run.rounds > 0 && run.talk) comm.step([&] { q = part_quality(part, settings); });
   const double edges = double(comm.sum(q.edges));
-  const double in_range = double(comm.sum(q.edges_in_range)) / std::max(1.0, edges);
-  const double min_q = comm.min(q.min_quality);
-  const double mean_q = comm.sum(q.sum_quality) / std::max(1.0, double(tets.total));
+  out.in_range = double(comm.sum(q.edges_in_range)) / std::max(1.0, edges);
+  out.min_q = comm.min(q.min_quality);
+  out.mean_q = comm.sum(q.sum_quality) / std::max(1.0, double(out.tets.total));
   // How far the boundary vertices are from their entities (each counted
   // on every rank holding it).
-  double farthest = 0;
   std::int64_t without = 0;  // vertices of boundary or interface triangles without an entity
   if (model) {
     for (std::size_t v = 0; v < part.geo.size(); ++v)
-      if (part.geo[v].valid()) farthest = std::max(farthest, (model->value(part.geo[v]) - part.points[v]).norm());
+      if (part.geo[v].valid())
+        out.farthest = std::max(out.farthest, (model->value(part.geo[v]) - part.points[v]).norm());
     const VertexIndex index(part.vertex_ids);
     std::vector<bool> counted(part.geo.size(), false);
     for (const auto& f : part.triangles)
@@ -437,22 +474,28 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
         if (!part.geo[v].valid() && !counted[v]) counted[v] = true, ++without;
       }
   }
-  farthest = comm.max(farthest);
+  out.farthest = comm.max(out.farthest);
   without = comm.sum(without);
-  // An output `check --geometry` would refuse is not written (its tolerance).
   comm.step([&] {
-    if (comm.rank() == 0 && (farthest > kOnModel || without > 0))
+    if (comm.rank() == 0 && (out.farthest > kOnModel || without > 0))
       throw InputError(
           fmt::format("adapt: the boundary is not on {} ({} vertices without an entity, largest distance {:.3g}, "
                       "at most {:.0e}); nothing written",
-                      model->source(), without, farthest, kOnModel));
+                      model->source(), without, out.farthest, kOnModel));
   });
+  return out;
+}
+
+// The mesh, its metric and its .vtu, written by all ranks to temporaries
+// and renamed together once all are whole.
+WrittenCounts write_outputs(const Comm& comm, const DistributedAdapt& run, const Part& part,
+                            const PartAdaptSettings& settings, const CadModel* model) {
   const VertexNumbering numbering = number_vertices(comm, part);
   WrittenCounts written;
   StagedOutputs outputs(comm);
   const bool text = io::format_of(run.output) == io::FileFormat::mesh;
-  outputs.add(text ? write_part_text(comm, part, numbering, run.output, run.version, model.get(), &written)
-                   : write_part(comm, part, numbering, run.output, run.version, model.get(), &written));
+  outputs.add(text ? write_part_text(comm, part, numbering, run.output, run.version, model, &written)
+                   : write_part(comm, part, numbering, run.output, run.version, model, &written));
   if (!run.metric_out.empty()) {
     const auto metric_of = [&](std::size_t v) {
       return settings.exact ? (*settings.exact)(part.points[v]) : part.metrics[v];
@@ -463,21 +506,71 @@ void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
   }
   if (!run.vtu.empty()) outputs.add(write_part_vtu(comm, part, numbering, run.vtu));
   outputs.commit();
-  if (talk) {
-    fmt::print("wrote {}: {} vertices, {} triangles, {} tets (libMeshb v{}) on {} ranks ({:.2f} s in all)\n",
-               run.output, written.vertices, written.triangles, written.tets, written.version, comm.size(),
-               clock.seconds());
-    if (!run.metric_out.empty())
-      fmt::print("wrote {}: the metric at its {} vertices\n", run.metric_out, written.vertices);
-    if (!run.vtu.empty()) fmt::print("wrote {}: its tets for ParaView\n", run.vtu);
-    fmt::print("tets per rank {} .. {}, the most {:.3f} x the mean\n", tets.low, tets.high,
-               double(tets.high) * comm.size() / double(std::max<std::int64_t>(1, tets.total)));
-    if (run.rounds > 0)
-      fmt::print("edges in [1/sqrt2, sqrt2] {:.2f}%, mean ratio min {:.4f} mean {:.4f}\n", 100.0 * in_range, min_q,
-                 mean_q);
-    if (model)
-      fmt::print("boundary vertices on {}: largest distance to their entity {:.3g}\n", model->source(), farthest);
+  return written;
+}
+
+void print_output(const Comm& comm, const DistributedAdapt& run, const WrittenCounts& written, const OutputFigures& f,
+                  const CadModel* model, const Stopwatch& clock) {
+  fmt::print("wrote {}: {} vertices, {} triangles, {} tets (libMeshb v{}) on {} ranks ({:.2f} s in all)\n", run.output,
+             written.vertices, written.triangles, written.tets, written.version, comm.size(), clock.seconds());
+  if (!run.metric_out.empty())
+    fmt::print("wrote {}: the metric at its {} vertices\n", run.metric_out, written.vertices);
+  if (!run.vtu.empty()) fmt::print("wrote {}: its tets for ParaView\n", run.vtu);
+  fmt::print("tets per rank {} .. {}, the most {:.3f} x the mean\n", f.tets.low, f.tets.high,
+             double(f.tets.high) * comm.size() / double(std::max<std::int64_t>(1, f.tets.total)));
+  if (run.rounds > 0)
+    fmt::print("edges in [1/sqrt2, sqrt2] {:.2f}%, mean ratio min {:.4f} mean {:.4f}\n", 100.0 * f.in_range, f.min_q,
+               f.mean_q);
+  if (model)
+    fmt::print("boundary vertices on {}: largest distance to their entity {:.3g}\n", model->source(), f.farthest);
+}
+
+// The whole mesh moved to all ranks' parts, each tet counting one.
+void spread_over_ranks(const Comm& comm, Part& part) {
+  PartitionWeights weights;
+  weights.tets.assign(part.tets.size(), 1);
+  move_to_parts(comm, part, weights, comm.size());
+}
+
+}  // namespace
+
+void adapt_distributed(const Comm& comm, const DistributedAdapt& run) {
+  const bool talk = run.talk && comm.rank() == 0;
+  Stopwatch clock;
+  Input in = read_input(comm, run, talk, clock);
+  Part& part = in.part;
+  MetricFunction exact;
+  if (run.analytic)
+    exact = [kind = *run.analytic, b = run.bounds](const Point& p) {
+      return b.active() ? clamp_metric(evaluate(kind, p), b) : evaluate(kind, p);
+    };
+  const std::unique_ptr<BackgroundMetric> background = whole_background(comm, run);
+  const RoundSettings settings = round_settings(comm, run, in, run.analytic ? &exact : nullptr, background.get());
+  const double predicted_out = predicted_output(comm, part, settings.later.exact, in.counts.tets);
+  comm.step([&] {
+    if (comm.rank() == 0 && run.max_tets > 0 && !(predicted_out <= run.max_tets))
+      throw InputError(fmt::format("adapt: the metric predicts about {:.3g} tets; the limit is {:.3g} tets ({})",
+                                   predicted_out, run.max_tets, run.max_tets_reason));
+  });
+  if (run.dry_run) {
+    if (comm.rank() == 0)
+      fmt::print("adapt: {} vertices, {} tets in; about {:.3g} tets out on {} ranks, about {:.3g} a rank\n",
+                 in.counts.vertices, in.counts.tets, predicted_out, comm.size(), predicted_out / comm.size());
+    return;
   }
+  const double volume_in = comm.sum(part_volume(part));
+  // --rounds 0: cut and move once, no adaptation (the parallel read and
+  // write round trip).
+  if (run.rounds == 0) spread_over_ranks(comm, part);
+  const int last_parts =
+      run.rounds > 0 ? adapt_rounds(comm, run, part, settings, in.model.get(), in.counts.vertices, volume_in, talk)
+                     : comm.size();
+  // The output spread over every rank when the last round ran on fewer.
+  if (run.rounds > 0 && last_parts < comm.size() && comm.sum(std::int64_t(part.tets.size())) >= comm.size())
+    spread_over_ranks(comm, part);
+  const OutputFigures figures = output_figures(comm, run, part, settings.later, in.model.get());
+  const WrittenCounts written = write_outputs(comm, run, part, settings.later, in.model.get());
+  if (talk) print_output(comm, run, written, figures, in.model.get(), clock);
 }
 
 }  // namespace metrica::distributed
