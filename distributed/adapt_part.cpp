@@ -244,6 +244,31 @@ Mesh round_mesh(RoundInput& in, const PartAdaptSettings& settings, int rank) {
   return mesh;
 }
 
+// A round's mesh measured: its quality, the Unfinished bits of each
+// vertex (an edge out of the band counts on a kept face, kMustReach
+// anywhere) and its boundary vertices off the model. A vertex the round
+// left off the model (its closing could not place it) is unfinished: the
+// next round, with it inside a part, projects it again; the output is
+// written only with every vertex on the model.
+struct RoundFigures {
+  QualityTally quality;
+  std::vector<std::uint8_t> unfinished;
+  std::int64_t off_model = 0;
+  std::vector<GlobalId> poor;  // the global ids of the vertices with kPoor (before a keep_worst round)
+};
+
+RoundFigures round_figures(const Mesh& mesh, const PartAdaptSettings& settings) {
+  RoundFigures f;
+  f.unfinished.assign(std::size_t(mesh.vertex_capacity()), 0);
+  f.quality = tally(mesh, settings.policies.space, &f.unfinished);
+  if (settings.model)
+    for (VertexId v : vertices_off_model(mesh, *settings.model, kOnModel, kPartFaceId)) {
+      f.unfinished[std::size_t(v)] |= kOffModel;
+      ++f.off_model;
+    }
+  return f;
+}
+
 // The adapted mesh as part records (its vertices numbered as in `records`,
 // the kept faces' vertices with their global ids, the new ones -1 for
 // now), and what the next rounds need of it.
@@ -388,22 +413,14 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     std::optional<Mesh> built(round_mesh(in, settings, comm.rank()));
     Mesh& mesh = *built;
     result.volume_before = mesh.volume();
-    // With keep_worst, the tets as they came: their quality, and the
-    // vertices of those below kPoorAtKeptFace or off the model.
-    QualityTally before;
-    std::vector<GlobalId> poor_before;
-    std::int64_t off_model_before = 0;
+    // With keep_worst, the tets as they came.
+    RoundFigures before;
     if (settings.keep_worst) {
-      std::vector<std::uint8_t> flags(std::size_t(mesh.vertex_capacity()), 0);
-      before = tally(mesh, settings.policies.space, &flags);
-      if (settings.model)
-        for (VertexId v : vertices_off_model(mesh, *settings.model, kOnModel, kPartFaceId)) {
-          flags[std::size_t(v)] |= kOffModel;
-          ++off_model_before;
-        }
+      before = round_figures(mesh, settings);
       // The mesh's vertices are in.part_vertex's, in order.
       for (std::size_t l = 0; l < in.part_vertex.size(); ++l)
-        if (flags[l] & kPoor) poor_before.push_back(part.vertex_ids[in.part_vertex[l]]);
+        if (before.unfinished[l] & kPoor) before.poor.push_back(part.vertex_ids[in.part_vertex[l]]);
+      before.unfinished = {};
     }
     in.part_vertex = {};
     AdaptInputs inputs;
@@ -417,19 +434,10 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
     release_freed_memory();
     // Valid, with the volume checked over all parts by the caller.
     require_adapted(mesh, nullptr, result.volume_before, 1e300);
-    // A boundary vertex the round left off the model (its closing could
-    // not place it) is unfinished: the next round, with it inside a part,
-    // projects it again; the output is written only with every vertex on
-    // the model.
-    std::vector<VertexId> off_model;
-    if (settings.model) off_model = vertices_off_model(mesh, *settings.model, kOnModel, kPartFaceId);
-    result.off_model = std::int64_t(off_model.size());
     result.volume_after = mesh.volume();
-    // The round's figures, and the vertices near what it could not finish:
-    // an edge out of the band counts on a kept face, kMustReach anywhere.
-    std::vector<std::uint8_t> unfinished(std::size_t(mesh.vertex_capacity()), 0);
-    result.quality = tally(mesh, settings.policies.space, &unfinished);
-    for (VertexId v : off_model) unfinished[std::size_t(v)] |= kOffModel;
+    RoundFigures after = round_figures(mesh, settings);
+    result.quality = after.quality;
+    result.off_model = after.off_model;
     if (settings.keep_worst) {
       // A round that leaves a tet poorer than the poorest it was given, and
       // below kPoorAtKeptFace, is undone on this part: its tets stay as they
@@ -437,20 +445,20 @@ PartAdaptResult adapt_part(const Comm& comm, Part& part, const PartAdaptSettings
       // risks poor tets against the faces its cut keeps, and the last
       // round's stayed in the output (UGAWG polar-1 on 4 ranks, 6 focus
       // layers: min Q 0.171 against 0.388 with this).
-      if (result.quality.min_quality < before.min_quality && result.quality.min_quality < kPoorAtKeptFace) {
+      if (after.quality.min_quality < before.quality.min_quality && after.quality.min_quality < kPoorAtKeptFace) {
         result.undone = true;
-        result.quality = before;
-        result.off_model = off_model_before;
+        result.quality = before.quality;
+        result.off_model = before.off_model;
         result.volume_after = result.volume_before;
-        result.kept_vertices.insert(result.kept_vertices.end(), poor_before.begin(), poor_before.end());
-        result.poor_vertices = poor_before;
+        result.kept_vertices.insert(result.kept_vertices.end(), before.poor.begin(), before.poor.end());
+        result.poor_vertices = before.poor;
         changed = false;
         result.seconds = clock.seconds();
         return;
       }
       drop_active_records(part, active, bounds);
     }
-    adapted = adapted_records(built, unfinished, settings, result);
+    adapted = adapted_records(built, after.unfinished, settings, result);
     result.seconds = clock.seconds();
   });
   const std::int64_t base = next_id + comm.exclusive_scan(adapted.fresh);
