@@ -15,8 +15,6 @@
 #include <metrica/mesh_array.hpp>
 #include <metrica/part_runner.hpp>
 
-#include <fmt/format.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -124,7 +122,7 @@ class AttributeTable {
   // Throws when the name is taken.
   template <class T>
   Attribute<T>& add(std::string name, std::size_t size, const T& initial, DeadRoomFill fill = DeadRoomFill::unwritten) {
-    if (find_column(name)) throw std::invalid_argument(fmt::format("an attribute named '{}' exists already", name));
+    if (find_column(name)) throw std::invalid_argument("an attribute named '" + name + "' exists already");
     auto column = std::make_unique<Attribute<T>>(std::move(name), size, initial, fill);
     Attribute<T>& a = *column;
     columns_.push_back(std::move(column));
@@ -137,7 +135,7 @@ class AttributeTable {
     AttributeColumn* c = find_column(name);
     if (!c) return nullptr;
     if (c->value_type() != typeid(T))
-      throw std::invalid_argument(fmt::format("the attribute '{}' holds another type", name));
+      throw std::invalid_argument("the attribute '" + std::string(name) + "' holds another type");
     return static_cast<Attribute<T>*>(c);
   }
   template <class T>
