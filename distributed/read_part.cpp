@@ -128,12 +128,47 @@ double read_real(const char* p, int width) {
   return v;
 }
 
-// Rows [first, last) of keyword `code`, each row's bytes.
-std::vector<char> rows(const BinaryFile& f, const Keyword& k, std::size_t row_bytes, std::int64_t first,
-                       std::int64_t last) {
-  std::vector<char> out(std::size_t(last - first) * row_bytes);
-  if (!out.empty()) f.read(k.rows + std::uint64_t(first) * row_bytes, out.data(), out.size());
-  return out;
+// Reads every rank's slices of one file together: slice i of every rank
+// in one MPI_File_read_at_all (MPI-IO may gather the ranks' requests into
+// large reads), a rank with fewer slices or an empty one taking part with
+// no bytes; a slice in parts of at most 1 GiB (an int of bytes), as many
+// on every rank. A short read (a truncated file) throws on every rank.
+struct SliceRead {
+  std::uint64_t at;
+  std::vector<char>* into;  // sized by the caller
+};
+
+void read_together(const Comm& comm, const std::string& path, const std::vector<SliceRead>& slices) {
+  constexpr std::size_t kPart = std::size_t{1} << 30;
+  MPI_File file;
+  const int opened = MPI_File_open(comm.get(), path.c_str(), MPI_MODE_RDONLY, MPI_INFO_NULL, &file);
+  comm.step([&] {
+    if (opened != MPI_SUCCESS) throw IoError(fmt::format("{}: cannot open for the ranks' reads", path));
+  });
+  const auto n = std::size_t(comm.max(std::int64_t(slices.size())));
+  std::vector<std::int64_t> parts(n, 0);
+  for (std::size_t i = 0; i < slices.size(); ++i) parts[i] = std::int64_t((slices[i].into->size() + kPart - 1) / kPart);
+  MPI_Allreduce(MPI_IN_PLACE, parts.data(), int(n), MPI_INT64_T, MPI_MAX, comm.get());
+  std::string failed;
+  for (std::size_t i = 0; i < n; ++i) {
+    char* data = i < slices.size() ? slices[i].into->data() : nullptr;
+    const std::size_t size = i < slices.size() ? slices[i].into->size() : 0;
+    const std::uint64_t at = i < slices.size() ? slices[i].at : 0;
+    for (std::size_t k = 0; k < std::size_t(parts[i]); ++k) {
+      const std::size_t off = std::min(size, k * kPart);
+      const int bytes = int(std::min(kPart, size - off));
+      MPI_Status status;
+      int got = 0;
+      if (MPI_File_read_at_all(file, MPI_Offset(at + off), data ? data + off : nullptr, bytes, MPI_BYTE, &status) !=
+              MPI_SUCCESS ||
+          MPI_Get_count(&status, MPI_BYTE, &got) != MPI_SUCCESS || got != bytes)
+        if (failed.empty()) failed = fmt::format("{}: truncated at byte {}", path, at + off + std::uint64_t(got));
+    }
+  }
+  MPI_File_close(&file);
+  comm.step([&] {
+    if (!failed.empty()) throw IoError(failed);
+  });
 }
 
 // A VerticesOnGeometricVertices (dim 0) or VerticesOnGeometricTriangles
@@ -160,41 +195,81 @@ void check_vertex(GlobalId v, std::int64_t n, const std::string& path, const cha
   if (v < 0 || v >= n) throw IoError(fmt::format("{}: a {} names vertex {} (the mesh has {})", path, what, v + 1, n));
 }
 
-Slices read_binary_slices(const Comm& comm, const std::string& path, const Layout& l, const BinaryFile& f,
-                          const std::string& metric_path, bool records, ReadCounts& counts) {
+// Reads this rank's slice of every keyword of a native-order binary mesh
+// (and metric): the ranks read their slices together (read_together), then
+// each checks and decodes its own in a step. `ml` is the metric's layout
+// (unused without a metric).
+Slices read_binary_slices(const Comm& comm, const std::string& path, const Layout& l, const std::string& metric_path,
+                          const Layout& ml, bool records, ReadCounts& counts) {
   Slices s;
-  const auto kw = [&](int code) -> const Keyword& {
+  const auto kw = [](const Layout& layout, int code) -> const Keyword& {
     static const Keyword none;
-    auto it = l.keywords.find(code);
-    return it == l.keywords.end() ? none : it->second;
+    auto it = layout.keywords.find(code);
+    return it == layout.keywords.end() ? none : it->second;
   };
-  const Keyword& kv = kw(mb::kVertices);
-  const Keyword& kt = kw(mb::kTetrahedra);
-  const Keyword& kf = kw(mb::kTriangles);
+  const Keyword& kv = kw(l, mb::kVertices);
+  const Keyword& kt = kw(l, mb::kTetrahedra);
+  const Keyword& kf = kw(l, mb::kTriangles);
+  const Keyword& ks = kw(ml, mb::kSolAtVertices);
   counts.vertices = kv.count, counts.tets = kt.count, counts.triangles = kf.count;
-  if (kv.count == 0 || kt.count == 0) throw IoError(fmt::format("{}: no vertices or no tetrahedra", path));
+  io::SolData sol;
+  comm.step([&] {
+    if (kv.count == 0 || kt.count == 0) throw IoError(fmt::format("{}: no vertices or no tetrahedra", path));
+    if (metric_path.empty()) return;
+    if (ml.keywords.find(mb::kSolAtVertices) == ml.keywords.end())
+      throw IoError(fmt::format("{}: no SolAtVertices keyword", metric_path));
+    if (ks.count != kv.count)
+      throw InputError(
+          fmt::format("{}: the metric has {} entries but the mesh has {} vertices", metric_path, ks.count, kv.count));
+    for (int t : ks.types) {
+      if (t < 1 || t > 4) throw IoError(fmt::format("{}: solution type {} unknown", metric_path, t));
+      sol.types.push_back(io::SolType(t));
+    }
+  });
   const auto n = std::size_t(comm.size()), r = std::size_t(comm.rank());
   for (std::size_t q = 0; q <= n; ++q) s.vertex_starts.push_back(std::int64_t(std::size_t(kv.count) * q / n));
-  auto [v0, v1] = part_slice(std::size_t(kv.count), n, r);
+  const auto [v0, v1] = part_slice(std::size_t(kv.count), n, r);
+  const auto [t0, t1] = part_slice(std::size_t(kt.count), n, r);
+  const auto [f0, f1] = part_slice(std::size_t(kf.count), n, r);
   s.first_vertex = GlobalId(v0);
   const int R = l.real(), I = l.integer();
   const mb::Widths w = l.widths();
-  {
-    const std::size_t row = w.vertex_row();
-    const auto bytes = rows(f, kv, row, std::int64_t(v0), std::int64_t(v1));
+  // The slices' bytes: each keyword's rows [first, last) of this rank.
+  std::vector<char> vertex_rows((v1 - v0) * w.vertex_row()), tet_rows((t1 - t0) * w.tet_row()),
+      triangle_rows((f1 - f0) * w.triangle_row());
+  std::vector<SliceRead> reads{{kv.rows + v0 * w.vertex_row(), &vertex_rows},
+                               {kt.rows + t0 * w.tet_row(), &tet_rows},
+                               {kf.rows + f0 * w.triangle_row(), &triangle_rows}};
+  constexpr int kRecordCodes[2] = {mb::kVerticesOnGeometricVertices, mb::kVerticesOnGeometricTriangles};
+  std::array<std::vector<char>, 2> record_rows;
+  std::array<std::size_t, 2> record_first{};
+  if (records)
+    for (std::size_t c = 0; c < 2; ++c) {
+      const Keyword& k = kw(l, kRecordCodes[c]);
+      const int dim = kRecordCodes[c] - mb::kVerticesOnGeometricVertices;
+      const auto [a, b] = part_slice(std::size_t(k.count), n, r);
+      record_first[c] = a;
+      record_rows[c].resize((b - a) * w.on_geometry_row(dim));
+      reads.push_back({k.rows + a * w.on_geometry_row(dim), &record_rows[c]});
+    }
+  read_together(comm, path, reads);
+  std::vector<char> metric_rows;
+  if (!metric_path.empty()) {
+    metric_rows.resize((v1 - v0) * std::size_t(sol.stride()) * std::size_t(ml.real()));
+    read_together(comm, metric_path,
+                  {{ks.rows + v0 * std::size_t(sol.stride()) * std::size_t(ml.real()), &metric_rows}});
+  }
+
+  comm.step([&] {
     for (std::size_t i = 0; i < v1 - v0; ++i) {
-      const char* p = bytes.data() + i * row;
+      const char* p = vertex_rows.data() + i * w.vertex_row();
       s.points.emplace_back(read_real(p, R), read_real(p + R, R), read_real(p + 2 * R, R));
       if (!s.points.back().allFinite())
         throw IoError(fmt::format("{}: vertex {} has a coordinate that is not finite", path, v0 + i + 1));
     }
-  }
-  {
-    auto [t0, t1] = part_slice(std::size_t(kt.count), n, r);
-    const std::size_t row = w.tet_row();
-    const auto bytes = rows(f, kt, row, std::int64_t(t0), std::int64_t(t1));
+    vertex_rows = {};
     for (std::size_t i = 0; i < t1 - t0; ++i) {
-      const char* p = bytes.data() + i * row;
+      const char* p = tet_rows.data() + i * w.tet_row();
       std::array<GlobalId, 4> t;
       for (int c = 0; c < 4; ++c) {
         t[c] = read_integer(p + c * I, I) - 1;
@@ -203,63 +278,42 @@ Slices read_binary_slices(const Comm& comm, const std::string& path, const Layou
       s.tets.push_back(t);
       s.part.tet_refs.push_back(int(read_integer(p + 4 * I, I)));
     }
-  }
-  {
-    auto [f0, f1] = part_slice(std::size_t(kf.count), n, r);
-    const std::size_t row = w.triangle_row();
-    const auto bytes = rows(f, kf, row, std::int64_t(f0), std::int64_t(f1));
+    tet_rows = {};
     for (std::size_t i = 0; i < f1 - f0; ++i) {
-      const char* p = bytes.data() + i * row;
+      const char* p = triangle_rows.data() + i * w.triangle_row();
       GlobalId a = read_integer(p, I) - 1, b = read_integer(p + I, I) - 1, c = read_integer(p + 2 * I, I) - 1;
       for (GlobalId v : {a, b, c}) check_vertex(v, kv.count, path, "triangle");
       s.part.triangles.push_back({a, b, c});
       s.part.triangle_refs.push_back(int(read_integer(p + 3 * I, I)));
     }
-  }
-  if (records)
-    for (const int code : {mb::kVerticesOnGeometricVertices, mb::kVerticesOnGeometricTriangles}) {
-      const Keyword& k = kw(code);
-      const int dim = code - mb::kVerticesOnGeometricVertices;
-      auto [a, b] = part_slice(std::size_t(k.count), n, r);
-      const std::size_t row = w.on_geometry_row(dim);
-      const auto bytes = rows(f, k, row, std::int64_t(a), std::int64_t(b));
-      for (std::size_t i = 0; i < b - a; ++i) {
-        const char* p = bytes.data() + i * row;
-        FileRecord rec{read_integer(p, I) - 1, dim, std::int32_t(read_integer(p + I, I)), 0.0, 0.0};
-        check_vertex(rec.vertex, kv.count, path, io::meshb::keyword_name(code).data());
-        if (dim == 2) rec.u = read_real(p + 2 * I, R), rec.v = read_real(p + 2 * I + R, R);
-        s.records.push_back(rec);
+    triangle_rows = {};
+    if (records)
+      for (std::size_t c = 0; c < 2; ++c) {
+        const int dim = kRecordCodes[c] - mb::kVerticesOnGeometricVertices;
+        const std::size_t row = w.on_geometry_row(dim);
+        for (std::size_t i = 0; i < record_rows[c].size() / row; ++i) {
+          const char* p = record_rows[c].data() + i * row;
+          FileRecord rec{read_integer(p, I) - 1, dim, std::int32_t(read_integer(p + I, I)), 0.0, 0.0};
+          check_vertex(rec.vertex, kv.count, path, io::meshb::keyword_name(kRecordCodes[c]).data());
+          if (dim == 2) rec.u = read_real(p + 2 * I, R), rec.v = read_real(p + 2 * I + R, R);
+          s.records.push_back(rec);
+        }
       }
+    for (const auto& [code, k] : l.keywords)
+      if (code != mb::kVertices && code != mb::kTetrahedra && code != mb::kTriangles &&
+          !(records && code >= mb::kVerticesOnGeometricVertices && code <= mb::kVerticesOnGeometricTriangles)) {
+        const auto name = io::meshb::keyword_name(code);
+        counts.dropped.push_back(name.empty() ? fmt::format("keyword {}", code) : std::string(name));
+      }
+    if (!metric_path.empty()) {
+      sol.count = v1 - v0;
+      const std::size_t rr = std::size_t(ml.real());
+      sol.values.resize(sol.count * std::size_t(sol.stride()));
+      for (std::size_t i = 0; i < sol.values.size(); ++i)
+        sol.values[i] = read_real(metric_rows.data() + i * rr, int(rr));
+      s.metrics = metric_field_from_sol(sol, sol.count, metric_path);
     }
-  for (const auto& [code, k] : l.keywords)
-    if (code != mb::kVertices && code != mb::kTetrahedra && code != mb::kTriangles &&
-        !(records && code >= mb::kVerticesOnGeometricVertices && code <= mb::kVerticesOnGeometricTriangles)) {
-      const auto name = io::meshb::keyword_name(code);
-      counts.dropped.push_back(name.empty() ? fmt::format("keyword {}", code) : std::string(name));
-    }
-  if (!metric_path.empty()) {
-    const BinaryFile mf(metric_path);
-    const Layout ml = scan(mf, metric_path);
-    if (!ml.native)
-      throw IoError(fmt::format("{}: a metric in the other byte order is not read under mpirun", metric_path));
-    auto it = ml.keywords.find(mb::kSolAtVertices);
-    if (it == ml.keywords.end()) throw IoError(fmt::format("{}: no SolAtVertices keyword", metric_path));
-    const Keyword& ks = it->second;
-    if (ks.count != kv.count)
-      throw InputError(
-          fmt::format("{}: the metric has {} entries but the mesh has {} vertices", metric_path, ks.count, kv.count));
-    io::SolData sol;
-    sol.count = v1 - v0;
-    for (int t : ks.types) {
-      if (t < 1 || t > 4) throw IoError(fmt::format("{}: solution type {} unknown", metric_path, t));
-      sol.types.push_back(io::SolType(t));
-    }
-    const std::size_t stride = std::size_t(sol.stride()), rr = std::size_t(ml.real());
-    const auto bytes = rows(mf, ks, stride * rr, std::int64_t(v0), std::int64_t(v1));
-    sol.values.resize(sol.count * stride);
-    for (std::size_t i = 0; i < sol.values.size(); ++i) sol.values[i] = read_real(bytes.data() + i * rr, int(rr));
-    s.metrics = metric_field_from_sol(sol, sol.count, metric_path);
-  }
+  });
   return s;
 }
 
@@ -414,15 +468,22 @@ Part read_part(const Comm& comm, const std::string& mesh_path, const std::string
     const BinaryFile metric(metric_path);
     if (io::format_of(metric_path) == io::FileFormat::solb) scan(metric, metric_path);
   });
+  // Native-order binary files: their keywords found by every rank, the
+  // slices read by all together.
+  Layout mesh_layout, metric_layout;
   comm.step([&] {
     if (io::format_of(mesh_path) != io::FileFormat::meshb) return;
-    const BinaryFile f(mesh_path);
-    const Layout l = scan(f, mesh_path);
-    if (!l.native) return;
-    if (!metric_path.empty() && io::encoding_of(metric_path, ".sol", ".solb") != io::Encoding::binary) return;
+    mesh_layout = scan(BinaryFile(mesh_path), mesh_path);
+    if (!mesh_layout.native) return;
+    if (!metric_path.empty()) {
+      if (io::encoding_of(metric_path, ".sol", ".solb") != io::Encoding::binary) return;
+      metric_layout = scan(BinaryFile(metric_path), metric_path);
+      if (!metric_layout.native)
+        throw IoError(fmt::format("{}: a metric in the other byte order is not read under mpirun", metric_path));
+    }
     binary = true;
-    s = read_binary_slices(comm, mesh_path, l, f, metric_path, bool(associate), counts);
   });
+  if (binary) s = read_binary_slices(comm, mesh_path, mesh_layout, metric_path, metric_layout, bool(associate), counts);
   // Every rank takes the same path: the file is the same for all.
   if (!binary) s = read_on_rank0(comm, mesh_path, metric_path, bool(associate), counts);
 
