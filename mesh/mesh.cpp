@@ -64,14 +64,6 @@ Mesh::Attributes& Mesh::Attributes::operator=(Attributes&& o) noexcept {
   return *this;
 }
 
-namespace {
-bool library_attribute(std::string_view name) {
-  using namespace attribute_name;
-  return name == metric || name == log_metric || name == cad_parameters || name == background_tet ||
-         name == mean_ratio_cache;
-}
-}  // namespace
-
 void Mesh::Attributes::bind() {
   metric = vertices.find<Sym6>(attribute_name::metric);
   log_metric = vertices.find<Sym6>(attribute_name::log_metric);
@@ -81,27 +73,30 @@ void Mesh::Attributes::bind() {
   user_vertices.clear();
   user_tets.clear();
   vertices.for_each([&](AttributeColumn& c) {
-    if (!library_attribute(c.name())) user_vertices.push_back(&c);
+    if (!attribute_name::is_library(c.name())) user_vertices.push_back(&c);
   });
   tets.for_each([&](AttributeColumn& c) {
-    if (!library_attribute(c.name())) user_tets.push_back(&c);
+    if (!attribute_name::is_library(c.name())) user_tets.push_back(&c);
   });
   // A moved-from table has no quality column: an empty one takes its place.
   if (!quality) quality = &tets.add<double>(std::string(attribute_name::mean_ratio_cache), 0, kUnknownQuality);
   refresh();
 }
 
+void Mesh::refuse_library_name(std::string_view name) {
+  if (attribute_name::is_library(name))
+    throw std::invalid_argument(fmt::format("the attribute '{}' is the library's own", name));
+}
+
 bool Mesh::remove_vertex_attribute(std::string_view name) {
-  if (library_attribute(name))
-    throw std::invalid_argument(fmt::format("the attribute '{}' is the library's own: it cannot be removed", name));
+  refuse_library_name(name);
   const bool removed = attributes_.vertices.remove(name);
   attributes_.bind();
   return removed;
 }
 
 bool Mesh::remove_tet_attribute(std::string_view name) {
-  if (library_attribute(name))
-    throw std::invalid_argument(fmt::format("the attribute '{}' is the library's own: it cannot be removed", name));
+  refuse_library_name(name);
   const bool removed = attributes_.tets.remove(name);
   attributes_.bind();
   return removed;

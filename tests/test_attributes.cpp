@@ -113,6 +113,9 @@ TEST_SUITE("invariant") {
     mesh.add_vertex_attribute<int>("tag", 0);
     CHECK_THROWS_AS(mesh.add_vertex_attribute<int>("tag", 1), std::invalid_argument);
     CHECK_THROWS_AS(mesh.add_vertex_attribute<double>(std::string(attribute_name::metric), 0.0), std::invalid_argument);
+    // Not there yet (no model), the library's name all the same.
+    CHECK_THROWS_AS(mesh.add_vertex_attribute<GeoParam>(std::string(attribute_name::cad_parameters), GeoParam{}),
+                    std::invalid_argument);
     CHECK_THROWS_AS(mesh.find_vertex_attribute<double>("tag"), std::invalid_argument);
     CHECK_THROWS_AS(mesh.remove_vertex_attribute(attribute_name::metric), std::invalid_argument);
     CHECK_THROWS_AS(mesh.remove_tet_attribute(attribute_name::mean_ratio_cache), std::invalid_argument);

@@ -170,9 +170,6 @@ class AttributeTable {
   void append_initial() {
     for (auto& c : columns_) c->append_initial();
   }
-  void set_initial(std::size_t id) {
-    for (auto& c : columns_) c->set_initial(id);
-  }
   void add_room(std::size_t size, std::size_t capacity, const PartRunner& run) {
     for (auto& c : columns_) c->add_room(size, capacity, run);
   }

@@ -50,6 +50,10 @@ inline constexpr std::string_view log_metric = "log_metric";
 inline constexpr std::string_view cad_parameters = "cad_parameters";
 inline constexpr std::string_view background_tet = "background_tet";
 inline constexpr std::string_view mean_ratio_cache = "mean_ratio_cache";
+inline bool is_library(std::string_view name) {
+  return name == metric || name == log_metric || name == cad_parameters || name == background_tet ||
+         name == mean_ratio_cache;
+}
 }  // namespace attribute_name
 
 class Mesh {
@@ -125,15 +129,18 @@ class Mesh {
   // has a value for every id (dead ones too), each `initial`; made or
   // reused entities take `initial`, compaction carries the values along.
   // Outside parallel passes. The library's own (attribute_name) are read
-  // through the accessors below and may not be removed.
+  // through the accessors below: their names are not a user's to add or
+  // remove (std::invalid_argument).
   template <class T>
   Attribute<T>& add_vertex_attribute(std::string name, const T& initial) {
+    refuse_library_name(name);
     Attribute<T>& a = attributes_.vertices.add<T>(std::move(name), points_.size(), initial);
     attributes_.bind();
     return a;
   }
   template <class T>
   Attribute<T>& add_tet_attribute(std::string name, const T& initial) {
+    refuse_library_name(name);
     Attribute<T>& a = attributes_.tets.add<T>(std::move(name), tets_.size(), initial);
     attributes_.bind();
     return a;
@@ -377,6 +384,7 @@ class Mesh {
     for (int i = 0; i < 4; ++i) std::atomic_ref<VertexId>(tets_[t][i]).store(v[i], std::memory_order_relaxed);
   }
   void init_vertex(VertexId v, const Point& p, int ref);
+  static void refuse_library_name(std::string_view name);
   void init_tet(TetId t, const TetVertices& vertices, int ref);
 
   // The attribute tables, and the library's own columns in them (null:
@@ -431,7 +439,7 @@ class Mesh {
     Attributes();
     Attributes(const Attributes& o);
     Attributes& operator=(const Attributes& o);
-    // The moved-from tables are empty, its columns null.
+    // The moved-from tables hold an empty quality cache, no other column.
     Attributes(Attributes&& o) noexcept;
     Attributes& operator=(Attributes&& o) noexcept;
     void bind();

@@ -52,7 +52,7 @@ class StageArguments {
  public:
   StageArguments(std::string_view stage, std::string_view op, const std::vector<StageOption>& options,
                  const StageValues& values)
-      : stage_(stage), op_(op), options_(options), values_(values) {
+      : stage_(stage), options_(options), values_(values) {
     for (const auto& [name, value] : values)
       if (!option(name))
         throw InputError(fmt::format("stage '{}' ({}): unknown option '{}' ({})", stage, op, name, known()));
@@ -96,7 +96,7 @@ class StageArguments {
     }
     return x;
   }
-  std::string_view stage_, op_;
+  std::string_view stage_;
   const std::vector<StageOption>& options_;
   const StageValues& values_;
 };
