@@ -68,6 +68,13 @@ T all_reduce(T v, MPI_Datatype type, MPI_Op op, MPI_Comm comm) {
 std::int64_t Comm::sum(std::int64_t v) const { return all_reduce(v, MPI_INT64_T, MPI_SUM, comm_); }
 double Comm::sum(double v) const { return all_reduce(v, MPI_DOUBLE, MPI_SUM, comm_); }
 std::int64_t Comm::max(std::int64_t v) const { return all_reduce(v, MPI_INT64_T, MPI_MAX, comm_); }
+std::vector<std::int64_t> Comm::io_parts(const std::vector<std::size_t>& slice_bytes) const {
+  std::vector<std::int64_t> parts(std::size_t(max(std::int64_t(slice_bytes.size()))), 0);
+  for (std::size_t i = 0; i < slice_bytes.size(); ++i)
+    parts[i] = std::int64_t((slice_bytes[i] + kIoPart - 1) / kIoPart);
+  MPI_Allreduce(MPI_IN_PLACE, parts.data(), int(parts.size()), MPI_INT64_T, MPI_MAX, comm_);
+  return parts;
+}
 double Comm::min(double v) const { return all_reduce(v, MPI_DOUBLE, MPI_MIN, comm_); }
 double Comm::max(double v) const { return all_reduce(v, MPI_DOUBLE, MPI_MAX, comm_); }
 std::int64_t Comm::exclusive_scan(std::int64_t v) const {

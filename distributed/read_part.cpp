@@ -139,16 +139,16 @@ struct SliceRead {
 };
 
 void read_together(const Comm& comm, const std::string& path, const std::vector<SliceRead>& slices) {
-  constexpr std::size_t kPart = std::size_t{1} << 30;
+  constexpr std::size_t kPart = Comm::kIoPart;
   MPI_File file;
   const int opened = MPI_File_open(comm.get(), path.c_str(), MPI_MODE_RDONLY, MPI_INFO_NULL, &file);
   comm.step([&] {
     if (opened != MPI_SUCCESS) throw IoError(fmt::format("{}: cannot open for the ranks' reads", path));
   });
-  const auto n = std::size_t(comm.max(std::int64_t(slices.size())));
-  std::vector<std::int64_t> parts(n, 0);
-  for (std::size_t i = 0; i < slices.size(); ++i) parts[i] = std::int64_t((slices[i].into->size() + kPart - 1) / kPart);
-  MPI_Allreduce(MPI_IN_PLACE, parts.data(), int(n), MPI_INT64_T, MPI_MAX, comm.get());
+  std::vector<std::size_t> sizes;
+  for (const auto& slice : slices) sizes.push_back(slice.into->size());
+  const std::vector<std::int64_t> parts = comm.io_parts(sizes);
+  const std::size_t n = parts.size();
   std::string failed;
   for (std::size_t i = 0; i < n; ++i) {
     char* data = i < slices.size() ? slices[i].into->data() : nullptr;

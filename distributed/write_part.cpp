@@ -67,11 +67,11 @@ struct Piece {
 // bytes; a piece in parts of at most 1 GiB (an int of bytes), as many on
 // every rank. Throws on every rank when a write failed on one.
 void write_together(const Comm& comm, MPI_File file, const std::vector<Piece>& pieces) {
-  constexpr std::size_t kPart = std::size_t{1} << 30;
-  const auto n = std::size_t(comm.max(std::int64_t(pieces.size())));
-  std::vector<std::int64_t> parts(n, 0);
-  for (std::size_t i = 0; i < pieces.size(); ++i) parts[i] = std::int64_t((pieces[i].bytes.size() + kPart - 1) / kPart);
-  MPI_Allreduce(MPI_IN_PLACE, parts.data(), int(n), MPI_INT64_T, MPI_MAX, comm.get());
+  constexpr std::size_t kPart = Comm::kIoPart;
+  std::vector<std::size_t> sizes;
+  for (const auto& piece : pieces) sizes.push_back(piece.bytes.size());
+  const std::vector<std::int64_t> parts = comm.io_parts(sizes);
+  const std::size_t n = parts.size();
   std::string failed;
   for (std::size_t i = 0; i < n; ++i) {
     const Piece piece = i < pieces.size() ? pieces[i] : Piece{0, {}};

@@ -6,6 +6,7 @@
 
 #include <metrica/error.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <functional>
@@ -60,6 +61,13 @@ class Comm {
   // The sum of v over the ranks below this one (0 on rank 0).
   std::int64_t exclusive_scan(std::int64_t v) const;
   void barrier() const { MPI_Barrier(comm_); }
+
+  // The ranks' file I/O in collective calls (MPI_File_*_at_all): for each
+  // index any rank has a slice at, how many calls of at most kIoPart bytes
+  // (an int of bytes) the largest slice there takes; every rank makes
+  // that many calls for the index, with no bytes past its own slice.
+  static constexpr std::size_t kIoPart = std::size_t{1} << 30;
+  std::vector<std::int64_t> io_parts(const std::vector<std::size_t>& slice_bytes) const;
 
   // Runs step on every rank, then agrees: when it threw on any rank, that
   // rank prints its message to stderr ("rank r: ...") and every rank
