@@ -1,3 +1,4 @@
+#include "adaptation_report.hpp"
 #include "cli.hpp"
 
 #include <metrica/error.hpp>
@@ -34,52 +35,9 @@ namespace metrica::cli {
 
 namespace {
 
-std::string stats_text(const char* name, const OperatorStats& s) {
-  const std::string conflicts = s.conflicts > 0 ? fmt::format(", {} conflicts", count_text(s.conflicts)) : "";
-  return fmt::format("{} {}/{} ({:.2f} s{})", name, count_text(s.applied), count_text(s.tried), s.seconds, conflicts);
-}
-
-// Per operator: items tried = applied + rejected + deferred, the
-// candidates they weighed; on Speculative also conflicts (locks released,
-// item replayed later), replays, the items left to one thread and, on
-// several threads, the share of the parallel loops' thread time spent
-// working (the rest is waiting at a loop's end for the last thread).
-void print_operator_stats(const AdaptReport& r, bool serial, int threads) {
-  for (const auto& [name, s] : r.ops) {
-    std::string text = fmt::format(
-        "  {:<8} tried {:>10} applied {:>10} rejected {:>10} deferred {:>6} "
-        "candidates {:>10}",
-        name, count_text(s.tried), count_text(s.applied), count_text(s.rejected), count_text(s.deferred),
-        count_text(s.candidates));
-    if (!serial) {
-      const std::string busy = threads > 1 && s.thread_seconds > 0.0
-                                   ? fmt::format(" busy {:.1f}%", 100.0 * s.busy_seconds / s.thread_seconds)
-                                   : "";
-      text += fmt::format(" conflicts {:>8} ({:.2f}%) replays {:>8} one-thread tail {:>6}{}", count_text(s.conflicts),
-                          s.tried > 0 ? 100.0 * double(s.conflicts) / double(s.tried + s.conflicts) : 0.0,
-                          count_text(s.replays), count_text(s.serial_tail), busy);
-    }
-    fmt::print("{} | {:.2f} s\n", text, s.seconds);
-  }
-}
-
-void print_cycle(const CycleReport& c) {
-  std::string ops;
-  // A stage with nothing to try (a swap without internal surfaces or a
-  // model, a projection with every vertex on the model) is left out.
-  for (const auto& [name, s] : c.ops)
-    if (s.tried > 0 || s.candidates > 0) ops += " | " + stats_text(name.c_str(), s);
-  fmt::print("  {} {:>2}: {:>9} vertices {:>10} tets{} | in range {:5.1f}% min Q {:.3f} | {:.2f} s\n",
-             c.repair          ? "repair"
-             : c.quality_phase ? "polish"
-                               : "cycle ",
-             c.cycle, count_text(c.vertices), count_text(c.tets), ops, 100.0 * c.conformity, c.min_quality, c.seconds);
-  std::fflush(stdout);
-}
-
 // The command's options; the defaults shown and used are the library's
 // (AdaptOptions{}).
-void declare_options(Options& o) {
+void declare_adapt_options(Options& o) {
   const AdaptOptions d;
   const PolicyChoice policies;
   o.input("mesh (.mesh, .meshb, .msh)");
@@ -140,27 +98,6 @@ AdaptOptions adapt_options_from(const Options& o) {
   ao.points = *o.named("points", point_rule_from_name);
   o.as_usage([&] { check_length_band(ao, "--min-length", "--max-length"); });
   return ao;
-}
-
-// The metric at the mesh's vertices: the analytic metric evaluated there,
-// or the file's values (the input's vertices), clamped to the size bounds
-// and checked.
-std::vector<Sym6> metric_at_vertices(const Options& o, const Mesh& mesh, const std::optional<AnalyticMetric>& analytic,
-                                     const MetricBounds& bounds, std::size_t input_vertices) {
-  std::vector<Sym6> field;
-  if (analytic) {
-    std::vector<Point> points(mesh.vertex_capacity(), Point::Zero());
-    for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
-      if (mesh.vertex_alive(v)) points[v] = mesh.point(v);
-    field = analytic_metric_field(*analytic, points);
-  } else {
-    const auto path = o.get<std::string>("metric");
-    field = metric_field_from_sol(io::read_sol(path), input_vertices, path);
-  }
-  clamp_metrics(field, bounds);
-  const std::string source = analytic ? fmt::format("metric '{}'", to_string(*analytic)) : o.get<std::string>("metric");
-  check_metric_field(field, source);
-  return field;
 }
 
 // The adapted mesh passes require_adapted (else NotAdapted, nothing
@@ -383,7 +320,7 @@ int run_adapt(const std::vector<std::string>& args) {
             "  metrica adapt cube.meshb --analytic polar-2 --points centroid -o polar2.meshb\n"
             "  metrica adapt cube.meshb --analytic linear --threads 2 -o linear.meshb\n"
             "  metrica adapt cube-cylinder.meshb --geometry cube-cylinder.step --analytic polar-2 -o cc.meshb");
-  declare_options(o);
+  declare_adapt_options(o);
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
   const auto output = o.required("output", "the output mesh (-o)");

@@ -10,6 +10,7 @@ int run_convert(const std::vector<std::string>& args);
 int run_metric(const std::vector<std::string>& args);
 int run_quality(const std::vector<std::string>& args);
 int run_adapt(const std::vector<std::string>& args);
+int run_pipeline(const std::vector<std::string>& args);
 int run_loop(const std::vector<std::string>& args);
 int run_interpolate(const std::vector<std::string>& args);
 int run_error(const std::vector<std::string>& args);
@@ -23,6 +24,8 @@ const std::vector<Command>& commands() {
       {"convert", "convert between .mesh, .meshb, .vtu, .su2 (and .sol <-> .solb)", run_convert},
       {"metric", "write a metric field: analytic, multiscale from a field, scaled, bounded, graded", run_metric},
       {"adapt", "adapt a mesh to a metric (file or analytic): collapse, split, flips, smoothing", run_adapt},
+      {"pipeline", "run a pipeline composed on the command line from the stage kinds (as Python's Pipeline)",
+       run_pipeline},
       {"loop", "the adaptive loop with an analytic field: multiscale metric, adapt, L2 error, repeat", run_loop},
       {"interpolate", "transfer a vertex field from one mesh to another (P1, point location by walking)",
        run_interpolate},

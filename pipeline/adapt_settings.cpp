@@ -13,7 +13,10 @@ namespace {
 // Lengths are in metric units: 1e6 is past any sensible band.
 constexpr double kMaxLengthSetting = 1e6;
 
-constexpr std::array<AdaptSetting, 9> kAdaptSettings{{
+// The pipeline's rules first (pipeline_rule_settings), then the standard
+// stages' settings.
+constexpr std::size_t kRules = 7;
+constexpr std::array<AdaptSetting, 12> kAdaptSettings{{
     {"cycles", "N", 0, 1000, false, true, "most adaptation cycles per adaptation",
      [](const AdaptOptions& o) { return double(o.max_cycles); },
      [](AdaptOptions& o, double x) { o.max_cycles = static_cast<int>(x); }},
@@ -21,13 +24,25 @@ constexpr std::array<AdaptSetting, 9> kAdaptSettings{{
      [](const AdaptOptions& o) { return double(o.quality_passes); },
      [](AdaptOptions& o, double x) { o.quality_passes = static_cast<int>(x); }},
     {"repair-rounds", "N", 0, 1000, false, true,
-     "after the quality passes, at most N rounds of collapse, split, flips and smoothing around the tets "
-     "still below --repair-below (none after two in a row that leave the worst tet)",
+     "after the quality passes, at most N repair rounds (collapse, split, flips and smoothing in adapt) around "
+     "the tets still below --repair-below (none after two in a row that leave the worst tet)",
      [](const AdaptOptions& o) { return double(o.repair_rounds); },
      [](AdaptOptions& o, double x) { o.repair_rounds = static_cast<int>(x); }},
     {"repair-below", "Q", 0, 1, false, false,
      "mean ratio below which a tet left by the quality passes gets repair rounds",
      [](const AdaptOptions& o) { return o.repair_below; }, [](AdaptOptions& o, double x) { o.repair_below = x; }},
+    {"min-change", "R", 0, 1, false, false,
+     "stop cycling when a cycle creates and removes fewer vertices than this share of the vertices",
+     [](const AdaptOptions& o) { return o.min_change; }, [](AdaptOptions& o, double x) { o.min_change = x; }},
+    {"min-conformity-gain", "R", 0, 1, false, false,
+     "or, once --near-unit-conformity of the edges are in the unit band, when a cycle raises that share by "
+     "less than this",
+     [](const AdaptOptions& o) { return o.min_conformity_gain; },
+     [](AdaptOptions& o, double x) { o.min_conformity_gain = x; }},
+    {"near-unit-conformity", "R", 0, 1, false, false,
+     "the share of edges in the unit band from which --min-conformity-gain may stop the cycles",
+     [](const AdaptOptions& o) { return o.near_unit_conformity; },
+     [](AdaptOptions& o, double x) { o.near_unit_conformity = x; }},
     {"max-length", "L", 0, kMaxLengthSetting, true, false, "split edges longer than L (sqrt 2)",
      [](const AdaptOptions& o) { return o.refine.max_length; },
      [](AdaptOptions& o, double x) { o.refine.max_length = x; }},
@@ -47,7 +62,11 @@ constexpr std::array<AdaptSetting, 9> kAdaptSettings{{
 
 }  // namespace
 
+static_assert(kAdaptSettings[kRules - 1].name == "near-unit-conformity" && kAdaptSettings[kRules].name == "max-length",
+              "the pipeline's rules are the table's first rows");
+
 std::span<const AdaptSetting> adapt_settings() { return kAdaptSettings; }
+std::span<const AdaptSetting> pipeline_rule_settings() { return std::span(kAdaptSettings).first(kRules); }
 
 std::string AdaptSetting::domain() const {
   return fmt::format("{}in {}{}, {}]", integer ? "an integer " : "", lo_open ? "(" : "[", lo, hi);

@@ -209,8 +209,8 @@ TEST_SUITE("regression") {
     CHECK(q.code == 0);
     // The report is in the field given: the input metric on the input mesh,
     // as quality measures it with --metric-mesh (and --metric-out is it).
-    const auto user = metrica_cli("quality " + (dir / "a.meshb") + " -m " + (dir / "m.solb") + " --metric-mesh " +
-                                  (dir / "c.meshb"));
+    const auto user =
+        metrica_cli("quality " + (dir / "a.meshb") + " -m " + (dir / "m.solb") + " --metric-mesh " + (dir / "c.meshb"));
     REQUIRE(user.code == 0);
     auto in_range = [](const Run& x) {
       const auto at = x.output.find("edges in [1/sqrt2, sqrt2]");
@@ -233,6 +233,47 @@ TEST_SUITE("regression") {
     CHECK(c.code == 0);
     CHECK(has(c, "centroid points"));
     CHECK(metrica_cli("check " + (dir / "q.meshb")).code == 0);
+  }
+
+  TEST_CASE("pipeline runs the stages composed on the command line - the same mesh on every serial run") {
+    test::TempDir dir;
+    REQUIRE(metrica_cli("cube --n 2 -o " + (dir / "c.meshb")).code == 0);
+    REQUIRE(metrica_cli("metric " + (dir / "c.meshb") + " --analytic linear --complexity 300 -o " + (dir / "m.solb"))
+                .code == 0);
+    const std::string stages =
+        " --cycle collapse,split,delaunay=flip:criterion=metric-delaunay,smooth:below=0.3 --polish flip,smooth:below=1"
+        " --cycles 4 --quality-passes 1 --concurrency serial";
+    const auto r =
+        metrica_cli("pipeline " + (dir / "c.meshb") + " -m " + (dir / "m.solb") + " -o " + (dir / "a.meshb") + stages);
+    INFO(r.output);
+    REQUIRE(r.code == 0);
+    CHECK(has(r, "| delaunay "));  // the stage's name in the cycle lines
+    CHECK(has(r, "polish"));
+    CHECK(has(r, "edges in [1/sqrt2, sqrt2]"));
+    CHECK(metrica_cli("check " + (dir / "a.meshb")).code == 0);
+    REQUIRE(
+        metrica_cli("pipeline " + (dir / "c.meshb") + " -m " + (dir / "m.solb") + " -o " + (dir / "b.meshb") + stages)
+            .code == 0);
+    CHECK(io::read_file_bytes(dir / "a.meshb") == io::read_file_bytes(dir / "b.meshb"));
+    // An analytic metric, on threads.
+    const auto t = metrica_cli("pipeline " + (dir / "c.meshb") + " --analytic polar-1 -o " + (dir / "t.meshb") +
+                               " --cycle collapse,split,flip --cycles 3 --threads 2");
+    CHECK(t.code == 0);
+    CHECK(metrica_cli("check " + (dir / "t.meshb")).code == 0);
+    // Usage: each refusal names what is wrong; nothing is written.
+    const std::string in = "pipeline " + (dir / "c.meshb") + " --analytic linear -o " + (dir / "x.meshb");
+    const auto unknown = metrica_cli(in + " --cycle collapse,refine");
+    CHECK(unknown.code == 2);
+    CHECK(has(unknown, "unknown operation 'refine' (collapse, split, centroids, flip, smooth, swap)"));
+    const auto range = metrica_cli(in + " --cycle flip:seed_below=3");
+    CHECK(range.code == 2);
+    CHECK(has(range, "seed_below must be a number in [0, 1]"));
+    CHECK(has(metrica_cli(in + " --cycle smooth:below"), "is not OPTION=VALUE"));
+    CHECK(has(metrica_cli(in + " --cycle split,split"), "two stages named 'split'"));
+    CHECK(metrica_cli(in).code == 2);  // no stage
+    CHECK(metrica_cli(in + " --cycle split --cycles 2.5").code == 2);
+    CHECK(metrica_cli(in + " --cycle split --concurrency gpu").code == 2);
+    CHECK(!std::filesystem::exists(dir / "x.meshb"));
   }
 
   TEST_CASE("loop writes one CSV row per iteration and each mesh - interpolate transfers a field") {
@@ -300,9 +341,9 @@ TEST_SUITE("regression") {
                     for (const auto& p : m1.vertices) e.push_back(log_linear(p));
                     return e;
                   }()));
-    const auto moved_metric = metrica_cli("interpolate " + (dir / "run/loop-01.meshb") + " --field " +
-                                          (dir / "e1.solb") + " --to " + (dir / "run/loop-02.meshb") + " -o " +
-                                          (dir / "e2.sol"));
+    const auto moved_metric =
+        metrica_cli("interpolate " + (dir / "run/loop-01.meshb") + " --field " + (dir / "e1.solb") + " --to " +
+                    (dir / "run/loop-02.meshb") + " -o " + (dir / "e2.sol"));
     INFO(moved_metric.output);
     REQUIRE(moved_metric.code == 0);
     const auto moved_e = metric_field_from_sol(io::read_sol(dir / "e2.sol"), m2.vertices.size(), "e2.sol");
@@ -579,8 +620,8 @@ TEST_SUITE("regression") {
     CHECK(metrica_cli("bootstrap " + test::ugawg("cube-cylinder.step") + " -o x.meshb --size 0").code == 2);
     CHECK(metrica_cli("bootstrap " + test::ugawg("cube-cylinder.step") + " -o x.meshb --size 1e-9").code == 2);
     CHECK(metrica_cli("loop --field tanh3 --quick --geometry m.step").code == 2);  // no start mesh
-    for (const char* c : {"cube", "bootstrap", "info", "check", "convert", "metric", "quality", "adapt", "loop",
-                          "interpolate", "error"}) {
+    for (const char* c : {"cube", "bootstrap", "info", "check", "convert", "metric", "quality", "adapt", "pipeline",
+                          "loop", "interpolate", "error"}) {
       const auto r = metrica_cli(std::string(c) + " --help");
       CHECK(r.code == 0);
       CHECK(has(r, "Example"));
@@ -591,8 +632,8 @@ TEST_SUITE("regression") {
     std::ifstream in(std::string(METRICA_DOCS_DIR) + "/cli.md");
     REQUIRE(in.good());
     const std::string docs((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    for (const char* cmd :
-         {"cube", "info", "check", "convert", "metric", "adapt", "loop", "interpolate", "error", "quality"}) {
+    for (const char* cmd : {"cube", "info", "check", "convert", "metric", "adapt", "pipeline", "loop", "interpolate",
+                            "error", "quality"}) {
       CAPTURE(cmd);
       CHECK(docs.find(std::string("## metrica ") + cmd + "\n") != std::string::npos);
       const auto help = metrica_cli(std::string(cmd) + " --help");

@@ -16,7 +16,7 @@ seed = metrica.Pipeline(
            ("edge-weight", "flip", {"criterion": "edge-weight"}),
            ("smooth", {"below": 0.3})],
     polish=[("flip", {"seed_below": 0.75}), ("smooth", {"below": 1.0})],
-    max_cycles=8)
+    cycles=8)
 for name, run in (("standard", lambda: metrica.adapt(mesh, analytic="polar-2", concurrency="serial")),
                   ("seed's flips", lambda: seed.run(mesh, analytic="polar-2", concurrency="serial"))):
     adapted, report = run()

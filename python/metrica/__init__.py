@@ -131,13 +131,14 @@ class Pipeline:
                    ("edge-weight", "flip", {"criterion": "edge-weight"}),
                    ("smooth", {"below": 0.3})],
             polish=[("flip", {}), ("smooth", {"below": 1.0})],
-            max_cycles=8)
+            cycles=8)
         adapted, report = p.run(mesh, analytic="polar-2", concurrency="serial")
 
     Operations and their options:
 {stages}
-    Rules (keyword arguments): max_cycles, quality_passes, repair_rounds,
-    repair_below, min_change, min_conformity_gain, near_unit_conformity.
+    Rules (keyword arguments, the command's --cycles ... as metrica
+    pipeline takes them):
+{rules}
     The cycles run until the rules stop them, then the polish stages
     quality_passes times, then the repair stages while a tet is below
     repair_below. Runs in the log-Euclidean space with filtered predicates,
@@ -184,8 +185,13 @@ def _stage_help():
     return "\n".join(lines)
 
 
+def _rule_help():
+    return "\n".join(f"      {name:<20} {domain}, default {default:g}: {text}"
+                     for name, domain, default, text in _metrica._pipeline_rules())
+
+
 if Pipeline.__doc__:  # none under python -OO
-    Pipeline.__doc__ = Pipeline.__doc__.replace("{stages}", _stage_help())
+    Pipeline.__doc__ = Pipeline.__doc__.replace("{stages}", _stage_help()).replace("{rules}", _rule_help())
 
 
 def to_meshio(mesh):

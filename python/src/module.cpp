@@ -12,7 +12,7 @@
 #include <metrica/mesh_build.hpp>
 #include <metrica/pipeline/adapt.hpp>
 #include <metrica/pipeline/adapt_settings.hpp>
-#include <metrica/pipeline/stage_registry.hpp>
+#include <metrica/pipeline/composed_pipeline.hpp>
 
 #include <fmt/core.h>
 
@@ -128,10 +128,19 @@ PYBIND11_MODULE(_metrica, m) {
       },
       "The settings adapt takes by name: (name, domain, default, help) rows of the command's table.");
   m.def(
+      "_pipeline_rules",
+      [] {
+        py::list rows;
+        for (const AdaptSetting& s : pipeline_rule_settings())
+          rows.append(py::make_tuple(s.python_name(), s.domain(), s.get(AdaptOptions{}), std::string(s.help)));
+        return rows;
+      },
+      "The rules a Pipeline takes by name: (name, domain, default, help) rows of the command's table.");
+  m.def(
       "_stage_kinds",
       [] {
         py::list kinds;
-        for (const auto& k : stage_kinds<Adapter<LogEuclidean, Serial>>()) {
+        for (const StageKindInfo& k : stage_kind_infos()) {
           py::list options;
           for (const StageOption& o : k.options)
             options.append(py::make_tuple(std::string(o.name), o.domain(), std::string(o.help)));
@@ -165,7 +174,7 @@ PYBIND11_MODULE(_metrica, m) {
       [](const PyMesh& x, py::object metric, std::string analytic, py::list cycle, py::list polish, py::list repair,
          py::dict rules, std::string concurrency, int threads, py::object on_cycle) {
         auto specs = [](const py::list& list) {
-          std::vector<StageSpec> out;
+          std::vector<PyStageSpec> out;
           for (const auto& item : list) {
             const auto t = item.cast<py::tuple>();
             out.push_back({t[0].cast<std::string>(), t[1].cast<std::string>(), t[2].cast<py::dict>()});

@@ -9,7 +9,7 @@
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/pipeline/adapt.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
-#include <metrica/pipeline/stage_registry.hpp>
+#include <metrica/pipeline/composed_pipeline.hpp>
 #include <metrica/policies/threads.hpp>
 
 #include <fmt/core.h>
@@ -17,7 +17,6 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
-#include <set>
 
 namespace metrica::python {
 
@@ -26,7 +25,7 @@ namespace {
 // A stage's options as its kind reads them (pipeline/stage_registry.hpp):
 // each value cast to its option's type; a name the kind has not is left
 // for the registry to refuse, naming the options it has.
-StageValues stage_values(const StageSpec& s, const std::vector<StageOption>& options) {
+StageValues stage_values(const PyStageSpec& s, const std::vector<StageOption>& options) {
   StageValues values;
   for (const auto& [key, value] : s.options) {
     const auto name = key.cast<std::string>();
@@ -52,62 +51,47 @@ StageValues stage_values(const StageSpec& s, const std::vector<StageOption>& opt
   return values;
 }
 
-template <class A>
-Stages<A> make_stages(const std::vector<StageSpec>& specs) {
-  Stages<A> out;
-  std::set<std::string> names;
-  for (const auto& s : specs) {
-    if (!names.insert(s.name).second)
-      throw InputError(fmt::format("two stages named '{}' in one list (a stage's name is its report key)", s.name));
-    out.push_back(make_stage<A>(s.name, s.op, stage_values(s, stage_kind<A>(s.op, s.name).options)));
-  }
+// The stages of a list in the library's form.
+std::vector<StageSpec> specs_of(const std::vector<PyStageSpec>& list) {
+  std::vector<StageSpec> out;
+  for (const auto& s : list) out.push_back({s.name, s.op, stage_values(s, stage_kind_info(s.op, s.name).options)});
   return out;
 }
 
-void apply_rules(PipelineRules& p, const py::dict& rules) {
+// The rules by their Python names (pipeline_rule_settings: the command's
+// rows), each checked against its row's range; max_cycles is the older
+// name of cycles.
+PipelineRules rules_of(const py::dict& rules) {
+  AdaptOptions o;
   for (const auto& [key, value] : rules) {
-    const auto name = key.cast<std::string>();
-    auto count = [&] {
-      const int n = value.cast<int>();
-      if (n < 0 || n > 1000) throw InputError(fmt::format("pipeline: {} must be in [0, 1000] (got {})", name, n));
-      return n;
-    };
-    auto share = [&] {
-      const double x = value.cast<double>();
-      if (!(x >= 0.0 && x <= 1.0)) throw InputError(fmt::format("pipeline: {} must be in [0, 1] (got {})", name, x));
-      return x;
-    };
-    if (name == "max_cycles")
-      p.max_cycles = count();
-    else if (name == "quality_passes")
-      p.quality_passes = count();
-    else if (name == "repair_rounds")
-      p.repair_rounds = count();
-    else if (name == "repair_below")
-      p.repair_below = share();
-    else if (name == "min_change")
-      p.min_change = share();
-    else if (name == "min_conformity_gain")
-      p.min_conformity_gain = share();
-    else if (name == "near_unit_conformity")
-      p.near_unit_conformity = share();
-    else
+    std::string name = key.cast<std::string>();
+    if (name == "max_cycles") name = "cycles";
+    const auto rows = pipeline_rule_settings();
+    const auto row =
+        std::find_if(rows.begin(), rows.end(), [&](const AdaptSetting& s) { return s.python_name() == name; });
+    if (row == rows.end()) {
+      std::string names;
+      for (const AdaptSetting& s : rows) names += (names.empty() ? "" : ", ") + s.python_name();
+      throw InputError(fmt::format("pipeline: unknown rule '{}' ({})", name, names));
+    }
+    const bool number =
+        !py::isinstance<py::bool_>(value) && (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value));
+    const double x = number ? value.cast<double>() : 0.0;
+    if (!number || !row->accepts(x))
       throw InputError(
-          fmt::format("pipeline: unknown rule '{}' (max_cycles, quality_passes, repair_rounds, "
-                      "repair_below, min_change, min_conformity_gain, near_unit_conformity)",
-                      name));
+          fmt::format("pipeline: {} must be {} (got {})", name, row->domain(), py::repr(value).cast<std::string>()));
+    row->set(o, x);
   }
+  return o;
 }
 
-template <class C>
-py::tuple run_with(const PyMesh& m, const PipelineCall& call) {
-  using A = Adapter<LogEuclidean, C>;
-  Pipeline<A> p;
-  apply_rules(p, call.rules);
-  p.cycle = make_stages<A>(call.cycle);
-  p.polish = make_stages<A>(call.polish);
-  p.repair = make_stages<A>(call.repair);
-  if (p.cycle.empty() && p.polish.empty() && p.repair.empty()) throw InputError("pipeline: no stage to run");
+py::tuple run_composed_on(const PyMesh& m, const PipelineCall& call) {
+  ComposedPipeline p;
+  p.rules = rules_of(call.rules);
+  p.cycle = specs_of(call.cycle);
+  p.polish = specs_of(call.polish);
+  p.repair = specs_of(call.repair);
+  check_composed(p);
 
   Mesh mesh = m.mesh();  // the input stays as it was
   const double volume = mesh.volume();
@@ -124,18 +108,19 @@ py::tuple run_with(const PyMesh& m, const PipelineCall& call) {
   assign_metric(mesh, field);
   // An array's field stays, on the input mesh, the background of the run.
   std::unique_ptr<BackgroundMetric> background;
-  if (!exact) background = std::make_unique<BackgroundMetric>(mesh);
+  AdaptInputs inputs;
+  if (exact)
+    inputs.metric = &exact;
+  else
+    inputs.background = (background = std::make_unique<BackgroundMetric>(mesh)).get();
   py::list cycles;
-  const auto callback = cycle_callback(cycles, call.on_cycle);
+  inputs.on_cycle = cycle_callback(cycles, call.on_cycle);
   AdaptReport report;
   QualityReport q;
   try {
     py::gil_scoped_release no_gil;
     const FreedMemoryKeptForRun memory;  // as the command's (allocator.hpp)
-    A adapter(mesh, exact ? MetricSource(&exact) : MetricSource(background.get()));
-    adapter.set_volume_budget(AdaptOptions{}.volume_budget);
-    adapter.on_cycle = callback;
-    report = metrica::run_pipeline(adapter, p);
+    report = run_composed(mesh, p, inputs, call.concurrency);
     if (background) background->assign(mesh);  // the report in the field given
     require_adapted(mesh, nullptr, volume, adapted_volume_tolerance(1, AdaptOptions{}.volume_budget));
     q = quality_report(mesh, LogEuclidean::name, {.cached_quality = true});
@@ -154,9 +139,7 @@ py::tuple run_pipeline(const PyMesh& m, const PipelineCall& call) {
   if (call.threads < 0 || call.threads > 4096)
     throw InputError(fmt::format("pipeline: threads must be in [1, 4096] (got {})", call.threads));
   const ThreadsForCall threads(call.threads);
-  if (call.concurrency == Serial::name) return run_with<Serial>(m, call);
-  if (call.concurrency == Speculative::name) return run_with<Speculative>(m, call);
-  throw InputError(fmt::format("pipeline: unknown concurrency '{}' (serial, speculative)", call.concurrency));
+  return run_composed_on(m, call);
 }
 
 }  // namespace metrica::python

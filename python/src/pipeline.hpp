@@ -1,7 +1,8 @@
-// A pipeline composed in Python: the standard stages by name, each with its
-// options (and a flip's criterion), in the order given, under the
-// standard pipeline's rules (when to stop cycling, quality passes, repair
-// rounds): what examples/compose does in C++, without a compiler.
+// A pipeline composed in Python: the registry's stages by name, each with
+// its options, in the order given, under rules by name (when to stop
+// cycling, quality passes, repair rounds), run by the library's
+// run_composed (pipeline/composed_pipeline.hpp) as `metrica pipeline` runs
+// the command line's.
 #pragma once
 
 #include "mesh_arrays.hpp"
@@ -10,15 +11,9 @@
 
 namespace metrica::python {
 
-// A stage: its name (its report key), the operation and its options.
-//   collapse   min_length, max_new_length, shape_floor
-//   split      max_length, min_new_distance, shape_floor (edge splits)
-//   centroids  the same (centroid insertion)
-//   flip       criterion ("min-quality", "metric-delaunay", "edge-weight"),
-//              seed_below, max_sweeps, face_flips, face_flip_below
-//   smooth     below, shape_floor
-//   swap       (the internal surfaces' swaps and 2-2 flips)
-struct StageSpec {
+// A stage: its name (its report key), the operation and its options (the
+// registry's, stage_registry.hpp).
+struct PyStageSpec {
   std::string name, op;
   py::dict options;
 };
@@ -26,8 +21,8 @@ struct StageSpec {
 struct PipelineCall {
   py::object metric;     // (n, 6), or
   std::string analytic;  // an analytic metric's name
-  std::vector<StageSpec> cycle, polish, repair;
-  py::dict rules;  // max_cycles, min_change, min_conformity_gain, near_unit_conformity, quality_passes, ...
+  std::vector<PyStageSpec> cycle, polish, repair;
+  py::dict rules;  // by the Python names of pipeline_rule_settings()
   std::string concurrency;
   int threads = 0;
   py::object on_cycle;

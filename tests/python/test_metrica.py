@@ -302,7 +302,7 @@ def test_a_pipeline_composed_in_python(tmp_path):
                ("edge-weight", "flip", {"criterion": "edge-weight"}),
                ("smooth", {"below": 0.3})],
         polish=[("flip", {"seed_below": 0.75}), ("smooth", {"below": 1.0})],
-        max_cycles=4, quality_passes=2, repair_rounds=0)
+        cycles=4, quality_passes=2, repair_rounds=0)
     adapted, report = p.run(mesh, analytic="linear", concurrency="serial", on_cycle=seen.append)
     adapted.check()
     assert report["ops"]["edge-weight"]["tried"] > 0 and report["ops"]["delaunay"]["applied"] > 0
@@ -328,7 +328,29 @@ def test_a_pipeline_composed_in_python(tmp_path):
         metrica.Pipeline(cycle=[("flip", {"max_sweeps": 2.5})]).run(mesh, analytic="linear")
     with pytest.raises(metrica.InputError, match="face_flips must be true or false"):
         metrica.Pipeline(cycle=[("flip", {"face_flips": 1})]).run(mesh, analytic="linear")
-    # The docstring lists every kind of stage the registry has, with its options.
+    with pytest.raises(metrica.InputError, match=r"unknown rule 'max_sweeps' \(cycles, quality_passes"):
+        metrica.Pipeline(cycle=[("flip", {})], max_sweeps=2).run(mesh, analytic="linear")
+    with pytest.raises(metrica.InputError, match=r"cycles must be an integer in \[0, 1000\] \(got 2.5\)"):
+        metrica.Pipeline(cycle=[("flip", {})], cycles=2.5).run(mesh, analytic="linear")
+    with pytest.raises(metrica.InputError, match=r"min_change must be in \[0, 1\]"):
+        metrica.Pipeline(cycle=[("flip", {})], min_change=True).run(mesh, analytic="linear")
+    # The docstring lists every kind of stage the registry has, with its
+    # options, and every rule.
     for op, _, options in metrica._metrica._stage_kinds():
         assert op in metrica.Pipeline.__doc__
         assert all(name in metrica.Pipeline.__doc__ for name, _, _ in options)
+    assert all(name in metrica.Pipeline.__doc__ for name, _, _, _ in metrica._metrica._pipeline_rules())
+
+
+def test_a_pipeline_from_python_and_from_the_command_give_one_mesh(tmp_path):
+    start = cube(tmp_path)
+    p = metrica.Pipeline(cycle=[("collapse", {}), ("split", {}), ("w", "flip", {"criterion": "edge-weight"})],
+                         polish=[("smooth", {"below": 1.0})], max_cycles=3, quality_passes=1)
+    adapted, _ = p.run(metrica.read(start), analytic="polar-1", concurrency="serial")
+    subprocess.run([CLI, "pipeline", str(start), "--analytic", "polar-1", "--cycle",
+                    "collapse,split,w=flip:criterion=edge-weight", "--polish", "smooth:below=1", "--cycles", "3",
+                    "--quality-passes", "1", "--concurrency", "serial", "-o", str(tmp_path / "cmd.meshb"), "-q"],
+                   check=True)
+    by_command = metrica.read(tmp_path / "cmd.meshb")
+    assert np.array_equal(by_command.points, adapted.points)
+    assert np.array_equal(by_command.tets, adapted.tets)

@@ -35,6 +35,12 @@ struct AdaptSetting {
 // Every row, in the order the command's help lists them.
 std::span<const AdaptSetting> adapt_settings();
 
+// The first rows, the pipeline's rules (PipelineRules: cycles,
+// quality-passes, repair-rounds, repair-below, min-change,
+// min-conformity-gain, near-unit-conformity): what a composed pipeline
+// takes by name (composed_pipeline.hpp).
+std::span<const AdaptSetting> pipeline_rule_settings();
+
 // The row named `name` (the command's spelling or Python's); none when no
 // row has that name.
 std::optional<AdaptSetting> adapt_setting(std::string_view name);
