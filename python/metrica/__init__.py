@@ -14,6 +14,12 @@ docs/python.md.
 import logging
 import os
 
+
+class MetricaWarning(UserWarning):
+    """A warning of the library (a mesh reoriented, a field left out, a run
+    made again serially): what the command prints as "warning: ...". Other
+    messages go to the "metrica" logger."""
+
 # OpenMP's threads sleep as soon as they wait unless the environment
 # chooses, as for the command (cli/main.cpp): spinning, they slowed two
 # threads 1.6x beside a busy process. libgomp reads this when it is
@@ -41,6 +47,7 @@ from . import _metrica
 __all__ = [
     "InputError",
     "Mesh",
+    "MetricaWarning",
     "Pipeline",
     "adapt",
     "analytic_field",

@@ -1,6 +1,7 @@
 #include "adaptation.hpp"
 
 #include "fields.hpp"
+#include "messages.hpp"
 
 #include <metrica/allocator.hpp>
 #include <metrica/error.hpp>
@@ -276,6 +277,7 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
     OperatorReport ops;
     double seconds = 0.0;
     QualityReport q;
+    const MessagesDelivered delivered;  // those of the threads, once the GIL is back
     try {
       py::gil_scoped_release no_gil;
       const FreedMemoryKeptForRun memory;  // as the command's (allocator.hpp)

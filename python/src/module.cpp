@@ -4,6 +4,7 @@
 #include "adaptation.hpp"
 #include "fields.hpp"
 #include "mesh_arrays.hpp"
+#include "messages.hpp"
 #include "pipeline.hpp"
 
 #include <metrica/error.hpp>
@@ -28,6 +29,7 @@ PYBIND11_MODULE(_metrica, m) {
   m.doc() = "Metrica: metric-based anisotropic adaptation of tetrahedral meshes";
   auto input_error = py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   static_cast<void>(input_error);
+  route_messages_to_python();
 
   py::class_<PyMesh>(m, "Mesh", "A tetrahedral mesh: vertices, tets with region ids, surface triangles with ids.")
       .def(py::init(&mesh_from_arrays), py::arg("points"), py::arg("tets"), py::arg("triangles") = py::none(),

@@ -2,6 +2,7 @@
 
 #include "adaptation.hpp"
 #include "fields.hpp"
+#include "messages.hpp"
 
 #include <metrica/allocator.hpp>
 #include <metrica/error.hpp>
@@ -117,6 +118,7 @@ py::tuple run_composed_on(const PyMesh& m, const PipelineCall& call) {
   inputs.on_cycle = cycle_callback(cycles, call.on_cycle);
   AdaptReport report;
   QualityReport q;
+  const MessagesDelivered delivered;  // those of the threads, once the GIL is back
   try {
     py::gil_scoped_release no_gil;
     const FreedMemoryKeptForRun memory;  // as the command's (allocator.hpp)

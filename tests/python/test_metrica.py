@@ -6,7 +6,9 @@ import filecmp
 import os
 import signal
 import subprocess
+import sys
 import threading
+import warnings
 
 import numpy as np
 import pytest
@@ -354,3 +356,28 @@ def test_a_pipeline_from_python_and_from_the_command_give_one_mesh(tmp_path):
     by_command = metrica.read(tmp_path / "cmd.meshb")
     assert np.array_equal(by_command.points, adapted.points)
     assert np.array_equal(by_command.tets, adapted.tets)
+
+
+def test_the_library_warns_through_python_warnings(tmp_path):
+    # A message of the calling thread goes to warnings.warn at once.
+    points = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1]], dtype=float)
+    with pytest.warns(metrica.MetricaWarning, match="every tet is negatively oriented; reorienting all 2 tets"):
+        mesh = metrica.Mesh(points, np.array([[0, 2, 1, 3], [1, 3, 2, 4]]))
+    assert mesh.num_tets == 2
+    mesh = metrica.read(cube(tmp_path))
+    x = mesh.points
+    fields = np.stack([np.tanh(10 * (x[:, 0] - 0.5)), x[:, 1]], axis=1)  # the second is linear
+    with pytest.warns(metrica.MetricaWarning, match="field 2 of 2 has a zero Hessian"):
+        metrica.multiscale_metric(mesh, fields, 1000)
+    # A warning filtered into an error is reported as unraisable, not
+    # raised from inside the library.
+    seen, hook = [], sys.unraisablehook
+    sys.unraisablehook = seen.append
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", metrica.MetricaWarning)
+            metric = metrica.multiscale_metric(mesh, fields, 1000)
+    finally:
+        sys.unraisablehook = hook
+    assert metric.shape == (mesh.num_vertices, 6)
+    assert len(seen) == 1 and "zero Hessian" in str(seen[0].exc_value)
