@@ -217,12 +217,6 @@ LoadedMesh load_mesh(const std::string& path, Valid valid, std::optional<double>
 
 PartRunner sweep_runner(std::size_t n, bool serial) { return serial ? PartRunner{} : part_runner<Speculative>(n); }
 
-std::size_t default_max_tets() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
-  if (pages <= 0 || page <= 0) return 100'000'000;
-  return static_cast<std::size_t>(0.9 * double(pages) * double(page) / kBytesPerTet);
-}
-
 void max_tets_option(Options& o) {
   static const std::string help = fmt::format(
       "refuse a run predicted to make more than N tets (default: what 90% of this machine's memory holds, {} bytes "
@@ -232,15 +226,9 @@ void max_tets_option(Options& o) {
 }
 
 double check_predicted_size(const Options& o, double complexity, const std::string& what) {
-  const double limit = o.has("max-tets") ? o.positive("max-tets") : double(default_max_tets());
-  const double predicted = kTetsPerComplexity * complexity;
-  if (!(predicted <= limit))
-    throw InputError(
-        fmt::format("{}: {} has complexity {:.4g}: about {:.3g} tets and {} of memory; the limit is "
-                    "{:.3g} tets (--max-tets N raises it; the default is what 90% of this machine's "
-                    "memory holds)",
-                    o.command(), what, complexity, predicted, bytes_text(predicted * kBytesPerTet), limit));
-  return predicted;
+  return metrica::check_predicted_size(complexity, o.has("max-tets") ? o.positive("max-tets") : 0.0, o.command(), what,
+                                       "--max-tets N raises it; the default is what 90% of this machine's memory holds")
+      .tets;
 }
 
 void declare_setting(Options& o, const AdaptSetting& s, const AdaptOptions& defaults) {
@@ -259,13 +247,6 @@ void read_setting(const Options& o, const AdaptSetting& s, AdaptOptions& into) {
 
 po::typed_value<double>* number_option(double default_value) {
   return po::value<double>()->default_value(default_value, fmt::format("{}", default_value));
-}
-
-std::string bytes_text(double bytes) {
-  if (bytes < 1024) return fmt::format("{:.0f} B", bytes);
-  if (bytes < 1024.0 * 1024) return fmt::format("{:.1f} KiB", bytes / 1024);
-  if (bytes < 1024.0 * 1024 * 1024) return fmt::format("{:.1f} MiB", bytes / (1024.0 * 1024));
-  return fmt::format("{:.3g} GiB", bytes / (1024.0 * 1024 * 1024));
 }
 
 std::string count_text(std::size_t n) {

@@ -9,6 +9,7 @@
 #include <metrica/mesh.hpp>
 #include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/part_runner.hpp>
+#include <metrica/pipeline/predicted_size.hpp>
 
 #include <boost/program_options.hpp>
 #include <fmt/core.h>
@@ -162,16 +163,8 @@ LoadedMesh load_mesh(const std::string& path, Valid valid = Valid::required,
 // 180 (the ids are the model's surfaces; both together: UsageError).
 std::optional<double> ridge_angle(const Options& o);
 
-// --max-tets: the most tetrahedra a run may be asked to make. Its default
-// is what 90% of the machine's memory holds at kBytesPerTet: the peak of
-// an adaptation was measured at 110-114 bytes per output tet from 4.3M to
-// 108M tets, one and two threads (154-158 at 1M, where the program's
-// fixed part weighs more; docs/benchmarks.md, "Memory"), and a tenth more
-// is kept for meshes that grow more within a cycle.
-inline constexpr double kBytesPerTet = 125;
-// Output tets per unit of complexity: 10-14 measured on the UGAWG cases.
-inline constexpr double kTetsPerComplexity = 10;
-std::size_t default_max_tets();
+// --max-tets: the most tetrahedra a run may be asked to make; by default
+// what 90% of the machine's memory holds (pipeline/predicted_size.hpp).
 // Adds --max-tets to a command's options.
 void max_tets_option(Options& o);
 // Refuses (InputError) a run whose predicted output, kTetsPerComplexity x
@@ -205,7 +198,6 @@ void read_setting(const Options& o, const AdaptSetting& s, AdaptOptions& into);
 po::typed_value<double>* number_option(double default_value);
 
 // Human-readable sizes and numbers.
-std::string bytes_text(double bytes);
 std::string count_text(std::size_t n);
 
 }  // namespace metrica::cli

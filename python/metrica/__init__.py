@@ -14,6 +14,8 @@ docs/python.md.
 import logging
 import os
 
+import numpy as _np
+
 
 class MetricaWarning(UserWarning):
     """A warning of the library (a mesh reoriented, a field left out, a run
@@ -80,8 +82,16 @@ def _log_cycle(cycle):
     )
 
 
+def _whole(name, value, lo, hi):
+    """`value` as an int in [lo, hi] (a bool or a fraction is refused)."""
+    if isinstance(value, bool) or not isinstance(value, (int, _np.integer)) or not lo <= value <= hi:
+        raise InputError(f"{name} must be a whole number in [{lo}, {hi}] (got {value!r})")
+    return int(value)
+
+
 def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concurrency="speculative",
-          space="log-euclidean", precision="filtered", geometry=None, on_cycle=None, **options):
+          space="log-euclidean", precision="filtered", geometry=None, on_cycle=None, max_tets=None, dry_run=False,
+          **options):
     """Adapts a copy of `mesh` to a metric and returns (adapted mesh, report).
 
     metric:      an (n, 6) float64 array at the mesh's vertices (xx, xy, yy,
@@ -100,9 +110,17 @@ def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concu
                  settings table: name, values, default)
 {settings}
 
+    threads:     the threads of the run (default: all cores).
+    max_tets:    refuse, before any work, a run predicted to make more
+                 tets than this (10 per unit of the metric's complexity;
+                 default: what 90% of this machine's memory holds, 125
+                 bytes a tet); dry_run=True returns (None, the prediction:
+                 complexity, predicted_tets, predicted_bytes) and runs
+                 nothing.
+
     The adapted mesh is checked as the command checks it; if a run on
     threads fails that check, it is made again from the input with
-    concurrency="serial" (a warning on stderr says so).
+    concurrency="serial" (a MetricaWarning says so).
 
     Each cycle is logged to the "metrica" logger (INFO) and passed to
     `on_cycle(dict)` when given. The report holds the cycles, the
@@ -116,8 +134,13 @@ def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concu
         if on_cycle is not None:
             on_cycle(cycle)
 
-    return _metrica._adapt(mesh, metric, analytic or "", int(iterations), int(threads or 0), concurrency, space,
-                           precision, str(geometry or ""), dict(options), each)
+    threads = 0 if threads is None else _whole("adapt: threads", threads, 1, 4096)
+    if max_tets is not None and (isinstance(max_tets, bool) or not isinstance(max_tets, (int, float, _np.number))
+                                 or not max_tets > 0):
+        raise InputError(f"adapt: max_tets must be a positive number (got {max_tets!r})")
+    return _metrica._adapt(mesh, metric, analytic or "", _whole("adapt: iterations", iterations, 1, 1000), threads,
+                           concurrency, space, precision, str(geometry or ""), dict(options), each,
+                           float(max_tets or 0), bool(dry_run))
 
 
 if adapt.__doc__:  # none under python -OO
@@ -181,7 +204,8 @@ class Pipeline:
                 on_cycle(cycle)
 
         return _metrica._run_pipeline(mesh, metric, analytic or "", self._specs(self.cycle), self._specs(self.polish),
-                                      self._specs(self.repair), dict(self.rules), concurrency, int(threads or 0), each)
+                                      self._specs(self.repair), dict(self.rules), concurrency,
+                                      0 if threads is None else _whole("pipeline: threads", threads, 1, 4096), each)
 
 
 def _stage_help():

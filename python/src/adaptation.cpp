@@ -11,12 +11,14 @@
 #include <metrica/log.hpp>
 #include <metrica/metrics/analytic_metric.hpp>
 #include <metrica/metrics/background_metric.hpp>
+#include <metrica/metrics/complexity.hpp>
 #include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/pipeline/adapt_dispatch.hpp>
 #include <metrica/pipeline/adapt_settings.hpp>
 #include <metrica/pipeline/adapted_check.hpp>
+#include <metrica/pipeline/predicted_size.hpp>
 #include <metrica/policies/threads.hpp>
 
 #include <fmt/core.h>
@@ -239,6 +241,8 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
     throw InputError("adapt: iterations > 1 needs analytic (an array holds values at the input's vertices only)");
   if (call.threads < 0 || call.threads > 4096)
     throw InputError(fmt::format("adapt: threads must be in [1, 4096] (got {})", call.threads));
+  if (!(call.max_tets >= 0))
+    throw InputError(fmt::format("adapt: max_tets must be a positive number (got {})", call.max_tets));
   const ThreadsForCall threads(call.threads);
 
   // One adaptation of the input; as the command, a threaded run that fails
@@ -269,6 +273,17 @@ py::tuple adapt(const PyMesh& m, const AdaptCall& call) {
       inputs.metric = &exact;
     } else {
       given = metric_by_id(mesh, call.metric, "metric", false);
+    }
+    // The size predicted once, before any work, as the command does.
+    const PredictedSize size = check_predicted_size(
+        kind ? sampled_complexity(mesh, exact) : complexity(mesh, given), call.max_tets, "adapt", "the metric",
+        "max_tets=N raises it; the default is what 90% of this machine's memory holds");
+    if (call.dry_run) {
+      py::dict prediction;
+      prediction["complexity"] = size.complexity;
+      prediction["predicted_tets"] = size.tets;
+      prediction["predicted_bytes"] = size.bytes;
+      return py::make_tuple(py::none(), prediction);
     }
     // An array's field stays, on the input mesh, the background of the run.
     std::unique_ptr<BackgroundMetric> background;

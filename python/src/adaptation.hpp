@@ -38,6 +38,8 @@ struct AdaptCall {
   std::string geometry;
   py::dict options;
   py::object on_cycle;
+  double max_tets = 0;  // 0: what 90% of the memory holds
+  bool dry_run = false;
 };
 
 // Thrown from the cycle callback when Python has an error to raise (a
@@ -68,7 +70,9 @@ class ThreadsForCall {
 py::dict adapt_report(const py::list& cycles, const OperatorReport& ops, double seconds, const QualityReport& q);
 
 // The adapted copy of the mesh and the report: per cycle what each
-// operation did, and the quality report. Runs without the GIL; Ctrl-C
+// operation did, and the quality report. A run predicted to make more than
+// max_tets tets is refused before any work; with dry_run, (None, the
+// prediction) and nothing run. Runs without the GIL; Ctrl-C
 // (a pending signal, checked after each cycle) stops it with
 // KeyboardInterrupt and leaves the input as it was.
 py::tuple adapt(const PyMesh& m, const AdaptCall& call);

@@ -154,7 +154,8 @@ PYBIND11_MODULE(_metrica, m) {
   m.def(
       "_adapt",
       [](const PyMesh& x, py::object metric, std::string analytic, int iterations, int threads, std::string concurrency,
-         std::string space, std::string precision, std::string geometry, py::dict options, py::object on_cycle) {
+         std::string space, std::string precision, std::string geometry, py::dict options, py::object on_cycle,
+         double max_tets, bool dry_run) {
         AdaptCall call;
         call.metric = std::move(metric);
         call.analytic = std::move(analytic);
@@ -166,11 +167,13 @@ PYBIND11_MODULE(_metrica, m) {
         call.geometry = std::move(geometry);
         call.options = std::move(options);
         call.on_cycle = std::move(on_cycle);
+        call.max_tets = max_tets;
+        call.dry_run = dry_run;
         return adapt(x, call);
       },
       py::arg("mesh"), py::arg("metric"), py::arg("analytic"), py::arg("iterations"), py::arg("threads"),
       py::arg("concurrency"), py::arg("space"), py::arg("precision"), py::arg("geometry"), py::arg("options"),
-      py::arg("on_cycle"));
+      py::arg("on_cycle"), py::arg("max_tets"), py::arg("dry_run"));
   m.def(
       "_run_pipeline",
       [](const PyMesh& x, py::object metric, std::string analytic, py::list cycle, py::list polish, py::list repair,

@@ -46,7 +46,8 @@ def test_arrays_round_trip_through_a_mesh_and_files(tmp_path):
 
 
 def test_info_and_check():
-    mesh = metrica.Mesh(*two_tets(), tet_ids=np.array([2, 3]))
+    with pytest.warns(metrica.MetricaWarning, match="1 faces between two regions have no input triangle"):
+        mesh = metrica.Mesh(*two_tets(), tet_ids=np.array([2, 3]))
     mesh.check()
     info = mesh.info()
     assert info["vertices"] == 5 and info["tets"] == 2
@@ -66,7 +67,8 @@ def test_a_cube_of_points_and_tets_keeps_its_edges_and_corners(tmp_path):
     assert len(after["surfaces"]) == 6 and after["ridge_curves"] == 12 and after["corners"] == 8
     assert after["volume"] == pytest.approx(1.0, abs=1e-12)
     # ridge_angle=180: one surface, no ridge; out of [0, 180]: refused.
-    flat = metrica.Mesh(full.points, full.tets, ridge_angle=180).info()
+    with pytest.warns(metrica.MetricaWarning, match="192 boundary faces have no input triangle"):
+        flat = metrica.Mesh(full.points, full.tets, ridge_angle=180).info()
     assert len(flat["surfaces"]) == 1 and flat["corners"] == 0
     with pytest.raises(metrica.InputError, match="ridge_angle"):
         metrica.Mesh(full.points, full.tets, ridge_angle=200)
@@ -381,3 +383,27 @@ def test_the_library_warns_through_python_warnings(tmp_path):
         sys.unraisablehook = hook
     assert metric.shape == (mesh.num_vertices, 6)
     assert len(seen) == 1 and "zero Hessian" in str(seen[0].exc_value)
+
+
+def test_adapt_guards_the_size_and_checks_its_counts(tmp_path):
+    mesh = metrica.read(cube(tmp_path))
+    # As the command: a run predicted past max_tets is refused before any work.
+    with pytest.raises(metrica.InputError, match=r"adapt: the metric has complexity .*the limit is 100 tets "
+                                                 r"\(max_tets=N raises it"):
+        metrica.adapt(mesh, analytic="linear", max_tets=100)
+    adapted, prediction = metrica.adapt(mesh, analytic="linear", dry_run=True)
+    assert adapted is None and prediction["predicted_tets"] == 10 * prediction["complexity"] > 1000
+    assert prediction["predicted_bytes"] == 125 * prediction["predicted_tets"]
+    metric = metrica.analytic_metric(mesh, "linear") * 1e8  # sizes of 1e-4 of the linear metric's
+    with pytest.raises(metrica.InputError, match="the limit is"):
+        metrica.adapt(mesh, metric)  # the default: what 90% of the memory holds
+    for bad in (0, 1.5, True, "2", -1):
+        with pytest.raises(metrica.InputError, match="threads must be a whole number in"):
+            metrica.adapt(mesh, analytic="linear", threads=bad)
+    with pytest.raises(metrica.InputError, match="iterations must be a whole number"):
+        metrica.adapt(mesh, analytic="linear", iterations=2.0)
+    for bad in (0, -5, float("nan"), "big"):
+        with pytest.raises(metrica.InputError, match="max_tets must be a positive number"):
+            metrica.adapt(mesh, analytic="linear", max_tets=bad)
+    with pytest.raises(metrica.InputError, match="threads must be a whole number"):
+        metrica.Pipeline(cycle=[("flip", {})]).run(mesh, analytic="linear", threads=0.5)
