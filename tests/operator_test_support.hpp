@@ -29,12 +29,23 @@
 
 namespace metrica::test {
 
+// Built with ThreadSanitizer, whose runs are 5-15 times slower: what the
+// sanitizer checks is the threads' accesses, which a short run makes too.
+#if defined(__SANITIZE_THREAD__)
+inline constexpr bool kUnderThreadSanitizer = true;
+#elif defined(__has_feature)
+inline constexpr bool kUnderThreadSanitizer = __has_feature(thread_sanitizer);
+#else
+inline constexpr bool kUnderThreadSanitizer = false;
+#endif
+
 // Exact runs every predicate in rational arithmetic, about 20x slower than
-// Filtered: a whole adaptation under it takes at most two cycles, one
-// quality pass and one repair round (`rules`: AdaptOptions or a Pipeline).
+// Filtered, and ThreadSanitizer slows every run: a whole adaptation under
+// either takes at most two cycles, one quality pass and one repair round
+// (`rules`: AdaptOptions or a Pipeline).
 template <class P, class Rules>
-void shorten_under_exact(Rules& rules) {
-  if constexpr (std::is_same_v<P, Exact>) {
+void shorten_when_slow(Rules& rules) {
+  if constexpr (std::is_same_v<P, Exact> || kUnderThreadSanitizer) {
     rules.max_cycles = std::min(rules.max_cycles, 2);
     rules.quality_passes = std::min(rules.quality_passes, 1);
     rules.repair_rounds = std::min(rules.repair_rounds, 1);

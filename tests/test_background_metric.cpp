@@ -76,7 +76,7 @@ TEST_SUITE("invariant") {
     A adapter(mesh, &background);
     Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
     p.max_cycles = 4;
-    shorten_under_exact<typename T::Precision>(p);
+    shorten_when_slow<typename T::Precision>(p);
     const AdaptReport& r = run_pipeline(adapter, p);
     require_valid(mesh, volume);
     REQUIRE(r.ops.get("split").applied > 100);

@@ -201,7 +201,7 @@ TEST_SUITE("invariant") {
       set_metric_function(mesh, metric);
       AdaptOptions o;
       o.max_cycles = 4;
-      shorten_under_exact<typename T::Precision>(o);
+      shorten_when_slow<typename T::Precision>(o);
       adapt<S, typename T::Precision, typename T::Concurrency>(mesh, o, {.metric = &metric});
       require_valid(mesh, 1.0);
       const io::MeshData out = extract_mesh_data(mesh);

@@ -42,7 +42,7 @@ TEST_SUITE("invariant") {
     AdaptOptions o;
     o.max_cycles = 3;
     o.repair_rounds = 2;
-    shorten_under_exact<P>(o);
+    shorten_when_slow<P>(o);
     Adapter<S, C, NoGeometry> a(mesh, &metric);
     a.set_volume_budget(o.volume_budget);
     run_pipeline(a, standard_pipeline<Adapter<S, C, NoGeometry>>(o));
@@ -77,7 +77,7 @@ TEST_SUITE("invariant") {
     Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
     p.max_cycles = 6;
     p.repair_rounds = 2;
-    shorten_under_exact<P>(p);
+    shorten_when_slow<P>(p);
     run_pipeline(a, p);
     const auto report = mesh.validate();
     INFO(report.to_string());
