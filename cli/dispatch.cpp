@@ -61,7 +61,7 @@ int run_command_line(const std::vector<std::string>& args) {
     return kOk;
   }
   if (name == "--version") {
-    fmt::print("metrica 0.1.0\n");
+    fmt::print("metrica {}\n", METRICA_VERSION);
     return kOk;
   }
   const std::vector<std::string> rest(args.begin() + 1, args.end());

@@ -46,6 +46,8 @@ from ._metrica import (
 )
 from . import _metrica
 
+__version__ = _metrica.__version__
+
 __all__ = [
     "InputError",
     "Mesh",
@@ -180,6 +182,10 @@ class Pipeline:
         self.polish = list(polish)
         self.repair = list(repair)
         self.rules = rules
+
+    def __repr__(self):
+        rules = "".join(f", {name}={value!r}" for name, value in self.rules.items())
+        return f"metrica.Pipeline(cycle={self.cycle!r}, polish={self.polish!r}, repair={self.repair!r}{rules})"
 
     @staticmethod
     def _specs(stages):

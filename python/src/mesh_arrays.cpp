@@ -136,7 +136,10 @@ PyMesh mesh_from_arrays(const py::array& points, const py::array& tets, const py
 }
 
 PyMesh read_mesh(const std::string& path, const py::object& ridge_angle) {
-  io::MeshData d = io::read_mesh_file(path);
+  return mesh_from_file_data(io::read_mesh_file(path), path, ridge_angle);
+}
+
+PyMesh mesh_from_file_data(io::MeshData d, const std::string& path, const py::object& ridge_angle) {
   check_coordinates(d, path);
   BuildOptions o;
   o.source = path;
@@ -145,6 +148,24 @@ PyMesh read_mesh(const std::string& path, const py::object& ridge_angle) {
   Mesh mesh = build_mesh(d, o);
   check_valid_input(mesh, path);
   return PyMesh(std::move(mesh), d.version, std::move(d.on_geometry));
+}
+
+py::tuple mesh_state(const PyMesh& m) {
+  // Without Corners: a file's corners are read as required vertices, and
+  // the mesh's own are found again from its ridges; those required are
+  // among the RequiredVertices.
+  io::MeshData d = m.data();
+  d.corners.clear();
+  return py::make_tuple(py::bytes(io::format_mesh(d, io::Encoding::binary, 4)), m.version());
+}
+
+PyMesh mesh_from_state(const py::tuple& state) {
+  if (state.size() != 2 || !py::isinstance<py::bytes>(state[0]) || !py::isinstance<py::int_>(state[1]))
+    throw InputError("Mesh: a pickled mesh is (libMeshb bytes, version)");
+  const std::string bytes = state[0].cast<std::string>();
+  PyMesh m =
+      mesh_from_file_data(io::parse_mesh(bytes, io::Encoding::binary, "a pickled mesh"), "a pickled mesh", py::none());
+  return PyMesh(m.mesh(), state[1].cast<int>(), m.read_records());
 }
 
 py::array_t<double> points_array(const io::MeshData& d) {

@@ -30,6 +30,7 @@ class PyMesh {
       : mesh_(std::move(mesh)), version_(version), read_records_(std::move(read_records)) {}
   const Mesh& mesh() const { return mesh_; }
   int version() const { return version_; }
+  const GeoRecords& read_records() const { return read_records_; }
   // The file layout (vertex ids ascending, removed ones skipped), with the
   // libMeshb version read.
   const io::MeshData& data() const;
@@ -52,6 +53,15 @@ PyMesh mesh_from_arrays(const py::array& points, const py::array& tets, const py
 
 // A file read and checked as every command reads its input.
 PyMesh read_mesh(const std::string& path, const py::object& ridge_angle);
+// A file's content checked and built as read_mesh does (`path` names it
+// in messages).
+PyMesh mesh_from_file_data(io::MeshData data, const std::string& path, const py::object& ridge_angle);
+
+// The pickle state of a mesh, its file layout as libMeshb bytes (version
+// 4, with the association records) and the version it was read with, and
+// the mesh made again from it (built and checked as a file is).
+py::tuple mesh_state(const PyMesh& m);
+PyMesh mesh_from_state(const py::tuple& state);
 
 // The mesh's arrays.
 py::array_t<double> points_array(const io::MeshData& d);

@@ -30,6 +30,7 @@ PYBIND11_MODULE(_metrica, m) {
   auto input_error = py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   static_cast<void>(input_error);
   route_messages_to_python();
+  m.attr("__version__") = METRICA_VERSION;
 
   py::class_<PyMesh>(m, "Mesh", "A tetrahedral mesh: vertices, tets with region ids, surface triangles with ids.")
       .def(py::init(&mesh_from_arrays), py::arg("points"), py::arg("tets"), py::arg("triangles") = py::none(),
@@ -48,6 +49,10 @@ PYBIND11_MODULE(_metrica, m) {
       .def_property_readonly("num_tets", [](const PyMesh& x) { return x.mesh().num_tets(); })
       .def("check", &check_mesh, "Raises InputError with the report when an invariant does not hold.")
       .def("info", &mesh_info, "Counts, extent, volume, surfaces and regions, as `metrica info` prints them.")
+      .def("__copy__", [](const PyMesh& x) { return PyMesh(x); })
+      .def(
+          "__deepcopy__", [](const PyMesh& x, const py::object&) { return PyMesh(x); }, py::arg("memo"))
+      .def(py::pickle(&mesh_state, &mesh_from_state))
       .def("__repr__", [](const PyMesh& x) {
         return "<metrica.Mesh: " + std::to_string(x.mesh().num_vertices()) + " vertices, " +
                std::to_string(x.mesh().num_tets()) + " tets>";

@@ -407,3 +407,28 @@ def test_adapt_guards_the_size_and_checks_its_counts(tmp_path):
             metrica.adapt(mesh, analytic="linear", max_tets=bad)
     with pytest.raises(metrica.InputError, match="threads must be a whole number"):
         metrica.Pipeline(cycle=[("flip", {})]).run(mesh, analytic="linear", threads=0.5)
+
+
+def test_a_mesh_is_copied_and_pickled_whole(tmp_path):
+    import copy
+    import pickle
+
+    mesh = metrica.read(cube(tmp_path))
+    for other in (copy.copy(mesh), copy.deepcopy(mesh), pickle.loads(pickle.dumps(mesh))):
+        assert other is not mesh
+        assert np.array_equal(other.points, mesh.points) and np.array_equal(other.tets, mesh.tets)
+        assert np.array_equal(other.triangles, mesh.triangles)
+        assert np.array_equal(other.triangle_ids, mesh.triangle_ids) and np.array_equal(other.tet_ids, mesh.tet_ids)
+        assert other.info() == mesh.info()
+    # A mesh with another kernel's association records keeps them through
+    # a pickle: written, the same bytes.
+    hsc = metrica.read(os.path.join(os.path.dirname(UGAWG), "hemisphere-cylinder", "hsc01.meshb"))
+    metrica.write(hsc, str(tmp_path / "a.meshb"))
+    metrica.write(pickle.loads(pickle.dumps(hsc)), str(tmp_path / "b.meshb"))
+    assert filecmp.cmp(tmp_path / "a.meshb", tmp_path / "b.meshb", shallow=False)
+    with pytest.raises(metrica.InputError, match="a pickled mesh is"):
+        metrica.Mesh.__new__(metrica.Mesh).__setstate__((b"x", "4"))
+    assert metrica.__version__ == subprocess.run([CLI, "--version"], capture_output=True, text=True,
+                                                 check=True).stdout.split()[1]
+    p = metrica.Pipeline(cycle=[("flip", {})], cycles=3)
+    assert repr(p) == "metrica.Pipeline(cycle=[('flip', {})], polish=[], repair=[], cycles=3)"
