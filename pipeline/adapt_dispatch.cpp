@@ -7,11 +7,6 @@
 
 namespace metrica {
 
-static_assert(Spaces::size * Concurrencies::size * Geometries::size == METRICA_ADAPT_UNITS,
-              "one adapt unit per (space, concurrency, geometry) triple: update METRICA_ADAPT_UNITS in "
-              "pipeline/CMakeLists.txt");
-static_assert(Spaces::size == METRICA_SPACES, "update METRICA_SPACES in pipeline/CMakeLists.txt");
-
 PointRule point_rule_from_name(std::string_view name) {
   if (name == "edge") return PointRule::edge;
   if (name == "centroid") return PointRule::centroid;

@@ -21,14 +21,15 @@ AdaptReport adapt_instance(Mesh& mesh, const AdaptOptions& options, const AdaptI
   });
 }
 
+// Unit k is the k-th compiled triple (compiled_policies.hpp's order).
 constexpr std::size_t kUnit = METRICA_ADAPT_UNIT;
-constexpr std::size_t kPerSpace = Concurrencies::size * Geometries::size;
-static_assert(kUnit < Spaces::size * kPerSpace, "more adapt units than policy triples (pipeline/CMakeLists.txt)");
+constexpr std::size_t kPerSpace = METRICA_COMPILED_CONCURRENCIES * Geometries::size;
+static_assert(kUnit < METRICA_ADAPT_UNITS, "more adapt units than compiled triples (pipeline/CMakeLists.txt)");
 using UnitSpace = Spaces::at<kUnit / kPerSpace>;
 using UnitConcurrency = Concurrencies::at<kUnit % kPerSpace / Geometries::size>;
 using UnitGeometry = Geometries::at<kUnit % Geometries::size>;
 
-// The standard stages of the triple (declared in standard_stages.hpp).
+// The standard stages of the triple (declared in adapt.hpp).
 static_assert(!METRICA_DEFAULT_POLICIES_ONLY || kUnit < kPerSpace, "the default space's units only");
 static_assert(!METRICA_SPECULATIVE_ONLY || kUnit < Geometries::size, "the default concurrency's units only");
 METRICA_STANDARD_STAGES_OF_TRIPLE(, UnitSpace, UnitConcurrency, UnitGeometry)

@@ -242,7 +242,8 @@ TEST_SUITE("regression") {
                 .code == 0);
     const std::string stages =
         " --cycle collapse,split,delaunay=flip:criterion=metric-delaunay,smooth:below=0.3 --polish flip,smooth:below=1"
-        " --cycles 4 --quality-passes 1 --concurrency serial";
+        " --cycles 4 --quality-passes 1" +
+        serial_option();
     const auto r =
         metrica_cli("pipeline " + (dir / "c.meshb") + " -m " + (dir / "m.solb") + " -o " + (dir / "a.meshb") + stages);
     INFO(r.output);

@@ -390,19 +390,11 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& in
   return adapt<S, P, C, G>(mesh, options, inputs, geometry_of<G>(inputs));
 }
 
-// Compiled in the library (standard_stages.hpp).
-static_assert(Spaces::size == 3 && Precisions::size == 3 && Concurrencies::size == 2 && Geometries::size == 2,
-              "METRICA_STANDARD_STAGES_OF_SPACE lists 2 concurrencies and 2 geometries per space, "
-              "METRICA_STANDARD_STAGES_OF_TRIPLE 3 precisions (standard_stages.hpp)");
-#if METRICA_DEFAULT_POLICIES_ONLY
-METRICA_STANDARD_STAGES_AT(extern, 0, 0, 0)
-METRICA_STANDARD_STAGES_AT(extern, 0, 0, 1)
-METRICA_STANDARD_STAGES_AT(extern, 0, 1, 0)
-METRICA_STANDARD_STAGES_AT(extern, 0, 1, 1)
-#else
-METRICA_STANDARD_STAGES_OF_SPACE(extern, 0)
-METRICA_STANDARD_STAGES_OF_SPACE(extern, 1)
-METRICA_STANDARD_STAGES_OF_SPACE(extern, 2)
-#endif
+// Compiled in the library (standard_stages.hpp), for the triples and
+// precisions pipeline/CMakeLists.txt read from the lists.
+static_assert(Spaces::size == METRICA_LISTED_SPACES && Precisions::size == METRICA_LISTED_PRECISIONS &&
+                  Concurrencies::size == METRICA_LISTED_CONCURRENCIES && Geometries::size == METRICA_LISTED_GEOMETRIES,
+              "the policy lists as pipeline/CMakeLists.txt read them from their headers");
+METRICA_FOR_EACH_COMPILED_TRIPLE(METRICA_STANDARD_STAGES_AT, extern)
 
 }  // namespace metrica

@@ -1,9 +1,10 @@
 // The standard stages compiled once, in the library: for every triple of
-// the policy lists (Spaces x Concurrencies x Geometries), the passes of
-// the standard pipeline under their standard criteria, and per precision
-// (Precisions: the metric-Delaunay criterion's only) the standard
-// pipeline and adapt<S, P, C, G>, are declared here as explicit
-// instantiations (extern template) and defined in
+// the policy lists (Spaces x Concurrencies x Geometries) the build
+// compiles (compiled_policies.hpp, generated from the lists), the passes
+// of the standard pipeline under their standard criteria, and per
+// precision (Precisions: the metric-Delaunay criterion's only) the
+// standard pipeline and adapt<S, P, C, G>, are declared as explicit
+// instantiations (extern template, adapt.hpp) and defined in
 // pipeline/adapt_unit.cpp. A program's own pipeline built from the
 // Adapter's standard stages therefore compiles none of them; a stage
 // under another criterion (flips<MaxMinEdgeWeight>) or another policy is
@@ -12,6 +13,7 @@
 
 #include <metrica/geometry/cad_geometry.hpp>
 #include <metrica/metrics/space.hpp>
+#include <metrica/pipeline/compiled_policies.hpp>
 #include <metrica/policies/speculative.hpp>
 #include <metrica/policy_list.hpp>
 #include <metrica/predicates/precision.hpp>
@@ -56,22 +58,12 @@ using Geometries = PolicyList<NoGeometry, CadGeometry>;
   kind template AdaptReport adapt<S, P, C, G>(Mesh&, const AdaptOptions&, const AdaptInputs&, const G&);
 
 // The triple at indices (space, concurrency, geometry) of the lists, with
-// every precision (the default's only in the sanitizer builds).
-#if METRICA_DEFAULT_POLICIES_ONLY
-#define METRICA_STANDARD_STAGES_OF_OTHER_PRECISIONS(kind, S, C, G)
-#else
-#define METRICA_STANDARD_STAGES_OF_OTHER_PRECISIONS(kind, S, C, G)                                          \
-  METRICA_STANDARD_STAGES_OF_PRECISION(kind, S, ::metrica::Precisions::at<1>, C, G)                        \
-  METRICA_STANDARD_STAGES_OF_PRECISION(kind, S, ::metrica::Precisions::at<2>, C, G)
-#endif
+// every precision compiled.
 #define METRICA_STANDARD_STAGES_OF_TRIPLE(kind, S, C, G)                                                    \
   METRICA_STANDARD_STAGES(kind, S, C, G)                                                                  \
   METRICA_STANDARD_STAGES_OF_PRECISION(kind, S, ::metrica::Precisions::at<0>, C, G)                        \
-  METRICA_STANDARD_STAGES_OF_OTHER_PRECISIONS(kind, S, C, G)
+  METRICA_FOR_EACH_OTHER_PRECISION(METRICA_STANDARD_STAGES_OF_PRECISION, kind, S, C, G)
 #define METRICA_STANDARD_STAGES_AT(kind, s, c, g)                                                           \
   METRICA_STANDARD_STAGES_OF_TRIPLE(kind, ::metrica::Spaces::at<s>, ::metrica::Concurrencies::at<c>,        \
                                     ::metrica::Geometries::at<g>)
-#define METRICA_STANDARD_STAGES_OF_SPACE(kind, s)                                                          \
-  METRICA_STANDARD_STAGES_AT(kind, s, 0, 0) METRICA_STANDARD_STAGES_AT(kind, s, 0, 1)                     \
-  METRICA_STANDARD_STAGES_AT(kind, s, 1, 0) METRICA_STANDARD_STAGES_AT(kind, s, 1, 1)
 // clang-format on
