@@ -11,8 +11,8 @@ Every function checks its input as the `metrica` command does and raises
 docs/python.md.
 """
 
-import logging
-import os
+import logging as _logging
+import os as _os
 
 import numpy as _np
 
@@ -26,7 +26,7 @@ class MetricaWarning(UserWarning):
 # chooses, as for the command (cli/main.cpp): spinning, they slowed two
 # threads 1.6x beside a busy process. libgomp reads this when it is
 # loaded, by the import below unless something loaded it before.
-os.environ.setdefault("OMP_WAIT_POLICY", "passive")
+_os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
 from ._metrica import (
     InputError,
@@ -70,7 +70,7 @@ __all__ = [
     "write_field",
 ]
 
-_log = logging.getLogger("metrica")
+_log = _logging.getLogger("metrica")
 
 
 def _log_cycle(cycle):
@@ -131,7 +131,7 @@ def adapt(mesh, metric=None, *, analytic=None, iterations=1, threads=None, concu
     input mesh untouched.
     """
     def each(cycle):
-        if _log.isEnabledFor(logging.INFO):
+        if _log.isEnabledFor(_logging.INFO):
             _log_cycle(cycle)
         if on_cycle is not None:
             on_cycle(cycle)
@@ -204,7 +204,7 @@ class Pipeline:
     def run(self, mesh, metric=None, *, analytic=None, concurrency="speculative", threads=None, on_cycle=None):
         """Runs the pipeline on a copy of `mesh`; returns (adapted, report) as adapt() does."""
         def each(cycle):
-            if _log.isEnabledFor(logging.INFO):
+            if _log.isEnabledFor(_logging.INFO):
                 _log_cycle(cycle)
             if on_cycle is not None:
                 on_cycle(cycle)
@@ -254,7 +254,9 @@ def from_meshio(m, ref=None):
     data = next((m.cell_data[n] for n in names if n in m.cell_data), None)
     tets, tet_ids, triangles, triangle_ids = [], [], [], []
     for k, block in enumerate(m.cells):
-        ids = data[k] if data is not None else np.zeros(len(block.data), dtype=np.int64)
+        ids = np.asarray(data[k]) if data is not None else np.zeros(len(block.data), dtype=np.int64)
+        if ids.ndim == 2 and ids.shape[1] == 1:  # a .vtu's one-component cell data
+            ids = ids[:, 0]
         if block.type == "tetra":
             tets.append(block.data)
             tet_ids.append(ids)

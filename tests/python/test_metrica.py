@@ -295,6 +295,15 @@ def test_meshio_round_trip(tmp_path):
     assert isinstance(m, meshio.Mesh)
     back = metrica.from_meshio(m)
     assert np.array_equal(back.tets, mesh.tets) and np.array_equal(back.triangle_ids, mesh.triangle_ids)
+    # Our .vtu as meshio reads it: its region ids are one-component cell data.
+    metrica.write(mesh, str(tmp_path / "m.vtu"))
+    from_vtu = metrica.from_meshio(meshio.read(tmp_path / "m.vtu"))
+    assert np.array_equal(from_vtu.tets, mesh.tets) and np.array_equal(from_vtu.tet_ids, mesh.tet_ids)
+
+
+def test_the_namespace_holds_metrica_only():
+    assert not {"os", "logging", "np", "numpy"} & set(dir(metrica))
+    assert set(metrica.__all__) <= set(dir(metrica))
 
 
 def test_a_pipeline_composed_in_python(tmp_path):
