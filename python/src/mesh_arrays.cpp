@@ -18,12 +18,12 @@ namespace {
 
 // The array `a` as a C-contiguous (rows, width) array of T: InputError
 // naming `what` for another shape or a dtype of another kind (a float for
-// indices, an integer for coordinates).
+// indices; coordinates may be any real or integer type).
 template <class T>
 py::array_t<T, py::array::c_style> as_rows(const py::array& a, std::size_t width, const char* what) {
   const bool want_float = std::is_floating_point_v<T>;
   const char kind = a.dtype().kind();
-  const bool ok_kind = want_float ? kind == 'f' : (kind == 'i' || kind == 'u');
+  const bool ok_kind = kind == 'i' || kind == 'u' || (want_float && kind == 'f');
   if (!ok_kind)
     throw InputError(fmt::format("{}: expected {} values, got dtype {}", what, want_float ? "float64" : "integer",
                                  py::str(a.dtype()).cast<std::string>()));
@@ -35,6 +35,18 @@ py::array_t<T, py::array::c_style> as_rows(const py::array& a, std::size_t width
                                  width == 0 ? std::string("(n,)") : fmt::format("(n, {})", width), shape));
   }
   return py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(a);
+}
+
+// `x` as a numpy array (a list of rows, any sequence numpy takes);
+// TypeError naming `what` for what is not array-like.
+py::array array_like(const py::object& x, const char* what) {
+  py::array a = py::array::ensure(x);
+  if (!a || a.dtype().kind() == 'O') {  // numpy holds anything else as objects
+    PyErr_Clear();
+    throw py::type_error(fmt::format("{}: expected an array or a sequence of rows, got {}", what,
+                                     py::str(py::type::of(x).attr("__name__")).cast<std::string>()));
+  }
+  return a;
 }
 
 // Index rows checked against `vertices` (0-based).
@@ -108,19 +120,19 @@ void set_ridge_angle(BuildOptions& o, const py::object& ridge_angle) {
 }
 }  // namespace
 
-PyMesh mesh_from_arrays(const py::array& points, const py::array& tets, const py::object& triangles,
+PyMesh mesh_from_arrays(const py::object& points, const py::object& tets, const py::object& triangles,
                         const py::object& triangle_ids, const py::object& tet_ids, const py::object& ridge_angle) {
   io::MeshData d;
-  const auto p = as_rows<double>(points, 3, "points");
+  const auto p = as_rows<double>(array_like(points, "points"), 3, "points");
   if (static_cast<std::uint64_t>(p.shape(0)) >= std::numeric_limits<std::int32_t>::max())
     throw InputError("points: more vertices than 32-bit ids hold");
   d.vertices.resize(static_cast<std::size_t>(p.shape(0)));
   std::memcpy(static_cast<void*>(d.vertices.data()), p.data(), sizeof(double) * 3 * d.vertices.size());
   d.vertex_refs.assign(d.vertices.size(), 0);
-  d.tets = index_rows<4>(tets, d.vertices.size(), "tets");
+  d.tets = index_rows<4>(array_like(tets, "tets"), d.vertices.size(), "tets");
   d.tet_refs = id_column(tet_ids, d.tets.size(), "tet_ids");
   if (!triangles.is_none()) {
-    d.triangles = index_rows<3>(py::array::ensure(triangles), d.vertices.size(), "triangles");
+    d.triangles = index_rows<3>(array_like(triangles, "triangles"), d.vertices.size(), "triangles");
     d.triangle_refs = id_column(triangle_ids, d.triangles.size(), "triangle_ids");
   } else if (!triangle_ids.is_none()) {
     throw InputError("triangle_ids given without triangles");

@@ -42,13 +42,14 @@ class PyMesh {
   mutable std::optional<io::MeshData> data_;
 };
 
-// Mesh(points, tets, triangles, triangle_ids, tet_ids): the arrays checked
-// (shapes, dtypes, indices in range, finite coordinates), then the mesh
+// Mesh(points, tets, triangles, triangle_ids, tet_ids): the arrays (or
+// lists of rows) checked (shapes, dtypes, indices in range, finite
+// coordinates), then the mesh
 // built and checked like a file's (InputError with the command's message).
 // Without triangles (or with one id for the whole boundary) the surfaces
 // are split at edges sharper than 45 degrees; `ridge_angle` (degrees, not
 // None) splits every surface so (surface_angles.hpp).
-PyMesh mesh_from_arrays(const py::array& points, const py::array& tets, const py::object& triangles,
+PyMesh mesh_from_arrays(const py::object& points, const py::object& tets, const py::object& triangles,
                         const py::object& triangle_ids, const py::object& tet_ids, const py::object& ridge_angle);
 
 // A file read and checked as every command reads its input.

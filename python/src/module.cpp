@@ -83,6 +83,8 @@ PYBIND11_MODULE(_metrica, m) {
           const py::ssize_t n = values.ndim() >= 1 ? values.shape(0) : 0;
           if (n != static_cast<py::ssize_t>(data.vertices.size()))
             throw InputError(fmt::format("write: the metric has {} rows for {} vertices", n, data.vertices.size()));
+          // Finite and positive definite at every vertex, as every reader requires.
+          static_cast<void>(metric_by_id(x.mesh(), metric, "write: metric"));
         }
         io::OutputSet outputs;
         io::write_mesh_file(path.string(), data, version, {}, io::FileFormat::mesh,

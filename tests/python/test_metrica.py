@@ -78,8 +78,8 @@ def test_bad_arrays_raise_the_commands_messages():
     points, tets = two_tets()
     with pytest.raises(metrica.InputError, match=r"expected shape \(n, 3\)"):
         metrica.Mesh(points[:, :2], tets)
-    with pytest.raises(metrica.InputError, match="expected float64"):
-        metrica.Mesh(points.astype(np.int64), tets)
+    with pytest.raises(metrica.InputError, match="expected float64 values, got dtype <U"):
+        metrica.Mesh(points.astype(str), tets)
     with pytest.raises(metrica.InputError, match="out of range"):
         metrica.Mesh(points, tets + 1)
     bad = points.copy()
@@ -441,3 +441,24 @@ def test_a_mesh_is_copied_and_pickled_whole(tmp_path):
                                                  check=True).stdout.split()[1]
     p = metrica.Pipeline(cycle=[("flip", {})], cycles=3)
     assert repr(p) == "metrica.Pipeline(cycle=[('flip', {})], polish=[], repair=[], cycles=3)"
+
+
+def test_arrays_from_lists_and_integers_bad_values_as_input_errors(tmp_path):
+    points = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    from_lists = metrica.Mesh(points, [[0, 1, 2, 3]])
+    assert from_lists.num_tets == 1 and from_lists.points.dtype == np.float64
+    from_ints = metrica.Mesh(np.array(points, dtype=np.int64), np.array([[0, 1, 2, 3]]))
+    assert np.array_equal(from_ints.points, from_lists.points)
+    with pytest.raises(TypeError, match="points: expected an array or a sequence of rows, got object"):
+        metrica.Mesh(object(), [[0, 1, 2, 3]])
+    with pytest.raises(metrica.InputError, match="tets: expected integer values"):
+        metrica.Mesh(points, [[0.0, 1.0, 2.0, 3.0]])
+    with pytest.raises(metrica.InputError, match="points: expected shape"):
+        metrica.Mesh([[0, 0], [1, 0]], [[0, 1, 2, 3]])
+    # A metric that is not positive definite is not written.
+    mesh = metrica.read(cube(tmp_path))
+    metric = metrica.analytic_metric(mesh, "linear")
+    metric[3] = [1, 0, -1, 0, 0, 1]
+    with pytest.raises(metrica.InputError, match="not positive definite"):
+        metrica.write(mesh, str(tmp_path / "x.meshb"), metric=metric)
+    assert not (tmp_path / "x.meshb").exists() and not (tmp_path / "x.solb").exists()
