@@ -39,13 +39,6 @@ int run_cube(const std::vector<std::string>& args) {
     spec.nx = n[0], spec.ny = n[1], spec.nz = n[2];
   else
     throw UsageError("cube: --n takes one value or three");
-  // 6 tets per hex: at most 600 million tets (a 100M-tet start is already
-  // more than the UGAWG cases ever need).
-  for (int k : {spec.nx, spec.ny, spec.nz})
-    if (k < 1 || k > 1000) throw UsageError(fmt::format("cube: --n must be in [1, 1000] (got {})", k));
-  if (6.0 * spec.nx * spec.ny * spec.nz > 6e8)
-    throw UsageError(
-        fmt::format("cube: {} x {} x {} hexes make more than 600 million tets", spec.nx, spec.ny, spec.nz));
   auto corner = [&](const char* name, Point& p) {
     if (!o.has(name)) return;
     const auto text = o.get<std::string>(name);
@@ -61,10 +54,7 @@ int run_cube(const std::vector<std::string>& args) {
   };
   corner("lo", spec.lo);
   corner("hi", spec.hi);
-  for (int k = 0; k < 3; ++k)
-    if (!(spec.hi[k] - spec.lo[k] > 1e-12 * std::max(1.0, std::abs(spec.lo[k]))))
-      throw UsageError(fmt::format("cube: need --lo < --hi in every direction (got {} and {} in {})", spec.lo[k],
-                                   spec.hi[k], "xyz"[k]));
+  o.as_usage([&] { check_box_spec(spec); });
   const auto output = o.required("output", "the output file (-o)");
   const int version = o.format_version();
   if (o.dry_run()) return kOk;

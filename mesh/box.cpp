@@ -1,14 +1,33 @@
 #include <metrica/box.hpp>
 #include <metrica/error.hpp>
 #include <metrica/geometry.hpp>
+#include <metrica/input_checks.hpp>
 #include <metrica/mesh_build.hpp>
 
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace metrica {
+
+void check_box_spec(const BoxSpec& spec) {
+  // 6 tets per hex: at most 600 million tets (a 100M-tet start is already
+  // more than the UGAWG cases ever need).
+  for (int k : {spec.nx, spec.ny, spec.nz})
+    if (k < 1 || k > 1000) throw InputError(fmt::format("n must be in [1, 1000] (got {})", k));
+  if (6.0 * spec.nx * spec.ny * spec.nz > 6e8)
+    throw InputError(fmt::format("{} x {} x {} hexes make more than 600 million tets", spec.nx, spec.ny, spec.nz));
+  for (int k = 0; k < 3; ++k) {
+    if (!(std::abs(spec.lo[k]) <= kCoordinateLimit && std::abs(spec.hi[k]) <= kCoordinateLimit))
+      throw InputError(fmt::format("the corners' coordinates must be finite and within +-{:g} (got {} and {} in {})",
+                                   kCoordinateLimit, spec.lo[k], spec.hi[k], "xyz"[k]));
+    if (!(spec.hi[k] - spec.lo[k] > 1e-12 * std::max(1.0, std::abs(spec.lo[k]))))
+      throw InputError(
+          fmt::format("need lo < hi in every direction (got {} and {} in {})", spec.lo[k], spec.hi[k], "xyz"[k]));
+  }
+}
 
 io::MeshData box_mesh_data(const BoxSpec& s) {
   if (s.nx < 1 || s.ny < 1 || s.nz < 1)

@@ -18,6 +18,11 @@ struct BoxSpec {
   Point hi = Point(1, 1, 1);
 };
 
+// InputError unless each count is in [1, 1000] (at most 600 million tets
+// in all) and lo < hi in every direction, both corners finite and within
+// +-kCoordinateLimit (input_checks.hpp).
+void check_box_spec(const BoxSpec& spec);
+
 io::MeshData box_mesh_data(const BoxSpec& spec);
 Mesh make_box(const BoxSpec& spec);
 

@@ -31,6 +31,7 @@ _os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 from ._metrica import (
     InputError,
     Mesh,
+    box,
     analytic_field,
     analytic_metric,
     complexity,
@@ -56,6 +57,7 @@ __all__ = [
     "adapt",
     "analytic_field",
     "analytic_metric",
+    "box",
     "complexity",
     "error",
     "from_meshio",

@@ -7,6 +7,7 @@
 #include "messages.hpp"
 #include "pipeline.hpp"
 
+#include <metrica/box.hpp>
 #include <metrica/error.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/output_set.hpp>
@@ -17,6 +18,8 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -57,6 +60,41 @@ PYBIND11_MODULE(_metrica, m) {
         return "<metrica.Mesh: " + std::to_string(x.mesh().num_vertices()) + " vertices, " +
                std::to_string(x.mesh().num_tets()) + " tets>";
       });
+
+  m.def(
+      "box",
+      [](const py::object& n, const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
+        BoxSpec spec;
+        const auto count = [](const py::handle& k) {
+          if (py::isinstance<py::bool_>(k) || !py::isinstance<py::int_>(k))
+            throw InputError(
+                fmt::format("box: n is a whole number or three (got {})", py::repr(k).cast<std::string>()));
+          const long long v = k.cast<long long>();
+          return int(std::clamp<long long>(v, -1, 1'000'000));
+        };
+        if (py::isinstance<py::int_>(n) || py::isinstance<py::bool_>(n)) {
+          spec.nx = spec.ny = spec.nz = count(n);
+        } else {
+          if (!py::isinstance<py::sequence>(n) || py::len(n) != 3)
+            throw InputError(
+                fmt::format("box: n is a whole number or three (got {})", py::repr(n).cast<std::string>()));
+          const auto t = py::reinterpret_borrow<py::sequence>(n);
+          spec.nx = count(t[0]), spec.ny = count(t[1]), spec.nz = count(t[2]);
+        }
+        spec.lo = Point(lo[0], lo[1], lo[2]);
+        spec.hi = Point(hi[0], hi[1], hi[2]);
+        try {
+          check_box_spec(spec);
+        } catch (const InputError& e) {
+          throw InputError(std::string("box: ") + e.what());
+        }
+        io::MeshData data = box_mesh_data(spec);
+        data.version = 2;
+        return mesh_from_file_data(std::move(data), "box", py::none());
+      },
+      py::arg("n") = 3, py::arg("lo") = std::array<double, 3>{0, 0, 0}, py::arg("hi") = std::array<double, 3>{1, 1, 1},
+      "The box [lo, hi] of n x n x n hexes (n: one count or three), each split into 6 tets (Kuhn), with the UGAWG "
+      "cube's surface ids (1 x = lo, 2 x = hi, 3, 4 in y, 5, 6 in z): `metrica cube`. n = 3 is the UGAWG start mesh.");
 
   using Path = std::filesystem::path;
   m.def(

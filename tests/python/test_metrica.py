@@ -462,3 +462,17 @@ def test_arrays_from_lists_and_integers_bad_values_as_input_errors(tmp_path):
     with pytest.raises(metrica.InputError, match="not positive definite"):
         metrica.write(mesh, str(tmp_path / "x.meshb"), metric=metric)
     assert not (tmp_path / "x.meshb").exists() and not (tmp_path / "x.solb").exists()
+
+
+def test_a_box_is_the_commands_cube(tmp_path):
+    from_file = metrica.read(cube(tmp_path))  # metrica cube --n 3
+    made = metrica.box(3)
+    assert np.array_equal(made.points, from_file.points) and np.array_equal(made.tets, from_file.tets)
+    assert np.array_equal(made.triangle_ids, from_file.triangle_ids)
+    long = metrica.box((2, 1, 1), lo=(-1, 0, 0), hi=(1, 1, 1))
+    assert long.num_tets == 12 and long.info()["volume"] == pytest.approx(2.0)
+    for bad in (0, 2.5, True, (1, 2)):
+        with pytest.raises(metrica.InputError, match="box: n"):
+            metrica.box(bad)
+    with pytest.raises(metrica.InputError, match="box: need lo < hi"):
+        metrica.box(2, lo=(1, 0, 0), hi=(0, 1, 1))
