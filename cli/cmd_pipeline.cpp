@@ -9,7 +9,6 @@
 #include <metrica/io/meshb.hpp>
 #include <metrica/log.hpp>
 #include <metrica/mesh_build.hpp>
-#include <metrica/metrics/background_metric.hpp>
 #include <metrica/metrics/complexity.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/quality_report.hpp>
@@ -78,12 +77,8 @@ PipelineRun run_input(const Options& o, const ComposedPipeline& p, const std::st
     return out;
   }
   assign_metric(mesh, field);
-  std::unique_ptr<BackgroundMetric> background;
-  AdaptInputs inputs;
-  if (analytic)
-    inputs.metric = &exact;
-  else
-    inputs.background = (background = std::make_unique<BackgroundMetric>(mesh)).get();
+  AdaptInputs inputs;  // a file's field: run_composed keeps it on the input mesh
+  if (analytic) inputs.metric = &exact;
   const bool talk = log::level() >= log::Level::normal;
   if (talk) {
     inputs.on_cycle = print_cycle;
@@ -97,7 +92,6 @@ PipelineRun run_input(const Options& o, const ComposedPipeline& p, const std::st
     fmt::print("  {:.2f} s\n", report.seconds);
     print_operator_stats(report, concurrency == Serial::name, thread_count());
   }
-  if (background) background->assign(mesh);  // the report in the field given
   require_adapted(mesh, nullptr, volume, adapted_volume_tolerance(1, AdaptOptions{}.volume_budget),
                   sweep_runner(mesh.tet_capacity(), concurrency == Serial::name));
   return out;

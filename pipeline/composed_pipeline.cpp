@@ -1,4 +1,5 @@
 #include <metrica/error.hpp>
+#include <metrica/metrics/background_metric.hpp>
 #include <metrica/pipeline/composed_pipeline.hpp>
 #include <metrica/pipeline/policy_choice.hpp>
 #include <metrica/pipeline/standard_stages.hpp>
@@ -6,6 +7,7 @@
 #include <fmt/core.h>
 
 #include <charconv>
+#include <memory>
 #include <set>
 #include <type_traits>
 
@@ -128,10 +130,16 @@ AdaptReport run_composed(Mesh& mesh, const ComposedPipeline& spec, const AdaptIn
     } else {
       using A = Adapter<LogEuclidean, C>;
       const Pipeline<A> p = make_pipeline<A>(spec);
-      A a(mesh, inputs.source());
+      // Without a metric to follow, the mesh's own field on the input mesh.
+      std::unique_ptr<BackgroundMetric> own;
+      AdaptInputs in = inputs;
+      if (!in.source()) in.background = (own = std::make_unique<BackgroundMetric>(mesh)).get();
+      A a(mesh, in.source());
       a.set_volume_budget(AdaptOptions{}.volume_budget);
-      a.on_cycle = inputs.on_cycle;
-      return run_pipeline(a, p);
+      a.on_cycle = in.on_cycle;
+      AdaptReport report = run_pipeline(a, p);
+      if (own) own->assign(mesh);  // the adapted mesh's metric in the field given
+      return report;
     }
   });
 }

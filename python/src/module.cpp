@@ -23,10 +23,22 @@
 #include <filesystem>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
+#include <span>
 
 namespace py = pybind11;
 using namespace metrica;
 using namespace metrica::python;
+
+namespace {
+// Rows of the settings table as Python's docstrings read them: (name,
+// domain, default, help).
+py::list setting_rows(std::span<const AdaptSetting> settings) {
+  py::list rows;
+  for (const AdaptSetting& s : settings)
+    rows.append(py::make_tuple(s.python_name(), s.domain(), s.get(AdaptOptions{}), std::string(s.help)));
+  return rows;
+}
+}  // namespace
 
 PYBIND11_MODULE(_metrica, m) {
   m.doc() = "Metrica: metric-based anisotropic adaptation of tetrahedral meshes";
@@ -166,22 +178,10 @@ PYBIND11_MODULE(_metrica, m) {
         "(k, 2), \"edge_lengths\" (k,) and \"mean_ratios\" (one per tet, in the order of mesh.tets). With "
         "metric_mesh, the metric is given at that mesh's vertices and interpolated log-Euclidean at this one's.");
   m.def(
-      "_adapt_settings",
-      [] {
-        py::list rows;
-        for (const AdaptSetting& s : adapt_settings())
-          rows.append(py::make_tuple(s.python_name(), s.domain(), s.get(AdaptOptions{}), std::string(s.help)));
-        return rows;
-      },
+      "_adapt_settings", [] { return setting_rows(adapt_settings()); },
       "The settings adapt takes by name: (name, domain, default, help) rows of the command's table.");
   m.def(
-      "_pipeline_rules",
-      [] {
-        py::list rows;
-        for (const AdaptSetting& s : pipeline_rule_settings())
-          rows.append(py::make_tuple(s.python_name(), s.domain(), s.get(AdaptOptions{}), std::string(s.help)));
-        return rows;
-      },
+      "_pipeline_rules", [] { return setting_rows(pipeline_rule_settings()); },
       "The rules a Pipeline takes by name: (name, domain, default, help) rows of the command's table.");
   m.def(
       "_stage_kinds",

@@ -107,13 +107,9 @@ py::tuple run_composed_on(const PyMesh& m, const PipelineCall& call) {
   }
   check_metric_field(field, "metric");
   assign_metric(mesh, field);
-  // An array's field stays, on the input mesh, the background of the run.
-  std::unique_ptr<BackgroundMetric> background;
+  // An array's field: run_composed keeps it on the input mesh.
   AdaptInputs inputs;
-  if (exact)
-    inputs.metric = &exact;
-  else
-    inputs.background = (background = std::make_unique<BackgroundMetric>(mesh)).get();
+  if (exact) inputs.metric = &exact;
   py::list cycles;
   inputs.on_cycle = cycle_callback(cycles, call.on_cycle);
   AdaptReport report;
@@ -123,7 +119,6 @@ py::tuple run_composed_on(const PyMesh& m, const PipelineCall& call) {
     py::gil_scoped_release no_gil;
     const FreedMemoryKeptForRun memory;  // as the command's (allocator.hpp)
     report = run_composed(mesh, p, inputs, call.concurrency);
-    if (background) background->assign(mesh);  // the report in the field given
     require_adapted(mesh, nullptr, volume, adapted_volume_tolerance(1, AdaptOptions{}.volume_budget));
     q = quality_report(mesh, LogEuclidean::name, {.cached_quality = true});
   } catch (const PythonError&) {

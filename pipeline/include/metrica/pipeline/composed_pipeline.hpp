@@ -52,8 +52,10 @@ std::vector<StageSpec> parse_stage_list(std::string_view text, std::string_view 
 void check_composed(const ComposedPipeline& p);
 
 // Runs `p` on `mesh`, whose metric is assigned; new and moved vertices
-// take inputs.metric or inputs.background as in adapt (inputs.model must
-// be none). `concurrency`: serial or speculative.
+// take inputs.metric or inputs.background as in adapt, and with neither,
+// the mesh's field as given (a background on the input mesh, whose field
+// the adapted mesh's metric is in at the end). inputs.model must be none.
+// `concurrency`: serial or speculative.
 AdaptReport run_composed(Mesh& mesh, const ComposedPipeline& p, const AdaptInputs& inputs,
                          std::string_view concurrency);
 
