@@ -40,7 +40,7 @@ namespace {
 void declare_adapt_options(Options& o) {
   const AdaptOptions d;
   const PolicyChoice policies;
-  o.input("mesh (.mesh, .meshb, .msh)");
+  o.input("mesh (.mesh, .meshb, .msh, .vtu, .su2)");
   o.output(
       "adapted mesh (.mesh, .meshb, .msh, .vtu, .su2)",
       {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::msh, io::FileFormat::vtu, io::FileFormat::su2});
@@ -357,12 +357,13 @@ int run_adapt(const std::vector<std::string>& args) {
   const PartRunner sweeps = sweep_runner(mesh.tet_capacity(), serial);
   write_outputs(o, mesh, model.get(), output, input_version, sweeps);
   if (talk) {
-    fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());
     // quality_report throws on a non-finite value: the run then fails and
-    // its staged outputs are dropped. The quality cache holds the mean
-    // ratios of this space: adapt kept it (a background's assign cleared
-    // it, and the report fills it again).
-    fmt::print("{}", format_report(quality_report(mesh, policies.space, {.run = sweeps, .cached_quality = true})));
+    // its staged outputs are dropped (so the report comes before "wrote").
+    // The quality cache holds the mean ratios of this space: adapt kept it
+    // (a background's assign cleared it, and the report fills it again).
+    const QualityReport report = quality_report(mesh, policies.space, {.run = sweeps, .cached_quality = true});
+    fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());
+    fmt::print("{}", format_report(report));
   }
   return kOk;
 }

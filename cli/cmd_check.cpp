@@ -2,6 +2,7 @@
 
 #include <metrica/geometry/association.hpp>
 #include <metrica/log.hpp>
+#include <metrica/numbering.hpp>
 #include <metrica/validate.hpp>
 
 #include <fmt/core.h>
@@ -19,7 +20,7 @@ int run_check(const std::vector<std::string>& args) {
             "Examples:\n"
             "  metrica check cube.meshb\n"
             "  metrica check adapted.meshb --geometry cube-cylinder.step");
-  o.input("mesh to check (.mesh, .meshb, .msh)");
+  o.input("mesh to check (.mesh, .meshb, .msh, .vtu, .su2)");
   o.add()("max-messages", po::value<int>()->default_value(20)->value_name("N"),
           "problems listed per check (counts stay exact)")("geometry", po::value<std::string>()->value_name("MODEL"),
                                                            "CAD model the boundary must lie on")(
@@ -39,7 +40,8 @@ int run_check(const std::vector<std::string>& args) {
     const ModelDistance d = model_distance(loaded.mesh, *model, tolerance);
     if (log::level() >= log::Level::normal) fmt::print("{}: {}\n", input, model_distance_text(loaded.mesh, *model));
     if (d.max > tolerance) {
-      fmt::print("{}: vertex {} is {:.3g} from its entity (tolerance {:.3g})\n", input, d.worst + 1, d.max, tolerance);
+      fmt::print("{}: vertex {} is {:.3g} from its entity (tolerance {:.3g})\n", input, numbered(d.worst), d.max,
+                 tolerance);
       return kInvalid;
     }
   }

@@ -46,7 +46,7 @@ int run_error(const std::vector<std::string>& args) {
             "  metrica error loop-40.meshb --analytic tanh3\n"
             "  metrica error loop-40.meshb --analytic tanh3 --truth loop-80.meshb\n"
             "  metrica error coarse.meshb --field coarse.solb --truth fine.meshb --truth-field fine.solb");
-  o.input("mesh (.mesh, .meshb, .msh)");
+  o.input("mesh (.mesh, .meshb, .msh, .vtu, .su2)");
   o.add()("analytic", po::value<std::string>()->value_name("NAME"), "analytic field: sinfun3, tanh3, sinatan3")(
       "field", po::value<std::string>()->value_name("FILE"), "the field at the mesh's vertices (.sol, .solb)")(
       "truth", po::value<std::string>()->value_name("MESH"), "a finer mesh whose solution is the reference")(

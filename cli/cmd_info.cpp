@@ -16,7 +16,7 @@ int run_info(const std::vector<std::string>& args) {
             "Prints what a mesh file holds (keyword counts) and what Metrica derives from it: vertex\n"
             "classes, surface ids with their areas, ridge curves, corners, extent and volume.\n\n"
             "Example: metrica info cube.meshb");
-  o.input("mesh (.mesh, .meshb, .msh)");
+  o.input("mesh (.mesh, .meshb, .msh, .vtu, .su2)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the input mesh (-i)");
 

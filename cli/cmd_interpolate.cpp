@@ -26,11 +26,11 @@ int run_interpolate(const std::vector<std::string>& args) {
             "Examples:\n"
             "  metrica interpolate old.meshb --field old.solb --to adapted.meshb -o restart.solb\n"
             "  metrica interpolate solver.meshb --field metric.solb --to start.meshb -o start-metric.solb");
-  o.input("source mesh (.mesh, .meshb, .msh)");
+  o.input("source mesh (.mesh, .meshb, .msh, .vtu, .su2)");
   o.output("interpolated field (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
   o.add()("field", po::value<std::string>()->value_name("FILE"),
           "scalar, vector and symmetric tensor fields at the source's vertices (.sol, .solb)")(
-      "to", po::value<std::string>()->value_name("MESH"), "target mesh (.mesh, .meshb, .msh)");
+      "to", po::value<std::string>()->value_name("MESH"), "target mesh (.mesh, .meshb, .msh, .vtu, .su2)");
   if (!o.parse(args)) return kOk;
   const auto input = o.required("input", "the source mesh (-i)");
   const auto output = o.required("output", "the output field (-o)");

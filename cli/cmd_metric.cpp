@@ -24,7 +24,7 @@ namespace {
 // library's (MultiscaleOptions{}).
 void declare_options(Options& o) {
   const MultiscaleOptions d;
-  o.input("mesh (.mesh, .meshb, .msh)");
+  o.input("mesh (.mesh, .meshb, .msh, .vtu, .su2)");
   o.output("metric (.sol, .solb)", {io::FileFormat::sol, io::FileFormat::solb});
   max_tets_option(o);
   o.format_version("libMeshb version to write (default: the mesh's)");

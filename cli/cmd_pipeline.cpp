@@ -118,7 +118,7 @@ int run_pipeline(const std::vector<std::string>& args) {
                 "  metrica pipeline in.meshb -m in.solb -o out.meshb --cycle \"collapse, split, \\\n"
                 "      delaunay=flip:criterion=metric-delaunay, weight=flip:criterion=edge-weight\"");
   const AdaptOptions d;
-  o.input("mesh (.mesh, .meshb, .msh)");
+  o.input("mesh (.mesh, .meshb, .msh, .vtu, .su2)");
   o.output(
       "adapted mesh (.mesh, .meshb, .msh, .vtu, .su2)",
       {io::FileFormat::mesh, io::FileFormat::meshb, io::FileFormat::msh, io::FileFormat::vtu, io::FileFormat::su2});
@@ -153,8 +153,11 @@ int run_pipeline(const std::vector<std::string>& args) {
   data.version = adapted.input_version;
   io::write_mesh_file(output, data, o.format_version(), sweeps, io::FileFormat::mesh, o.msh_encoding());
   if (log::level() >= log::Level::normal) {
+    // The report first: it throws on a non-finite measure, and the run
+    // then fails with nothing written.
+    const QualityReport report = quality_report(mesh, LogEuclidean::name, {.run = sweeps, .cached_quality = true});
     fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());
-    fmt::print("{}", format_report(quality_report(mesh, LogEuclidean::name, {.run = sweeps, .cached_quality = true})));
+    fmt::print("{}", format_report(report));
   }
   return kOk;
 }

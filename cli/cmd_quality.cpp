@@ -30,7 +30,7 @@ int run_quality(const std::vector<std::string>& args) {
             "  metrica quality cube-linear-00.meshb -m cube-linear-00.solb\n"
             "  metrica quality adapted.meshb -m solver-metric.solb --metric-mesh solver.meshb\n"
             "  metrica quality adapted.meshb --analytic polar-1 --csv report.csv");
-  o.input("mesh (.mesh, .meshb, .msh)");
+  o.input("mesh (.mesh, .meshb, .msh, .vtu, .su2)");
   o.metric_source("metric (.sol, .solb)");
   o.add()("space", po::value<std::string>()->default_value(std::string(Spaces::at<0>::name))->value_name("S"),
           "metric interpolation for Q: log-euclidean, anisotropic, isotropic")(

@@ -546,13 +546,23 @@ StagedFile write_part_metric_text(const Comm& comm, const VertexNumbering& numbe
 StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumbering& numbering,
                           const std::string& path) {
   const int me = comm.rank();
+  const VertexIndex index(part.vertex_ids);
   const auto tets = std::int64_t(part.tets.size());
   const std::int64_t total_tets = comm.sum(tets), first_tet = comm.exclusive_scan(tets);
+  // The surface triangles after every tet, in the .meshb's order (each
+  // rank's written triangles, rank after rank).
+  const std::vector<std::uint32_t> triangles = triangles_written(part, me);
+  const auto own_triangles = std::int64_t(triangles.size());
+  const std::int64_t total_triangles = comm.sum(own_triangles), first_triangle = comm.exclusive_scan(own_triangles);
   // The single process's layout (io/vtu.hpp): rank 0 writes the head, the
   // arrays' counts and the tail; each rank its slice of every array.
-  const io::VtuLayout layout(std::uint64_t(numbering.total), std::uint64_t(total_tets));
+  const io::VtuLayout layout(std::uint64_t(numbering.total), std::uint64_t(total_tets), {}, {},
+                             std::uint64_t(total_triangles));
   SharedFile out(comm, path);
   OwnedPieces pieces;
+  const auto put = [](std::string& bytes, const auto& value) {
+    bytes.append(reinterpret_cast<const char*>(&value), sizeof(value));
+  };
   comm.step([&] {
     if (me == 0) {
       pieces.add(0, layout.head());
@@ -565,26 +575,35 @@ StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumber
       for (int c = 0; c < 3; ++c) {
         const double x = part.points[v][c];
         if (!std::isfinite(x)) throw IoError(fmt::format("{}: a vertex is not finite; nothing written", path));
-        points.append(reinterpret_cast<const char*>(&x), 8);
+        put(points, x);
       }
     }
     pieces.add(layout.values_at(io::VtuLayout::kPoints) + 24 * std::uint64_t(numbering.first), std::move(points));
     std::string connectivity, offsets, types(part.tets.size(), char(10)), refs;  // 10: VTK_TETRA
     for (std::size_t t = 0; t < part.tets.size(); ++t) {
-      for (auto v : part.tets[t]) {
-        const std::int64_t k = numbering.number[v] - 1;
-        connectivity.append(reinterpret_cast<const char*>(&k), 8);
-      }
-      const std::int64_t end = 4 * (first_tet + std::int64_t(t) + 1);
-      offsets.append(reinterpret_cast<const char*>(&end), 8);
-      const std::int32_t ref = part.tet_refs[t];
-      refs.append(reinterpret_cast<const char*>(&ref), 4);
+      for (auto v : part.tets[t]) put(connectivity, std::int64_t(numbering.number[v] - 1));
+      put(offsets, std::int64_t(4 * (first_tet + std::int64_t(t) + 1)));
+      put(refs, std::int32_t(part.tet_refs[t]));
     }
     const auto first = std::uint64_t(first_tet);
     pieces.add(layout.values_at(io::VtuLayout::kConnectivity) + 32 * first, std::move(connectivity));
     pieces.add(layout.values_at(io::VtuLayout::kOffsets) + 8 * first, std::move(offsets));
     pieces.add(layout.values_at(io::VtuLayout::kTypes) + first, std::move(types));
     pieces.add(layout.values_at(layout.refs()) + 4 * first, std::move(refs));
+    std::string f_connectivity, f_offsets, f_types(triangles.size(), char(5)), f_refs;  // 5: VTK_TRIANGLE
+    for (std::size_t j = 0; j < triangles.size(); ++j) {
+      for (GlobalId g : part.triangles[triangles[j]])
+        put(f_connectivity, std::int64_t(numbering.number[std::size_t(index.find(g))] - 1));
+      put(f_offsets, std::int64_t(4 * total_tets + 3 * (first_triangle + std::int64_t(j) + 1)));
+      put(f_refs, std::int32_t(part.triangle_refs[triangles[j]]));
+    }
+    const auto cell = std::uint64_t(total_tets + first_triangle);  // the first triangle's cell
+    pieces.add(layout.values_at(io::VtuLayout::kConnectivity) + 32 * std::uint64_t(total_tets) +
+                   24 * std::uint64_t(first_triangle),
+               std::move(f_connectivity));
+    pieces.add(layout.values_at(io::VtuLayout::kOffsets) + 8 * cell, std::move(f_offsets));
+    pieces.add(layout.values_at(io::VtuLayout::kTypes) + cell, std::move(f_types));
+    pieces.add(layout.values_at(layout.refs()) + 4 * cell, std::move(f_refs));
   });
   pieces.write(comm, out.file());
   return out.close();

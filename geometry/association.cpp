@@ -1,6 +1,7 @@
 #include <metrica/error.hpp>
 #include <metrica/geometry/association.hpp>
 #include <metrica/log.hpp>
+#include <metrica/numbering.hpp>
 
 #include <fmt/core.h>
 
@@ -111,7 +112,7 @@ std::string off_model_message(VertexId v, const Point& p, const VertexAssociatio
   return fmt::format(
       "vertex {} at ({:.6g}, {:.6g}, {:.6g}) is {:.3g} from every entity of {} it may lie on (tolerance {:.3g}): "
       "the model does not match the mesh",
-      v + 1, p.x(), p.y(), p.z(), a.distance, model.source(), tolerance);
+      numbered(v), p.x(), p.y(), p.z(), a.distance, model.source(), tolerance);
 }
 
 std::string unknown_surfaces_message(const std::set<int>& missing, const CadModel& model) {

@@ -1,5 +1,6 @@
 #include <metrica/error.hpp>
 #include <metrica/geometry/curvature_metric.hpp>
+#include <metrica/numbering.hpp>
 
 #include <Eigen/Dense>
 #include <fmt/core.h>
@@ -27,7 +28,7 @@ std::vector<Sym6> curvature_metric(const Mesh& mesh, const CadModel& model, doub
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
     if (!mesh.vertex_alive(v) || surfaces[v].empty()) continue;
     if (!mesh.has_geo_params() || !mesh.geo_param(v).valid())
-      throw InputError(fmt::format("curvature metric: boundary vertex {} has no model entity", v + 1));
+      throw InputError(fmt::format("curvature metric: boundary vertex {} has no model entity", numbered(v)));
     for (int s : surfaces[v]) {
       if (!model.has(2, s)) continue;
       const auto uv = model.on_surface(mesh.geo_param(v), s);

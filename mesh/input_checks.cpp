@@ -1,5 +1,6 @@
 #include <metrica/error.hpp>
 #include <metrica/input_checks.hpp>
+#include <metrica/numbering.hpp>
 #include <metrica/validate.hpp>
 
 #include <fmt/core.h>
@@ -16,7 +17,7 @@ void check_coordinates(const io::MeshData& data, const std::string& source) {
         throw InputError(
             fmt::format("{}: vertex {} has coordinates ({}, {}, {}): each must be finite and within "
                         "+-{:g}",
-                        source, v + 1, p.x(), p.y(), p.z(), kCoordinateLimit));
+                        source, numbered(v), p.x(), p.y(), p.z(), kCoordinateLimit));
   }
 }
 

@@ -3,6 +3,7 @@
 #include <metrica/geometry.hpp>
 #include <metrica/log.hpp>
 #include <metrica/mesh_build.hpp>
+#include <metrica/numbering.hpp>
 #include <metrica/vertex_tets.hpp>
 
 #include <fmt/core.h>
@@ -25,8 +26,8 @@ std::vector<TetVertices> oriented_tets(const io::MeshData& d, const std::string&
         repeated ? 0.0 : orient3d_fast(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], d.vertices[t[3]]);
     if (o < 0) ++negative;
     if (o == 0 && bad.size() < 5)
-      bad.push_back(fmt::format("tet {} (vertices {} {} {} {}) is degenerate (zero volume)", i + 1, t[0] + 1, t[1] + 1,
-                                t[2] + 1, t[3] + 1));
+      bad.push_back(fmt::format("tet {} (vertices {} {} {} {}) is degenerate (zero volume)", numbered(i),
+                                numbered(t[0]), numbered(t[1]), numbered(t[2]), numbered(t[3])));
   }
   if (negative == tets.size()) {
     log::warn("{}: every tet is negatively oriented; reorienting all {} tets", source, tets.size());
@@ -35,8 +36,8 @@ std::vector<TetVertices> oriented_tets(const io::MeshData& d, const std::string&
     for (std::size_t i = 0; i < tets.size() && bad.size() < 5; ++i) {
       const auto& t = tets[i];
       if (orient3d_fast(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], d.vertices[t[3]]) < 0)
-        bad.push_back(
-            fmt::format("tet {} (vertices {} {} {} {}) is inverted", i + 1, t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1));
+        bad.push_back(fmt::format("tet {} (vertices {} {} {} {}) is inverted", numbered(i), numbered(t[0]),
+                                  numbered(t[1]), numbered(t[2]), numbered(t[3])));
     }
   }
   if (!bad.empty() || (negative > 0 && negative < tets.size())) {
@@ -92,7 +93,8 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
         const int g = 6 - ia - ib - ic;  // the remaining local index
         if (match.valid())
           throw InputError(fmt::format("{}: face ({} {} {}) is shared by more than two tetrahedra (tets {}, {}, {})",
-                                       src, face[0] + 1, face[1] + 1, face[2] + 1, t + 1, match.tet() + 1, u + 1));
+                                       src, numbered(face[0]), numbered(face[1]), numbered(face[2]), numbered(t),
+                                       numbered(match.tet()), numbered(u)));
         match = FaceRef(u, g);
       }
       // A third tet on this face would have been found above, when the
@@ -183,8 +185,8 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
       if (ib >= 0 && ic >= 0) face = FaceRef(u, 6 - local_index(tets[u], tri[0]) - ib - ic);
     }
     if (!face.valid())
-      throw InputError(fmt::format("{}: triangle {} (vertices {} {} {}) is not a face of any tetrahedron", src, i + 1,
-                                   tri[0] + 1, tri[1] + 1, tri[2] + 1));
+      throw InputError(fmt::format("{}: triangle {} (vertices {} {} {}) is not a face of any tetrahedron", src,
+                                   numbered(i), numbered(tri[0]), numbered(tri[1]), numbered(tri[2])));
     const int ref = i < d.triangle_refs.size() ? d.triangle_refs[i] : 0;
     const SurfaceId id = ref > 0 ? ref : default_id;
     const FaceRef other = mesh.neighbour(face);
@@ -192,13 +194,13 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
     const SurfaceId before = mesh.internal_surface_id(face.tet(), face.face());
     if (before != 0 && before != id)
       throw InputError(fmt::format("{}: triangle {} (vertices {} {} {}) is given twice, with surface ids {} and {}",
-                                   src, i + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1, before, id));
+                                   src, numbered(i), numbered(tri[0]), numbered(tri[1]), numbered(tri[2]), before, id));
     if (ref > 0 && outer_ids.count(ref))
       throw InputError(
           fmt::format("{}: triangle {} (vertices {} {} {}) lies inside the volume with surface id {}, "
                       "which triangles on the outer boundary have too: an internal surface needs ids "
                       "of its own",
-                      src, i + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1, id));
+                      src, numbered(i), numbered(tri[0]), numbered(tri[1]), numbered(tri[2]), id));
     mesh.set_internal_surface_id(face.tet(), face.face(), id);
     mesh.set_internal_surface_id(other.tet(), other.face(), id);
   }
@@ -226,7 +228,7 @@ Mesh build_mesh(const io::MeshData& d, const BuildOptions& opt) {
     for (TetId u : incidence.of(e[0])) found = found || (e[0] != e[1] && local_index(tets[u], e[1]) >= 0);
     if (!found)
       throw InputError(fmt::format("{}: required edge {} (edge {}, vertices {} {}) is not an edge of any tetrahedron",
-                                   src, i + 1, d.required_edges[i] + 1, e[0] + 1, e[1] + 1));
+                                   src, numbered(i), numbered(d.required_edges[i]), numbered(e[0]), numbered(e[1])));
     mesh.add_required_edge(e[0], e[1]);
   }
   std::vector<TriangleVertices> required;

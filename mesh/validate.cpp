@@ -1,5 +1,6 @@
 #include <metrica/classification.hpp>
 #include <metrica/geometry.hpp>
+#include <metrica/numbering.hpp>
 #include <metrica/validate.hpp>
 
 #include <fmt/core.h>
@@ -98,9 +99,9 @@ class Checker {
       const auto& tv = m_.tet(t);
       for (int i = 0; i < 4; ++i) {
         if (tv[i] >= m_.vertex_capacity() || !m_.vertex_alive(tv[i]))
-          fail_in(r, "vertices", "tet {}: vertex {} ({}) is dead or out of range", t, i, tv[i]);
+          fail_in(r, "vertices", "tet {}: vertex {} ({}) is dead or out of range", numbered(t), i, numbered(tv[i]));
         for (int j = 0; j < i; ++j)
-          if (tv[i] == tv[j]) fail_in(r, "vertices", "tet {}: vertex {} appears twice", t, tv[i]);
+          if (tv[i] == tv[j]) fail_in(r, "vertices", "tet {}: vertex {} appears twice", numbered(t), numbered(tv[i]));
       }
     });
     std::size_t live_t = 0;
@@ -114,7 +115,8 @@ class Checker {
       const auto& v = m_.tet(t);
       const double o = orient3d_fast(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
       if (!(o > 0))
-        fail_in(r, "orientation", "tet {} ({} {} {} {}): orient3d = {:.3e} <= 0", t, v[0], v[1], v[2], v[3], o);
+        fail_in(r, "orientation", "tet {} ({} {} {} {}): orient3d = {:.3e} <= 0", numbered(t), numbered(v[0]),
+                numbered(v[1]), numbered(v[2]), numbered(v[3]), o);
     });
   }
 
@@ -124,22 +126,25 @@ class Checker {
         const FaceRef n = m_.neighbour(t, f);
         const SurfaceId s = m_.surface_id(t, f);
         if (!n.valid()) {
-          if (s <= 0) fail_in(r, "boundary", "tet {} face {}: boundary face with surface id {} (must be > 0)", t, f, s);
+          if (s <= 0)
+            fail_in(r, "boundary", "tet {} face {}: boundary face with surface id {} (must be > 0)", numbered(t), f, s);
           continue;
         }
         if (n.tet() >= m_.tet_capacity() || !m_.tet_alive(n.tet())) {
-          fail_in(r, "adjacency", "tet {} face {}: neighbour tet {} is dead or out of range", t, f, n.tet());
+          fail_in(r, "adjacency", "tet {} face {}: neighbour tet {} is dead or out of range", numbered(t), f,
+                  numbered(n.tet()));
           continue;
         }
         if (m_.neighbour(n) != FaceRef(t, f))
-          fail_in(r, "adjacency", "tet {} face {} -> tet {} face {}, which does not point back", t, f, n.tet(),
-                  n.face());
+          fail_in(r, "adjacency", "tet {} face {} -> tet {} face {}, which does not point back", numbered(t), f,
+                  numbered(n.tet()), n.face());
         else if (m_.internal_surface_id(t, f) != m_.internal_surface_id(n.tet(), n.face()))
-          fail_in(r, "internal surface", "tet {} face {}: internal surface id {}, {} on the other side (tet {})", t, f,
-                  m_.internal_surface_id(t, f), m_.internal_surface_id(n.tet(), n.face()), n.tet());
+          fail_in(r, "internal surface", "tet {} face {}: internal surface id {}, {} on the other side (tet {})",
+                  numbered(t), f, m_.internal_surface_id(t, f), m_.internal_surface_id(n.tet(), n.face()),
+                  numbered(n.tet()));
         else if (m_.tet_ref(t) != m_.tet_ref(n.tet()) && m_.internal_surface_id(t, f) == 0)
-          fail_in(r, "internal surface", "tet {} face {}: between regions {} and {} without a surface id", t, f,
-                  m_.tet_ref(t), m_.tet_ref(n.tet()));
+          fail_in(r, "internal surface", "tet {} face {}: between regions {} and {} without a surface id", numbered(t),
+                  f, m_.tet_ref(t), m_.tet_ref(n.tet()));
         if (sorted(face_vertices(m_.tet(t), f)) != sorted(face_vertices(m_.tet(n.tet()), n.face())))
           fail_in(r, "adjacency", "tet {} face {} and tet {} face {} hold different vertices", t, f, n.tet(), n.face());
       }
@@ -172,8 +177,8 @@ class Checker {
       const auto first = rest.begin() + start[v], last = rest.begin() + start[v + 1];
       std::sort(first, last);
       for (auto it = std::adjacent_find(first, last); it != last; it = std::adjacent_find(it + 1, last))
-        fail("faces", "triangle ({} {} {}) is a face of more than two tets, or of two that are not neighbours", v,
-             it->first, it->second);
+        fail("faces", "triangle ({} {} {}) is a face of more than two tets, or of two that are not neighbours",
+             numbered(v), numbered(it->first), numbered(it->second));
     }
   }
 
@@ -229,8 +234,8 @@ class Checker {
         ok = at == ring[0].first && steps == ring.size();
       }
       if (!ok)
-        fail("manifold", "boundary vertex {}: its {} boundary faces do not form a single umbrella", links[i].center,
-             j - i);
+        fail("manifold", "boundary vertex {}: its {} boundary faces do not form a single umbrella",
+             numbered(links[i].center), j - i);
       i = j;
     }
   }
@@ -251,8 +256,8 @@ class Checker {
       while (j < edges.size() && edges[j] == edges[i]) ++j;
       if (j - i > 2) {
         const auto e = edge_from_key(edges[i].second);
-        fail("manifold", "edge ({} {}) lies on {} faces of internal surface {} (non-manifold)", e[0], e[1], j - i,
-             edges[i].first);
+        fail("manifold", "edge ({} {}) lies on {} faces of internal surface {} (non-manifold)", numbered(e[0]),
+             numbered(e[1]), j - i, edges[i].first);
       }
       i = j;
     }
@@ -263,21 +268,22 @@ class Checker {
     for (VertexId v = 0; v < m_.vertex_capacity(); ++v) {
       if (!m_.vertex_alive(v)) continue;
       if (c.vertex_class[v] != m_.vertex_class(v))
-        fail("classification", "vertex {}: classified {}, should be {}", v, metrica::to_string(m_.vertex_class(v)),
-             metrica::to_string(c.vertex_class[v]));
+        fail("classification", "vertex {}: classified {}, should be {}", numbered(v),
+             metrica::to_string(m_.vertex_class(v)), metrica::to_string(c.vertex_class[v]));
       const bool internal = !c.on_internal_surface.empty() && c.on_internal_surface[v];
       if (internal != m_.on_internal_surface(v))
-        fail("classification", "vertex {}: {} an internal surface, marked otherwise", v, internal ? "on" : "not on");
+        fail("classification", "vertex {}: {} an internal surface, marked otherwise", numbered(v),
+             internal ? "on" : "not on");
     }
     for (auto key : c.ridges)
       if (!m_.ridge_edges().count(key)) {
         const auto e = edge_from_key(key);
-        fail("classification", "edge ({} {}) is a ridge but not marked", e[0], e[1]);
+        fail("classification", "edge ({} {}) is a ridge but not marked", numbered(e[0]), numbered(e[1]));
       }
     for (auto key : m_.ridge_edges())
       if (!c.ridges.count(key)) {
         const auto e = edge_from_key(key);
-        fail("classification", "edge ({} {}) is marked as a ridge but is not one", e[0], e[1]);
+        fail("classification", "edge ({} {}) is marked as a ridge but is not one", numbered(e[0]), numbered(e[1]));
       }
   }
 
@@ -305,12 +311,14 @@ class Checker {
     std::sort(faces.begin(), faces.end());
     for (const auto& tri : triangles) {
       if (!std::binary_search(faces.begin(), faces.end(), tri))
-        fail("required", "required triangle ({} {} {}) is not a surface face", tri[0], tri[1], tri[2]);
+        fail("required", "required triangle ({} {} {}) is not a surface face", numbered(tri[0]), numbered(tri[1]),
+             numbered(tri[2]));
     }
     for (auto key : edges) {
       const auto e = edge_from_key(key);
       if (!tet_edges.count(key))
-        fail("required", "required edge ({} {}) is not an edge of the mesh, or an end is not required", e[0], e[1]);
+        fail("required", "required edge ({} {}) is not an edge of the mesh, or an end is not required", numbered(e[0]),
+             numbered(e[1]));
     }
   }
 
@@ -319,9 +327,9 @@ class Checker {
       if (!m_.vertex_alive(v)) continue;
       const TetId t = m_.vert2tet(v);
       if (t >= m_.tet_capacity() || !m_.tet_alive(t))
-        fail("vert2tet", "vertex {}: hint {} is not a live tet", v, t);
+        fail("vert2tet", "vertex {}: hint {} is not a live tet", numbered(v), numbered(t));
       else if (local_index(m_.tet(t), v) < 0)
-        fail("vert2tet", "vertex {}: hint tet {} does not contain it", v, t);
+        fail("vert2tet", "vertex {}: hint tet {} does not contain it", numbered(v), numbered(t));
     }
   }
 

@@ -1,6 +1,7 @@
 #include <metrica/error.hpp>
 #include <metrica/metrics/background_metric.hpp>
 #include <metrica/metrics/sym_tensor.hpp>
+#include <metrica/numbering.hpp>
 
 #include <fmt/core.h>
 
@@ -16,8 +17,8 @@ std::vector<Sym6> logarithms(const Mesh& mesh, std::span<const Sym6> metric) {
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
     if (!mesh.vertex_alive(v)) continue;
     if (!is_spd(metric[v]))
-      throw InputError(fmt::format("background metric: the tensor at vertex {} is not symmetric positive definite",
-                                   v + 1));
+      throw InputError(
+          fmt::format("background metric: the tensor at vertex {} is not symmetric positive definite", numbered(v)));
     log_m[v] = spd_log(metric[v]);
   }
   return log_m;

@@ -1,6 +1,7 @@
 #include <metrica/error.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/sym_tensor.hpp>
+#include <metrica/numbering.hpp>
 #include <metrica/point_location.hpp>
 
 #include <fmt/core.h>
@@ -20,12 +21,12 @@ std::vector<Eigen::Vector3d> checked_eigenvalues(const std::vector<Sym6>& metric
     const auto& m = metrics[v];
     for (double x : m)
       if (!std::isfinite(x))
-        throw InputError(fmt::format("{}: metric at vertex {} has a non-finite entry ({})", source, v + 1, x));
+        throw InputError(fmt::format("{}: metric at vertex {} has a non-finite entry ({})", source, numbered(v), x));
     const auto e = eigen_decomposition(m);
     if (!(e.values[0] > 0.0))
       throw InputError(
           fmt::format("{}: metric at vertex {} is not positive definite (eigenvalues {:.3g} {:.3g} {:.3g})", source,
-                      v + 1, e.values[0], e.values[1], e.values[2]));
+                      numbered(v), e.values[0], e.values[1], e.values[2]));
     values[v] = e.values;
   }
   return values;
@@ -46,7 +47,7 @@ void check_metric_field(const std::vector<Sym6>& metrics, const std::string& sou
       throw InputError(
           fmt::format("{}: metric at vertex {} asks for sizes {:.3g} to {:.3g}, outside [{:g}, {:g}] "
                       "(bound them with --hmin/--hmax)",
-                      source, v + 1, 1.0 / std::sqrt(l[2]), 1.0 / std::sqrt(l[0]), kSmallestSize, kLargestSize));
+                      source, numbered(v), 1.0 / std::sqrt(l[2]), 1.0 / std::sqrt(l[0]), kSmallestSize, kLargestSize));
   }
 }
 
@@ -65,7 +66,7 @@ std::vector<Sym6> metric_field_from_sol(const io::SolData& sol, std::size_t vert
       for (std::size_t v = 0; v < vertices; ++v) {
         const double h = sol.values[v * stride + off];
         if (!(h > 0.0) || !std::isfinite(h))
-          throw InputError(fmt::format("{}: size at vertex {} is {} (must be finite and > 0)", source, v + 1, h));
+          throw InputError(fmt::format("{}: size at vertex {} is {} (must be finite and > 0)", source, numbered(v), h));
         out[v] = isotropic_metric(h);
       }
     } else {
@@ -86,7 +87,7 @@ std::vector<double> scalar_field_from_sol(const io::SolData& sol, std::size_t ve
     std::vector<double> out = sol.field(k);
     for (std::size_t v = 0; v < out.size(); ++v)
       if (!std::isfinite(out[v]))
-        throw InputError(fmt::format("{}: value at vertex {} is not finite ({})", source, v + 1, out[v]));
+        throw InputError(fmt::format("{}: value at vertex {} is not finite ({})", source, numbered(v), out[v]));
     return out;
   }
   throw InputError(fmt::format("{}: no scalar field in the file", source));
@@ -104,7 +105,7 @@ void check_finite_values(const std::vector<double>& values, int width, const std
   for (std::size_t i = 0; i < values.size(); ++i)
     if (!std::isfinite(values[i]))
       throw InputError(fmt::format("{}: value at vertex {} is not finite ({})", source,
-                                   i / static_cast<std::size_t>(width) + 1, values[i]));
+                                   numbered(i / static_cast<std::size_t>(width)), values[i]));
 }
 
 // Component c of field k, contiguous.
@@ -122,9 +123,9 @@ std::vector<double> solution_values_from_sol(const io::SolData& sol, std::size_t
   check_count(sol, vertices, source);
   for (std::size_t k = 0; k < sol.types.size(); ++k)
     if (sol.types[k] == io::SolType::matrix)
-      throw InputError(fmt::format(
-          "{}: field {} is a {} (scalar, vector and symmetric matrix fields are solutions to transfer)", source,
-          k + 1, io::to_string(sol.types[k])));
+      throw InputError(
+          fmt::format("{}: field {} is a {} (scalar, vector and symmetric matrix fields are solutions to transfer)",
+                      source, k + 1, io::to_string(sol.types[k])));
   check_finite_values(sol.values, sol.stride(), source);
   const auto stride = static_cast<std::size_t>(sol.stride());
   for (std::size_t k = 0; k < sol.types.size(); ++k) {
@@ -134,8 +135,8 @@ std::vector<double> solution_values_from_sol(const io::SolData& sol, std::size_t
       Sym6 m;
       std::copy_n(sol.values.begin() + static_cast<std::ptrdiff_t>(v * stride + at), 6, m.begin());
       if (!is_spd(m))
-        throw InputError(fmt::format("{}: field {} at vertex {} is not symmetric positive definite", source, k + 1,
-                                     v + 1));
+        throw InputError(
+            fmt::format("{}: field {} at vertex {} is not symmetric positive definite", source, k + 1, numbered(v)));
     }
   }
   return sol.values;

@@ -4,6 +4,7 @@
 #include <metrica/metrics/quality_report.hpp>
 #include <metrica/metrics/space.hpp>
 #include <metrica/metrics/unit_band.hpp>
+#include <metrica/numbering.hpp>
 
 #include <fmt/core.h>
 
@@ -98,6 +99,40 @@ BlockMeasure sum_blocks(const std::vector<BlockMeasure>& blocks, const std::vect
   return all;
 }
 
+// The error of a report some measure of which is NaN or infinite: the
+// metric (or a coordinate) is degenerate there. Names the first such edge
+// or tet and the metrics at its ends.
+template <MetricSpace S>
+std::string not_finite_message(const Mesh& mesh) {
+  const auto where = [&](std::initializer_list<VertexId> vertices) {
+    std::string out;
+    for (VertexId v : vertices) {
+      const Point& p = mesh.point(v);
+      const Sym6& m = mesh.metric(v);
+      out += fmt::format("\n  vertex {} at ({:.6g}, {:.6g}, {:.6g}): metric {:.6g} {:.6g} {:.6g} {:.6g} {:.6g} {:.6g}",
+                         numbered(v), p.x(), p.y(), p.z(), m[0], m[1], m[2], m[3], m[4], m[5]);
+    }
+    return out;
+  };
+  std::string found;
+  for_each_unique_edge(mesh, [&](VertexId a, VertexId b) {
+    if (found.empty() && !std::isfinite(S::edge_length(mesh, a, b)))
+      found = fmt::format("the metric length of edge ({} {}) is {}{}", numbered(a), numbered(b),
+                          S::edge_length(mesh, a, b), where({a, b}));
+  });
+  for (TetId t = 0; found.empty() && t < mesh.tet_capacity(); ++t) {
+    if (!mesh.tet_alive(t)) continue;
+    const auto& v = mesh.tet(t);
+    const double q = S::mean_ratio(mesh, v);
+    if (!std::isfinite(q))
+      found = fmt::format("the mean ratio of tet {} is {}{}", numbered(t), q, where({v[0], v[1], v[2], v[3]}));
+  }
+  return fmt::format(
+      "quality report: {} (a metric with non-finite, huge or vanishing entries, or non-finite "
+      "coordinates)",
+      found.empty() ? std::string("a cached mean ratio is not finite") : found);
+}
+
 template <MetricSpace S>
 QualityReport report_in(const Mesh& mesh, const QualityReportOptions& o) {
   QualityReport r;
@@ -149,11 +184,7 @@ QualityReport report_in(const Mesh& mesh, const QualityReportOptions& o) {
   const std::size_t unit = edges.first, below01 = tets.first, below03 = tets.second;
   // A NaN or infinite measure says the metric (or a coordinate) is
   // degenerate: no report rather than one that reads "nan".
-  if (!std::isfinite(len.sum) || !std::isfinite(qual.sum))
-    throw InputError(fmt::format(
-        "quality report: {} is not finite on some {} (a metric with non-finite, huge or "
-        "vanishing entries, or non-finite coordinates)",
-        !std::isfinite(len.sum) ? "the metric length" : "the mean ratio", !std::isfinite(len.sum) ? "edge" : "tet"));
+  if (!std::isfinite(len.sum) || !std::isfinite(qual.sum)) throw InputError(not_finite_message<S>(mesh));
   r.length = len.done();
   r.quality = qual.done();
   if (r.edges) r.unit_length_share = static_cast<double>(unit) / static_cast<double>(r.edges);

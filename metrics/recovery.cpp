@@ -2,6 +2,7 @@
 #include <metrica/geometry.hpp>
 #include <metrica/metrics/recovery.hpp>
 #include <metrica/metrics/sym_tensor.hpp>
+#include <metrica/numbering.hpp>
 
 #include <Eigen/LU>
 #include <fmt/core.h>
@@ -50,7 +51,7 @@ void check_values(const Mesh& mesh, const std::vector<double>& values) {
         fmt::format("field of {} values for a mesh of {} vertex ids", values.size(), mesh.vertex_capacity()));
   for (std::size_t v = 0; v < values.size(); ++v)
     if (mesh.vertex_alive(static_cast<VertexId>(v)) && !std::isfinite(values[v]))
-      throw InputError(fmt::format("field value at vertex {} is not finite ({})", v + 1, values[v]));
+      throw InputError(fmt::format("field value at vertex {} is not finite ({})", numbered(v), values[v]));
 }
 
 }  // namespace

@@ -23,10 +23,7 @@ bool is_spd(const Sym6& m) {
   return eigen_decomposition(m).values[0] > 0.0;
 }
 
-double spd_determinant(const Sym6& m) {
-  const double det = determinant(m);
-  const double hadamard = m[0] * m[2] * m[5];
-  if (det > 1e-6 * hadamard) return det;
+double spd_determinant_by_eigenvalues(const Sym6& m) {
   const Eigen::Vector3d l = eigen_decomposition(m).values.cwiseMax(0.0);
   return l.prod();
 }

@@ -247,11 +247,12 @@ if [ "$only" = all ] || [ "$only" = options ]; then
   msg=$(run 2 adapt "$dir/cube.meshb" --analytic linear -o "$dir/d.meshb" --dry-run 2>&1) || fail "--dry-run: $msg"
   grep -q "tets out on 2 ranks" <<<"$msg" || fail "--dry-run on 2 ranks: $msg"
   [ ! -e "$dir/d.meshb" ] || fail "--dry-run on 2 ranks wrote an output"
-  # --vtu: the appended raw arrays hold the output's vertices and tets.
+  # --vtu: the appended raw arrays hold the output's vertices, tets and
+  # triangles.
   run 2 adapt "$dir/cube.meshb" --analytic linear --concurrency serial -o "$dir/v.meshb" --vtu "$dir/v.vtu" \
     >"$dir/v.txt" 2>&1 || { cat "$dir/v.txt"; fail "--vtu on 2 ranks failed"; }
   "$metrica" convert "$dir/v.meshb" "$dir/v.mesh" -q
-  python3 - "$dir/v.vtu" "$dir/v.mesh" <<'PY' || fail "--vtu on 2 ranks: not the output's tets"
+  python3 - "$dir/v.vtu" "$dir/v.mesh" <<'PY' || fail "--vtu on 2 ranks: not the output's tets and triangles"
 import re, struct, sys
 raw = open(sys.argv[1], "rb").read()
 head, data = raw.split(b'<AppendedData encoding="raw">', 1)
@@ -270,10 +271,13 @@ def section(name):
     return [line.split() for line in text[i + 2:i + 2 + n]]
 verts = [[float(x) for x in r[:3]] for r in section("Vertices")]
 tets = [[int(x) for x in r] for r in section("Tetrahedra")]
+tris = [[int(x) for x in r] for r in section("Triangles")]
+nt = len(tets)
 assert xyz == [c for v in verts for c in v], "points"
-assert conn == [v - 1 for t in tets for v in t[:4]], "connectivity"
-assert offs == [4 * (k + 1) for k in range(len(tets))] and types == [10] * len(tets), "offsets or types"
-assert refs == [t[4] for t in tets], "refs"
+assert conn == [v - 1 for t in tets for v in t[:4]] + [v - 1 for f in tris for v in f[:3]], "connectivity"
+assert offs == [4 * (k + 1) for k in range(nt)] + [4 * nt + 3 * (k + 1) for k in range(len(tris))], "offsets"
+assert types == [10] * nt + [5] * len(tris), "types"
+assert refs == [t[4] for t in tets] + [f[3] for f in tris], "refs"
 assert raw.endswith(b"</AppendedData>\n</VTKFile>\n"), "the end"
 PY
   # One layout: the single process writes the same file from the same mesh.

@@ -4,6 +4,7 @@
 // to the bit; malformed files are clear errors.
 #include "test_support.hpp"
 
+#include <metrica/box.hpp>
 #include <metrica/error.hpp>
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/meshb.hpp>
@@ -15,6 +16,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <sstream>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -106,6 +108,41 @@ TEST_SUITE("unit") {
         CHECK(triangles(back) == triangles(d));
       }
     CHECK(format_of("a.msh") == FileFormat::msh);
+  }
+
+  TEST_CASE("msh: region 0 beside other regions is a physical group of its own - read back as 0") {
+    // The UGAWG cube's tets are region 0 and its faces surfaces 1 to 6: a
+    // file with some entities in groups and others not is refused by
+    // meshio and by our reader, so every entity gets its group.
+    MeshData d = box_mesh_data({.nx = 2, .ny = 1, .nz = 1});
+    for (std::size_t t = 0; t < d.tets.size(); ++t) d.tet_refs[t] = t < 6 ? 0 : 5;
+    for (const Encoding e : {Encoding::ascii, Encoding::binary}) {
+      const std::string text = format_msh(d, MshVersion::v41, e);
+      const MeshData back = parse_msh(text, "back.msh");
+      CHECK(back.tets.size() == d.tets.size());
+      CHECK(std::count(back.tet_refs.begin(), back.tet_refs.end(), 0) == 6);
+      CHECK(std::count(back.tet_refs.begin(), back.tet_refs.end(), 5) == 6);
+      auto ids = back.triangle_refs;
+      std::sort(ids.begin(), ids.end());
+      auto expected = d.triangle_refs;
+      std::sort(expected.begin(), expected.end());
+      CHECK(ids == expected);
+    }
+    // Every ref 0: no groups at all.
+    MeshData bare = d;
+    std::fill(bare.tet_refs.begin(), bare.tet_refs.end(), 0);
+    std::fill(bare.triangle_refs.begin(), bare.triangle_refs.end(), 0);
+    const std::string text = format_msh(bare, MshVersion::v41, Encoding::ascii);
+    const std::size_t at = text.find("$Entities\n0 0 1 1\n");
+    REQUIRE(at != std::string::npos);
+    std::istringstream lines(text.substr(at));
+    std::string line;
+    std::getline(lines, line);
+    std::getline(lines, line);
+    for (int entity = 0; entity < 2; ++entity) {
+      std::getline(lines, line);
+      CHECK(line.ends_with(" 0 0"));  // no physical tag, no bounding entity
+    }
   }
 
   TEST_CASE("msh: other elements are dropped with a count - second-order tets keep their corners") {

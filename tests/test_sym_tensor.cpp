@@ -2,6 +2,7 @@
 // with L^T L = M, SPD detection; accurate at anisotropy ratios of 1e8.
 #include "test_support.hpp"
 
+#include <metrica/metrics/measures.hpp>
 #include <metrica/metrics/sym_tensor.hpp>
 
 #include <Eigen/Geometry>
@@ -99,6 +100,30 @@ TEST_SUITE("unit") {
     CHECK(m[0] == doctest::Approx(100.0));
     CHECK(spd_log(m)[0] == doctest::Approx(std::log(100.0)));
     CHECK(determinant(m) == doctest::Approx(1e6));
+  }
+
+  TEST_CASE("a planar front's metric: det and mean ratio from the eigenvalues when the entries cancel") {
+    // Size 5e-5 across the plane x + y + z = const, 1 along it: every entry
+    // is about 1.1e8 while det M is 3.3e8, which the entries' cofactors
+    // cannot resolve (they may give a negative det, so a NaN mean ratio).
+    const Eigen::Vector3d n = Eigen::Vector3d(1, 1, 1).normalized();
+    Eigen::Matrix3d frame;
+    frame.col(0) = n;
+    frame.col(1) = Eigen::Vector3d(1, -1, 0).normalized();
+    frame.col(2) = n.cross(frame.col(1));
+    const Sym6 m = metric_from_sizes(frame, Eigen::Vector3d(5.4e-5, 1.0, 1.0));
+    const double expected = 1.0 / (5.4e-5 * 5.4e-5);
+    CHECK(spd_determinant(m) == doctest::Approx(expected).epsilon(1e-6));
+    // A tet stretched along the plane, thin across it.
+    const TetPoints p{Point(0.5, 0.5, 0.5), Point(0.5, 0.5, 0.5) + frame.col(1), Point(0.5, 0.5, 0.5) + frame.col(2),
+                      Point(0.5, 0.5, 0.5) + 1e-4 * n + 0.3 * frame.col(1)};
+    const double q = mean_ratio(p, m);
+    CHECK(std::isfinite(q));
+    CHECK(q > 0.0);
+    CHECK(metric_volume(p, m) > 0.0);
+    // A well-conditioned tensor keeps the entries' determinant, to the bit.
+    const Sym6 round = isotropic_metric(0.1);
+    CHECK(spd_determinant(round) == determinant(round));
   }
 
   TEST_CASE("metric_from_sizes puts size h along each direction") {

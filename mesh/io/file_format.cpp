@@ -43,8 +43,10 @@ const char* to_string(FileFormat f) {
 MeshData read_mesh_file(const std::string& path) {
   const auto f = format_of(path);
   if (f == FileFormat::msh) return read_msh(path);
+  if (f == FileFormat::vtu) return read_vtu(path);
+  if (f == FileFormat::su2) return read_su2(path);
   if (f != FileFormat::mesh && f != FileFormat::meshb)
-    throw IoError(fmt::format("{}: cannot read meshes of this format (use .mesh, .meshb or .msh)", path));
+    throw IoError(fmt::format("{}: cannot read meshes of this format (use .mesh, .meshb, .msh, .vtu or .su2)", path));
   return read_meshb(path);
 }
 

@@ -26,10 +26,21 @@ struct Box {
 // of its elements in the mesh's list, their bounding box.
 struct Entity {
   int tag = 0;
-  int physical = 0;  // 0: none (a ref <= 0)
+  bool grouped = false;  // in a physical group, numbered `physical`
+  int physical = 0;
   std::vector<std::size_t> elements;
   Box box;
 };
+
+// Every entity is in the physical group of its ref as soon as one ref of
+// the mesh is not 0 (id 0 included: a file whose volumes are partly in
+// groups is one that readers refuse, meshio and ours among them); none is
+// when every ref is 0.
+bool any_ref(const MeshData& m) {
+  const auto nonzero = [](int r) { return r != 0; };
+  return std::any_of(m.triangle_refs.begin(), m.triangle_refs.end(), nonzero) ||
+         std::any_of(m.tet_refs.begin(), m.tet_refs.end(), nonzero);
+}
 
 template <class Elements, class Refs>
 std::vector<Entity> entities_by_ref(const MeshData& m, const Elements& elements, const Refs& refs) {
@@ -42,9 +53,11 @@ std::vector<Entity> entities_by_ref(const MeshData& m, const Elements& elements,
   }
   std::vector<Entity> out;
   int next = 1;
+  const bool grouped = any_ref(m);
   for (auto& [ref, e] : by_ref) {
     e.tag = next++;
-    e.physical = ref > 0 ? ref : 0;
+    e.grouped = grouped;
+    e.physical = ref;
     out.push_back(std::move(e));
   }
   return out;
@@ -95,8 +108,8 @@ std::string format_41_binary(const MeshData& m) {
       b.tag(e.tag);
       b.point(e.box.lo);
       b.point(e.box.hi);
-      b.size(e.physical > 0 ? 1 : 0);
-      if (e.physical > 0) b.tag(e.physical);
+      b.size(e.grouped ? 1 : 0);
+      if (e.grouped) b.tag(e.physical);
       b.size(0);  // no bounding entities
     }
   s += "\n$EndEntities\n$Nodes\n";
@@ -171,7 +184,7 @@ std::string format_41(const MeshData& m) {
     for (const Entity& e : *list) {
       fmt::format_to(out, "{} ", e.tag);
       append_box(s, e.box);
-      if (e.physical > 0)
+      if (e.grouped)
         fmt::format_to(out, " 1 {} 0\n", e.physical);
       else
         s += " 0 0\n";

@@ -1,6 +1,7 @@
 #include <metrica/error.hpp>
 #include <metrica/io/atomic_file.hpp>
 #include <metrica/io/vtu.hpp>
+#include <metrica/numbering.hpp>
 
 #include <fmt/format.h>
 
@@ -8,24 +9,26 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 namespace metrica::io {
 
 VtuLayout::VtuLayout(std::uint64_t vertices, std::uint64_t tets, const std::vector<FieldShape>& point_fields,
-                     const std::vector<FieldShape>& cell_fields)
+                     const std::vector<FieldShape>& cell_fields, std::uint64_t triangles)
     : point_fields_(point_fields.size()) {
+  const std::uint64_t cells = tets + triangles;
   std::uint64_t offset = 0;
   auto add = [&](const char* type, const std::string& name, int components, std::uint64_t bytes) {
     arrays_.push_back({type, name, components, bytes, offset});
     offset += 8 + bytes;
   };
   add("Float64", "Points", 3, 24 * vertices);
-  add("Int64", "connectivity", 1, 32 * tets);
-  add("Int64", "offsets", 1, 8 * tets);
-  add("UInt8", "types", 1, tets);
+  add("Int64", "connectivity", 1, 32 * tets + 24 * triangles);
+  add("Int64", "offsets", 1, 8 * cells);
+  add("UInt8", "types", 1, cells);
   for (const auto& f : point_fields) add("Float64", f.name, f.components, 8 * vertices * std::uint64_t(f.components));
-  add("Int32", "ref", 1, 4 * tets);
-  for (const auto& f : cell_fields) add("Float64", f.name, f.components, 8 * tets * std::uint64_t(f.components));
+  add("Int32", "ref", 1, 4 * cells);
+  for (const auto& f : cell_fields) add("Float64", f.name, f.components, 8 * cells * std::uint64_t(f.components));
 
   fmt::memory_buffer out;
   auto it = std::back_inserter(out);
@@ -41,7 +44,7 @@ VtuLayout::VtuLayout(std::uint64_t vertices, std::uint64_t tets, const std::vect
                  "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
                  "header_type=\"UInt64\">\n  <UnstructuredGrid>\n"
                  "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n      <Points>\n",
-                 vertices, tets);
+                 vertices, cells);
   array(kPoints);
   fmt::format_to(it, "      </Points>\n      <Cells>\n");
   for (std::size_t k : {kConnectivity, kOffsets, kTypes}) array(k);
@@ -75,10 +78,10 @@ std::vector<VtuLayout::FieldShape> shapes(const std::vector<VtuField>& fields) {
 
 std::string format_vtu(const MeshData& m, const std::vector<VtuField>& point_fields,
                        const std::vector<VtuField>& cell_fields) {
-  const std::size_t nv = m.vertices.size(), nt = m.tets.size();
+  const std::size_t nv = m.vertices.size(), nt = m.tets.size(), nf = m.triangles.size();
   for (const auto& f : point_fields) check_field(f, nv, "vertices");
   for (const auto& f : cell_fields) check_field(f, nt, "tets");
-  const VtuLayout layout(nv, nt, shapes(point_fields), shapes(cell_fields));
+  const VtuLayout layout(nv, nt, shapes(point_fields), shapes(cell_fields), nf);
   std::string out(layout.tail_at(), '\0');
   std::memcpy(out.data(), layout.head().data(), layout.head().size());
   // Each array: its byte count, then its values at values_at(k).
@@ -94,12 +97,24 @@ std::string format_vtu(const MeshData& m, const std::vector<VtuField>& point_fie
     put(VtuLayout::kTypes, t, std::uint8_t(10));  // VTK_TETRA
     put(layout.refs(), t, std::int32_t(t < m.tet_refs.size() ? m.tet_refs[t] : 0));
   }
+  // The surface triangles after the tets, their surface ids as "ref".
+  for (std::size_t f = 0; f < nf; ++f) {
+    for (int i = 0; i < 3; ++i) put(VtuLayout::kConnectivity, 4 * nt + 3 * f + i, std::int64_t(m.triangles[f][i]));
+    put(VtuLayout::kOffsets, nt + f, std::int64_t(4 * nt + 3 * (f + 1)));
+    put(VtuLayout::kTypes, nt + f, std::uint8_t(5));  // VTK_TRIANGLE
+    put(layout.refs(), nt + f, std::int32_t(f < m.triangle_refs.size() ? m.triangle_refs[f] : 0));
+  }
   for (std::size_t f = 0; f < point_fields.size(); ++f)
     for (std::size_t i = 0; i < point_fields[f].values.size(); ++i)
       put(VtuLayout::kFirstPointField + f, i, point_fields[f].values[i]);
-  for (std::size_t f = 0; f < cell_fields.size(); ++f)
-    for (std::size_t i = 0; i < cell_fields[f].values.size(); ++i)
-      put(layout.refs() + 1 + f, i, cell_fields[f].values[i]);
+  // Cell fields are the tets'; the triangles' entries are NaN (undefined).
+  for (std::size_t f = 0; f < cell_fields.size(); ++f) {
+    const auto& values = cell_fields[f].values;
+    const auto components = static_cast<std::size_t>(cell_fields[f].components);
+    for (std::size_t i = 0; i < values.size(); ++i) put(layout.refs() + 1 + f, i, values[i]);
+    for (std::size_t i = values.size(); i < components * (nt + nf); ++i)
+      put(layout.refs() + 1 + f, i, std::numeric_limits<double>::quiet_NaN());
+  }
   out += VtuLayout::tail();
   return out;
 }
@@ -111,7 +126,7 @@ void write_vtu(const std::string& path, const MeshData& mesh, const std::vector<
     for (std::size_t i = 0; i < f.values.size(); ++i)
       if (!std::isfinite(f.values[i]))
         throw IoError(fmt::format("{}: field {} is not finite at vertex {}; nothing written", path, f.name,
-                                  i / std::size_t(std::max(1, f.components)) + 1));
+                                  numbered(i / std::size_t(std::max(1, f.components)))));
   write_file_atomically(path, format_vtu(mesh, point_fields, cell_fields));
 }
 

@@ -15,7 +15,8 @@ enum class FileFormat { mesh, meshb, msh, sol, solb, vtu, su2, unknown };
 FileFormat format_of(const std::string& path);
 const char* to_string(FileFormat f);
 
-// .mesh, .meshb or gmsh's .msh; IoError for other formats.
+// .mesh, .meshb, gmsh's .msh, VTK's .vtu or SU2's .su2; IoError for other
+// formats.
 MeshData read_mesh_file(const std::string& path);
 
 // .mesh, .meshb (libMeshb `version`, 0 = keep data.version), .msh (4.1;

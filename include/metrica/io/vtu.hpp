@@ -1,5 +1,7 @@
-// VTK unstructured grid (.vtu) for ParaView: tets with per-vertex and
-// per-tet fields, the arrays as raw appended data. VtuLayout is the one
+// VTK unstructured grid (.vtu) for ParaView: tets, then the surface
+// triangles, with per-vertex and per-tet fields, the arrays as raw appended
+// data; and a reader of such files (ours, or any with tets and triangles as
+// raw appended, base64 or ASCII data without compression). VtuLayout is the one
 // description of the file (its XML head, where each array's bytes go):
 // the single-process writer fills it at once, the MPI writer
 // (distributed/write_part.cpp) places each rank's slices in it.
@@ -20,8 +22,9 @@ struct VtuField {
 };
 
 // The arrays of a tet grid's .vtu, in file order: the points (Float64 x 3),
-// the cells (connectivity Int64 x 4 a tet, offsets Int64, types UInt8),
-// then the point fields (Float64), the tets' refs (Int32) and the cell
+// the cells (the tets then the triangles: connectivity Int64 x 4 a tet and
+// x 3 a triangle, offsets Int64, types UInt8), then the point fields
+// (Float64), the cells' refs (Int32: region and surface ids) and the cell
 // fields (Float64). Each array in the appended block is an 8-byte count
 // (UInt64) and its bytes.
 class VtuLayout {
@@ -39,7 +42,7 @@ class VtuLayout {
     int components;
   };
   VtuLayout(std::uint64_t vertices, std::uint64_t tets, const std::vector<FieldShape>& point_fields = {},
-            const std::vector<FieldShape>& cell_fields = {});
+            const std::vector<FieldShape>& cell_fields = {}, std::uint64_t triangles = 0);
 
   const std::vector<Array>& arrays() const { return arrays_; }
   std::size_t refs() const { return kFirstPointField + point_fields_; }  // the "ref" array's index
@@ -62,13 +65,25 @@ class VtuLayout {
   std::string head_;
 };
 
-// Writes the tets of `mesh` (with their reference as the cell field "ref"),
-// plus the given point fields (one entry per vertex) and cell fields (one
-// entry per tet). Written through a temporary file and renamed.
+// Writes the tets and triangles of `mesh` (their region and surface ids as
+// the cell field "ref"), plus the given point fields (one entry per vertex;
+// a symmetric tensor in VTK's order xx, yy, zz, xy, yz, xz) and cell fields
+// (one entry per tet; NaN on the triangles). Written through a temporary
+// file and renamed.
 void write_vtu(const std::string& path, const MeshData& mesh, const std::vector<VtuField>& point_fields = {},
                const std::vector<VtuField>& cell_fields = {});
 
 std::string format_vtu(const MeshData& mesh, const std::vector<VtuField>& point_fields,
                        const std::vector<VtuField>& cell_fields);
+
+// A symmetric tensor field from libMeshb's order (xx, xy, yy, xz, yz, zz)
+// to VTK's, as ParaView reads 6 components.
+VtuField vtu_tensor_field(std::string name, const std::vector<double>& meshb_order);
+
+// Reads a .vtu's tets (type 10) and triangles (type 5) with the cell field
+// "ref" (or "medit:ref", "gmsh:physical") as their ids; other cells are left
+// out with a warning. The point fields go to `point_fields` when given.
+// IoError for compressed data, other encodings or a malformed file.
+MeshData read_vtu(const std::string& path, std::vector<VtuField>* point_fields = nullptr);
 
 }  // namespace metrica::io

@@ -27,7 +27,7 @@ struct DistributedAdapt {
   int rounds = 5;             // at most this many cuts per adaptation
   int version = 0;            // libMeshb version of the output (0: chosen by size)
   std::string metric_out;     // also the metric at the output's vertices (.solb), or empty
-  std::string vtu;            // also the tets for ParaView (.vtu), or empty
+  std::string vtu;            // also the mesh for ParaView (.vtu), or empty
   bool keep_surface = false;  // the boundary and internal surfaces stay as they are
   bool dry_run = false;       // read and check the inputs, say what would be done, adapt and write nothing
   // A run predicted to make more tets is refused before any work (0: no

@@ -1,5 +1,5 @@
 // Writing a distributed mesh into one .meshb or .mesh (and its metric as
-// one .solb or .sol, its tets as one .vtu): vertices numbered
+// one .solb or .sol, its tets and triangles as one .vtu): vertices numbered
 // globally (a vertex held by several parts is written by the lowest rank
 // holding it), each rank's rows placed at offsets from exclusive scans,
 // written with MPI-IO into temporary files that rank 0 renames together
@@ -85,9 +85,10 @@ StagedFile write_part(const Comm& comm, const Part& part, const VertexNumbering&
 StagedFile write_part_text(const Comm& comm, const Part& part, const VertexNumbering& numbering,
                            const std::string& path, int version, const CadModel* model, WrittenCounts* counts);
 
-// The mesh's tets for ParaView as one .vtu (the single process's arrays:
-// points, tets, their refs as the cell field "ref"), its data appended raw
-// after the XML so that each rank's rows go at offsets from scans.
+// The mesh for ParaView as one .vtu (the single process's arrays: points,
+// tets then surface triangles, their ids as the cell field "ref"), its
+// data appended raw after the XML so that each rank's rows go at offsets
+// from scans.
 StagedFile write_part_vtu(const Comm& comm, const Part& part, const VertexNumbering& numbering,
                           const std::string& path);
 

@@ -24,6 +24,13 @@ std::vector<double> values_at_vertices(const Mesh& mesh, const ScalarFunction& u
 // the sizes do not match or a value is not finite.
 double l2_interpolation_error(const Mesh& mesh, const std::vector<double>& values, const ScalarFunction& exact);
 
+// The same with u evaluated at many quadrature points per call (the points
+// of a few thousand tets in, their values out): for a u that is cheap only
+// in bulk, as a vectorized Python function is. InputError when it
+// returns another count of values or a value that is not finite.
+using PointsFunction = std::function<std::vector<double>(const std::vector<Point>&)>;
+double l2_interpolation_error_in_bulk(const Mesh& mesh, const std::vector<double>& values, const PointsFunction& exact);
+
 // The L2 norm of u_h - v_h for two P1 fields on the same mesh (the error
 // against the finest mesh's solution, once transferred).
 double l2_difference(const Mesh& mesh, const std::vector<double>& a, const std::vector<double>& b);

@@ -58,7 +58,7 @@ inline bool ugawg_length_in(const UnitBand& band, const Eigen::Vector3d& v, cons
 
 // |K| sqrt(det M): the volume of K in the constant metric M.
 inline double metric_volume(const TetPoints& p, const Sym6& m) {
-  return tet_volume(p[0], p[1], p[2], p[3]) * std::sqrt(determinant(m));
+  return tet_volume(p[0], p[1], p[2], p[3]) * std::sqrt(spd_determinant(m));
 }
 
 // Eq. (quality), appendix A: the mean ratio
@@ -96,7 +96,7 @@ inline double mean_ratio_cubed(const TetPoints& p, const Sym6& m) {
   double sum = 0.0;
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j) sum += metric_norm2(m, p[j] - p[i]);
-  return mean_ratio_cubed(orient3d_fast(p[0], p[1], p[2], p[3]), determinant(m), sum);
+  return mean_ratio_cubed(orient3d_fast(p[0], p[1], p[2], p[3]), spd_determinant(m), sum);
 }
 
 inline Point centroid(const TetPoints& p) { return 0.25 * (p[0] + p[1] + p[2] + p[3]); }

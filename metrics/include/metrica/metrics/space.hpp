@@ -119,7 +119,7 @@ struct SpaceCommon {
 
 struct Isotropic : detail::SpaceCommon<Isotropic> {
   static constexpr std::string_view name = "isotropic";
-  static double size(const Sym6& m) { return 1.0 / std::sqrt(std::cbrt(determinant(m))); }
+  static double size(const Sym6& m) { return 1.0 / std::sqrt(std::cbrt(spd_determinant(m))); }
   static Sym6 vertex_metric(const Mesh& mesh, VertexId v) { return isotropic_metric(size(mesh.metric(v))); }
   static Sym6 metric_at(const Mesh& mesh, std::span<const VertexId> ids, std::span<const double> w) {
     double h = 0.0;

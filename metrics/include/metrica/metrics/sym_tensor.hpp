@@ -74,11 +74,20 @@ Sym6 log_euclidean_mean(std::span<const Sym6> metrics, std::span<const double> w
 
 inline double determinant(const Sym6& m) { return to_matrix(m).determinant(); }
 
+// det M from the eigenvalues (clamped at 0): spd_determinant's slow path.
+double spd_determinant_by_eigenvalues(const Sym6& m);
+
 // det M of a tensor meant to be SPD, from its entries unless they cancel
-// (a rotated, nearly rank-deficient M: the entries' determinant falls far
-// below the product of the diagonal, Hadamard's bound, and may come out
-// negative), then from its eigenvalues, clamped at 0.
-double spd_determinant(const Sym6& m);
+// (a rotated, nearly rank-deficient M, as a planar front's multiscale
+// metric is: the entries' determinant falls far below the product of the
+// diagonal, Hadamard's bound, and may come out negative), then from its
+// eigenvalues, clamped at 0. Every measure in a metric (volume, mean ratio,
+// size) takes its determinant here.
+inline double spd_determinant(const Sym6& m) {
+  const double det = determinant(m);
+  if (det > 1e-6 * (m[0] * m[2] * m[5])) return det;
+  return spd_determinant_by_eigenvalues(m);
+}
 
 // The adjugate of m (det(m) m^-1, symmetric), in the same storage.
 inline Sym6 adjugate(const Sym6& m) {

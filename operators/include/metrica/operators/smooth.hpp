@@ -198,7 +198,7 @@ Point ball_terms_and_optimum(const Mesh& mesh, VertexId v, SmoothScratch& s) {
     const Point& f1 = mesh.point(f[2]);
     const Point& f2 = mesh.point(f[1]);
     const Sym6& m = s.metrics[i];
-    const double det = determinant(m);
+    const double det = spd_determinant(m);
     const std::array<double, 3> edges2 = face_edges2(m, f0, f1, f2);
     s.terms.emplace_back(ball_term(x, f0, f1, f2, m, det, edges2));
     optimal += ideal_apex(f0, f1, f2, s.terms.back().normal, m, det, edges2);
