@@ -151,48 +151,6 @@ py::dict adapt_report(const py::list& cycles, const OperatorReport& ops, double 
   return report;
 }
 
-py::list read_field(const std::string& path) {
-  const io::SolData sol = io::read_sol(path);
-  py::list out;
-  const std::size_t stride = static_cast<std::size_t>(sol.stride());
-  std::size_t offset = 0;
-  for (const io::SolType t : sol.types) {
-    const auto width = static_cast<std::size_t>(io::sol_type_size(t));
-    py::array_t<double> a =
-        width == 1 ? py::array_t<double>({static_cast<py::ssize_t>(sol.count)})
-                   : py::array_t<double>({static_cast<py::ssize_t>(sol.count), static_cast<py::ssize_t>(width)});
-    double* x = a.mutable_data();
-    for (std::size_t v = 0; v < sol.count; ++v)
-      for (std::size_t k = 0; k < width; ++k) *x++ = sol.values[v * stride + offset + k];
-    offset += width;
-    out.append(a);
-  }
-  return out;
-}
-
-void write_field(const std::string& path, const py::array& values, int version, int expected_width) {
-  if (values.dtype().kind() != 'f') throw InputError("write_field: expected float64 values");
-  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
-  io::SolData sol;
-  const py::ssize_t width = a.ndim() == 1 ? 1 : a.ndim() == 2 ? a.shape(1) : 0;
-  if (expected_width != 0 && width != expected_width)
-    throw InputError(fmt::format("write: expected an (n, {}) metric", expected_width));
-  if (width == 1)
-    sol.types = {io::SolType::scalar};
-  else if (width == 3)
-    sol.types = {io::SolType::vector};
-  else if (width == 6)
-    sol.types = {io::SolType::sym_matrix};
-  else
-    throw InputError("write_field: expected shape (n,), (n, 3) or (n, 6)");
-  sol.count = static_cast<std::size_t>(a.shape(0));
-  sol.values.assign(a.data(), a.data() + a.size());
-  for (double x : sol.values)
-    if (!std::isfinite(x)) throw InputError("write_field: the values are not all finite");
-  if (version > 0) sol.version = version;
-  io::write_sol(path, sol, version);
-}
-
 py::dict quality(const PyMesh& m, const py::object& metric, const std::string& space, bool measures,
                  const py::object& metric_mesh) {
   if (metric.is_none()) throw InputError("quality: give the metric, an (n, 6) array");

@@ -1,5 +1,5 @@
-// Metrics, fields and the adaptation from Python: what `metrica metric
-// --analytic`, `metrica adapt` and `metrica quality` do, on a PyMesh and
+// The adaptation and its quality report from Python: what `metrica adapt`
+// and `metrica quality` do, on a PyMesh and
 // numpy arrays, with the command's checks, defaults and results.
 #pragma once
 
@@ -12,12 +12,6 @@
 #include <string>
 
 namespace metrica::python {
-
-// The fields of a .sol/.solb: one array per field, (n,), (n, 3) or (n, 6).
-py::list read_field(const std::string& path);
-// One field written: (n,) scalar, (n, 3) vector, (n, 6) symmetric tensor
-// (`width`, when not 0, the one expected).
-void write_field(const std::string& path, const py::array& values, int version, int width = 0);
 
 // The UGAWG quality report of the mesh in `metric` ((n, 6)) as a dict;
 // with `measures`, the measures too: "edge_ends" (k, 2) vertex indices,

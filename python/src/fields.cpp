@@ -10,6 +10,8 @@
 #include <metrica/metrics/metric_bounds.hpp>
 #include <metrica/metrics/metric_field.hpp>
 #include <metrica/metrics/multiscale.hpp>
+#include <metrica/metrics/recovery.hpp>
+#include <metrica/numbering.hpp>
 #include <metrica/point_location.hpp>
 
 #include <fmt/core.h>
@@ -68,7 +70,8 @@ std::vector<double> values_by_id(const Mesh& mesh, const py::object& values, std
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
     if (!mesh.vertex_alive(v)) continue;
     for (std::size_t k = 0; k < w; ++k, ++x) {
-      if (!std::isfinite(*x)) throw InputError(fmt::format("{}: a value of vertex {} is not finite", what, v));
+      if (!std::isfinite(*x))
+        throw InputError(fmt::format("{}: a value of vertex {} is not finite", what, numbered(v)));
       out[v * w + k] = *x;
     }
   }
@@ -118,29 +121,41 @@ py::array_t<double> analytic_field(const PyMesh& m, const std::string& name) {
   return values_array(m.mesh(), values, 0);
 }
 
-py::array_t<double> multiscale_metric(const PyMesh& m, const py::object& field, double complexity, double norm,
-                                      const py::object& gradation, const py::object& hmin, const py::object& hmax,
-                                      const py::object& max_anisotropy) {
-  const Mesh& mesh = m.mesh();
+namespace {
+
+MultiscaleOptions multiscale_options(const char* what, double complexity, double norm, const py::object& gradation,
+                                     const py::object& hmin, const py::object& hmax,
+                                     const py::object& max_anisotropy) {
   MultiscaleOptions o;
   if (!(complexity > 0.0 && std::isfinite(complexity)))
-    throw InputError(fmt::format("multiscale_metric: complexity must be > 0 (got {})", complexity));
+    throw InputError(fmt::format("{}: complexity must be > 0 (got {})", what, complexity));
   if (!(norm >= 1.0 && std::isfinite(norm)))
-    throw InputError(fmt::format("multiscale_metric: norm must be >= 1 (got {})", norm));
+    throw InputError(fmt::format("{}: norm must be >= 1 (got {})", what, norm));
   o.complexity = complexity;
   o.norm = norm;
   o.bounds = bounds_of(hmin, hmax);
   if (!max_anisotropy.is_none()) {
     o.bounds.max_anisotropy = max_anisotropy.cast<double>();
     if (!(o.bounds.max_anisotropy >= 1.0))
-      throw InputError(fmt::format("multiscale_metric: max_anisotropy must be >= 1 (got {})", o.bounds.max_anisotropy));
+      throw InputError(fmt::format("{}: max_anisotropy must be >= 1 (got {})", what, o.bounds.max_anisotropy));
   }
   o.gradation = !gradation.is_none();
   if (o.gradation) {
     o.gradation_options.beta = gradation.cast<double>();
     if (!(o.gradation_options.beta >= 1.0))
-      throw InputError(fmt::format("multiscale_metric: gradation must be >= 1 (got {})", o.gradation_options.beta));
+      throw InputError(fmt::format("{}: gradation must be >= 1 (got {})", what, o.gradation_options.beta));
   }
+  return o;
+}
+
+}  // namespace
+
+py::array_t<double> multiscale_metric(const PyMesh& m, const py::object& field, double complexity, double norm,
+                                      const py::object& gradation, const py::object& hmin, const py::object& hmax,
+                                      const py::object& max_anisotropy) {
+  const Mesh& mesh = m.mesh();
+  const MultiscaleOptions o =
+      multiscale_options("multiscale_metric", complexity, norm, gradation, hmin, hmax, max_anisotropy);
   const std::size_t width = width_of(field, "field");
   const std::vector<double> flat = values_by_id(mesh, field, width, "field");
   std::vector<Sym6> metric;
@@ -153,6 +168,23 @@ py::array_t<double> multiscale_metric(const PyMesh& m, const py::object& field, 
     metric = multiscale_metric(mesh, fields, o);
   }
   return metric_array(mesh, metric);
+}
+
+py::array_t<double> hessian(const PyMesh& m, const py::object& field) {
+  const Mesh& mesh = m.mesh();
+  return metric_array(mesh, recover_hessian(mesh, values_by_id(mesh, field, 0, "hessian: field")));
+}
+
+py::array_t<double> hessian_metric(const PyMesh& m, const py::object& hessian, double complexity, double norm,
+                                   const py::object& gradation, const py::object& hmin, const py::object& hmax,
+                                   const py::object& max_anisotropy) {
+  const Mesh& mesh = m.mesh();
+  const MultiscaleOptions o =
+      multiscale_options("hessian_metric", complexity, norm, gradation, hmin, hmax, max_anisotropy);
+  // Any symmetric tensor: the metric takes the absolute values of its
+  // eigenvalues.
+  std::vector<Sym6> h = metric_by_id(mesh, hessian, "hessian_metric: hessian", false);
+  return metric_array(mesh, multiscale_metric_from_hessian(mesh, std::move(h), o));
 }
 
 py::array_t<double> intersect(const py::object& a, const py::object& b) {
@@ -197,6 +229,40 @@ py::array_t<double> interpolate(const PyMesh& from, const py::object& field, con
   return values_array(to.mesh(), out, width);
 }
 
+namespace {
+
+// `exact` as a function of many points: an analytic field's name, or a
+// Python callable taking a (k, 3) array of points and returning k values.
+PointsFunction exact_field(const py::object& exact) {
+  if (py::isinstance<py::str>(exact)) {
+    const AnalyticField kind = analytic_field_from_name(exact.cast<std::string>());
+    return [kind](const std::vector<Point>& points) {
+      std::vector<double> out(points.size());
+      for (std::size_t i = 0; i < points.size(); ++i) out[i] = evaluate(kind, points[i]);
+      return out;
+    };
+  }
+  if (!PyCallable_Check(exact.ptr()))
+    throw InputError(
+        fmt::format("error: exact is an analytic field's name or a function of a (k, 3) array of "
+                    "points (got {})",
+                    py::repr(exact).cast<std::string>()));
+  return [exact](const std::vector<Point>& points) {
+    const auto k = static_cast<py::ssize_t>(points.size());
+    py::array_t<double> xyz({k, py::ssize_t{3}});
+    for (py::ssize_t i = 0; i < k; ++i)
+      for (int c = 0; c < 3; ++c) xyz.mutable_at(i, c) = points[static_cast<std::size_t>(i)][c];
+    const auto values = py::array::ensure(exact(xyz));
+    if (!values || values.ndim() != 1 || values.shape(0) != k ||
+        (values.dtype().kind() != 'f' && values.dtype().kind() != 'i'))
+      throw InputError(fmt::format("error: exact(points) must return {} numbers, shape ({},)", k, k));
+    const auto u = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(values);
+    return std::vector<double>(u.data(), u.data() + k);
+  };
+}
+
+}  // namespace
+
 double l2_error(const PyMesh& m, const py::object& values, const py::object& exact, const py::object& reference,
                 const py::object& reference_values) {
   const std::vector<double> u = values_by_id(m.mesh(), values, 0, "values");
@@ -207,16 +273,23 @@ double l2_error(const PyMesh& m, const py::object& values, const py::object& exa
     if (!reference_values.is_none()) {
       v = values_by_id(truth.mesh(), reference_values, 0, "reference_values");
     } else if (!exact.is_none()) {
-      const AnalyticField kind = analytic_field_from_name(exact.cast<std::string>());
-      v = values_at_vertices(truth.mesh(), [kind](const Point& p) { return evaluate(kind, p); });
+      const Mesh& t = truth.mesh();
+      const std::vector<Point> points = vertex_points(t);
+      v = exact_field(exact)(points);
+      for (VertexId i = 0; i < t.vertex_capacity(); ++i)
+        if (!t.vertex_alive(i)) v[i] = 0.0;
     } else {
       throw InputError("error: give the reference mesh's values (reference_values) or an analytic field (exact)");
     }
     error = l2_difference(truth.mesh(), interpolate_vertex_field(m.mesh(), u, truth.mesh()), v);
   } else {
     if (exact.is_none()) throw InputError("error: give an analytic field (exact) or a reference mesh");
-    const AnalyticField kind = analytic_field_from_name(exact.cast<std::string>());
-    error = l2_interpolation_error(m.mesh(), u, [kind](const Point& p) { return evaluate(kind, p); });
+    if (py::isinstance<py::str>(exact)) {
+      const AnalyticField kind = analytic_field_from_name(exact.cast<std::string>());
+      error = l2_interpolation_error(m.mesh(), u, [kind](const Point& p) { return evaluate(kind, p); });
+    } else {
+      error = l2_interpolation_error_in_bulk(m.mesh(), u, exact_field(exact));
+    }
   }
   if (!std::isfinite(error)) throw InputError("error: the L2 error is not finite");
   return error;

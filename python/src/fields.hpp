@@ -43,6 +43,12 @@ py::array_t<double> analytic_field(const PyMesh& m, const std::string& name);
 py::array_t<double> multiscale_metric(const PyMesh& m, const py::object& field, double complexity, double norm,
                                       const py::object& gradation, const py::object& hmin, const py::object& hmax,
                                       const py::object& max_anisotropy);
+// The recovered Hessian of a field (n,) (recovery.hpp), (n, 6); and the
+// multiscale metric of a Hessian the user gives (n, 6), as for a field.
+py::array_t<double> hessian(const PyMesh& m, const py::object& field);
+py::array_t<double> hessian_metric(const PyMesh& m, const py::object& hessian, double complexity, double norm,
+                                   const py::object& gradation, const py::object& hmin, const py::object& hmax,
+                                   const py::object& max_anisotropy);
 py::array_t<double> intersect(const py::object& a, const py::object& b);
 double complexity(const PyMesh& m, const py::object& metric);
 

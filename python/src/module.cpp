@@ -3,6 +3,7 @@
 // import).
 #include "adaptation.hpp"
 #include "fields.hpp"
+#include "files.hpp"
 #include "mesh_arrays.hpp"
 #include "messages.hpp"
 #include "pipeline.hpp"
@@ -12,6 +13,7 @@
 #include <metrica/io/file_format.hpp>
 #include <metrica/io/output_set.hpp>
 #include <metrica/mesh_build.hpp>
+#include <metrica/numbering.hpp>
 #include <metrica/pipeline/adapt.hpp>
 #include <metrica/pipeline/adapt_settings.hpp>
 #include <metrica/pipeline/composed_pipeline.hpp>
@@ -45,6 +47,9 @@ PYBIND11_MODULE(_metrica, m) {
   auto input_error = py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   static_cast<void>(input_error);
   route_messages_to_python();
+  // Messages number vertices and tets as numpy rows are (the command's from
+  // 1, as libMeshb files do).
+  set_first_number(0);
   m.attr("__version__") = METRICA_VERSION;
 
   py::class_<PyMesh>(m, "Mesh", "A tetrahedral mesh: vertices, tets with region ids, surface triangles with ids.")
@@ -112,41 +117,14 @@ PYBIND11_MODULE(_metrica, m) {
   m.def(
       "read", [](const Path& path, const py::object& ridge_angle) { return read_mesh(path.string(), ridge_angle); },
       py::arg("path"), py::kw_only(), py::arg("ridge_angle") = py::none(),
-      "A mesh file (.mesh, .meshb, .msh), checked as every command reads it; ridge_angle as for Mesh().");
-  m.def(
-      "write",
-      [](const PyMesh& x, const Path& path, int version, bool binary, const py::object& metric) {
-        const io::MeshData& data = x.data();  // with the version read (not copied: 25 bytes per tet)
-        // The metric beside the mesh, both files replaced together.
-        std::string sol_path;
-        py::array values;
-        if (!metric.is_none()) {
-          const std::string ext = path.extension().string();
-          if (ext != ".mesh" && ext != ".meshb")
-            throw InputError(
-                fmt::format("write: metric= goes beside a .mesh or .meshb (got '{}'); write_field "
-                            "writes a .sol/.solb anywhere",
-                            path.string()));
-          sol_path = Path(path).replace_extension(ext == ".mesh" ? ".sol" : ".solb").string();
-          values = py::array::ensure(metric);
-          if (!values) throw InputError("write: metric must be an (n, 6) float64 array");
-          const py::ssize_t n = values.ndim() >= 1 ? values.shape(0) : 0;
-          if (n != static_cast<py::ssize_t>(data.vertices.size()))
-            throw InputError(fmt::format("write: the metric has {} rows for {} vertices", n, data.vertices.size()));
-          // Finite and positive definite at every vertex, as every reader requires.
-          static_cast<void>(metric_by_id(x.mesh(), metric, "write: metric"));
-        }
-        io::OutputSet outputs;
-        io::write_mesh_file(path.string(), data, version, {}, io::FileFormat::mesh,
-                            binary ? io::Encoding::binary : io::Encoding::ascii);
-        if (!sol_path.empty()) write_field(sol_path, values, version, 6);
-        outputs.commit();
-      },
-      py::arg("mesh"), py::arg("path"), py::arg("version") = 0, py::arg("binary") = false,
-      py::arg("metric") = py::none(),
-      "Writes .mesh, .meshb (libMeshb version: 0 keeps the one read), .msh (4.1, or 2.2 with version=2; "
-      "binary=True for binary), .vtu or .su2, through a temporary renamed when complete; metric, an (n, 6) "
-      "array, beside a .mesh/.meshb as the .sol/.solb of the same name (both replaced together).");
+      "A mesh file (.mesh, .meshb, .msh, .vtu, .su2), checked as every command reads it; ridge_angle as for Mesh().");
+  m.def("write", &write_mesh, py::arg("mesh"), py::arg("path"), py::arg("version") = 0, py::arg("binary") = false,
+        py::arg("metric") = py::none(), py::arg("fields") = py::none(),
+        "Writes .mesh, .meshb (libMeshb version: 0 keeps the one read), .msh (4.1, or 2.2 with version=2; "
+        "binary=True for binary), .vtu or .su2, through a temporary renamed when complete. metric, an (n, 6) "
+        "array: beside a .mesh/.meshb as the .sol/.solb of the same name (both replaced together), in a .vtu "
+        "as the point data \"metric\" (VTK's tensor order, for ParaView). fields (.vtu only): a dict of name to "
+        "(n,), (n, 3) or (n, 6) arrays, written as point data.");
   m.def(
       "read_field", [](const Path& path) { return read_field(path.string()); }, py::arg("path"),
       "The fields of a .sol/.solb: a list of arrays, (n,), (n, 3) or (n, 6) (xx, xy, yy, xz, yz, zz).");
@@ -159,11 +137,33 @@ PYBIND11_MODULE(_metrica, m) {
         py::arg("hmax") = py::none(), "The analytic metric (linear, polar-1, polar-2) at the mesh's vertices, (n, 6).");
   m.def("analytic_field", &analytic_field, py::arg("mesh"), py::arg("name"),
         "An analytic field of `metrica metric --field` at the mesh's vertices, (n,).");
+  // The parameters shared by the two multiscale metrics' docstrings.
+  static const std::string multiscale_parameters =
+      "complexity: the metric's complexity N, which sets the adapted mesh's size (about 2 N vertices and 10 N "
+      "tets on the UGAWG cube); "
+      "norm: p of the L^p norm the error is minimised in (default 2; >= 1; larger p weighs weak features "
+      "more); gradation: the size gradation bound beta (None: no gradation; e.g. 1.5 to 3, >= 1); hmin, "
+      "hmax: bounds on the sizes asked for (None: 0 and the domain's largest extent); max_anisotropy: bound "
+      "on the ratio of largest to smallest size at a vertex (None: unbounded).";
   m.def("multiscale_metric", &multiscale_metric, py::arg("mesh"), py::arg("field"), py::arg("complexity"),
         py::arg("norm") = 2.0, py::arg("gradation") = py::none(), py::arg("hmin") = py::none(),
         py::arg("hmax") = py::none(), py::arg("max_anisotropy") = py::none(),
-        "The multiscale metric of a field (n,), or of k fields (n, k) intersected, scaled to `complexity`, "
-        "bounded and graded: (n, 6).");
+        ("The multiscale metric (Loseille and Alauzet) of a P1 field (n,), or of k fields (n, k) each scaled to "
+         "the complexity then intersected, the Hessian recovered by L2 projection (`metrica metric --field-file`): "
+         "(n, 6). " +
+         multiscale_parameters)
+            .c_str());
+  m.def("hessian", &hessian, py::arg("mesh"), py::arg("field"),
+        "The Hessian of a P1 field (n,) recovered by L2 projection (twice), as the multiscale metric uses it: "
+        "(n, 6) symmetric tensors (xx, xy, yy, xz, yz, zz).");
+  m.def("hessian_metric", &hessian_metric, py::arg("mesh"), py::arg("hessian"), py::arg("complexity"),
+        py::arg("norm") = 2.0, py::arg("gradation") = py::none(), py::arg("hmin") = py::none(),
+        py::arg("hmax") = py::none(), py::arg("max_anisotropy") = py::none(),
+        ("The multiscale metric of a Hessian field (n, 6) the caller gives (a solver's own, or metrica.hessian's): "
+         "the absolute values of its eigenvalues, scaled to the complexity, bounded and graded as "
+         "multiscale_metric does. " +
+         multiscale_parameters)
+            .c_str());
   m.def("intersect", &intersect, py::arg("a"), py::arg("b"), "The metric intersection of two (n, 6) fields.");
   m.def("complexity", &complexity, py::arg("mesh"), py::arg("metric"), "The complexity of an (n, 6) metric.");
   m.def("interpolate", &interpolate, py::arg("mesh"), py::arg("field"), py::arg("to_mesh"), py::arg("metric") = false,
@@ -171,7 +171,10 @@ PYBIND11_MODULE(_metrica, m) {
         "the field is (n, 6) symmetric tensors, moved log-Euclidean (exp of the interpolant of log M).");
   m.def("error", &l2_error, py::arg("mesh"), py::arg("values"), py::arg("exact") = py::none(),
         py::arg("reference") = py::none(), py::arg("reference_values") = py::none(),
-        "The L2 error of a P1 field against an analytic field (exact=name), or against a reference mesh's field.");
+        "The L2 error of a P1 field (values, (n,)): against exact, an analytic field's name (`metrica metric "
+        "--field`) or a function of a (k, 3) array of points returning k values (called on blocks of quadrature "
+        "points, degree 5); or against a reference mesh's field (reference, reference_values, or exact at its "
+        "vertices), the field carried there first.");
   m.def("quality", &quality, py::arg("mesh"), py::arg("metric"), py::arg("space") = "log-euclidean",
         py::arg("measures") = true, py::arg("metric_mesh") = py::none(),
         "The UGAWG quality report of the mesh in the metric, as a dict; with measures, also \"edge_ends\" "

@@ -149,8 +149,8 @@ def test_quality_measures_and_a_metric_written_beside_its_mesh(tmp_path):
     assert np.array_equal(back, metric)
     with pytest.raises(metrica.InputError, match="rows"):
         metrica.write(mesh, tmp_path / "n.meshb", metric=metric[1:])
-    with pytest.raises(metrica.InputError, match="beside"):
-        metrica.write(mesh, tmp_path / "n.vtu", metric=metric)
+    with pytest.raises(metrica.InputError, match="beside a .mesh or .meshb, or into a .vtu"):
+        metrica.write(mesh, tmp_path / "n.msh", metric=metric)
     assert not (tmp_path / "n.meshb").exists()
 
 
@@ -299,6 +299,20 @@ def test_meshio_round_trip(tmp_path):
     metrica.write(mesh, str(tmp_path / "m.vtu"))
     from_vtu = metrica.from_meshio(meshio.read(tmp_path / "m.vtu"))
     assert np.array_equal(from_vtu.tets, mesh.tets) and np.array_equal(from_vtu.tet_ids, mesh.tet_ids)
+    # .msh both ways, region 0 (the cube's) beside surfaces 1 to 6.
+    assert set(mesh.tet_ids) == {0}
+    key = lambda m: np.lexsort(np.sort(m.triangles, axis=1).T)
+    metrica.write(mesh, tmp_path / "m.msh")
+    from_msh = metrica.from_meshio(meshio.read(tmp_path / "m.msh"))
+    assert set(from_msh.tet_ids) == {0}
+    assert np.array_equal(from_msh.triangle_ids[key(from_msh)], mesh.triangle_ids[key(mesh)])
+    ids = [mesh.tet_ids, mesh.triangle_ids]
+    written = meshio.Mesh(mesh.points, [("tetra", mesh.tets), ("triangle", mesh.triangles)],
+                          cell_data={"gmsh:physical": ids, "gmsh:geometrical": ids})
+    meshio.write(tmp_path / "w.msh", written, file_format="gmsh22", binary=False)
+    back = metrica.read(tmp_path / "w.msh")
+    assert set(back.tet_ids) == {0}
+    assert np.array_equal(back.triangle_ids[key(back)], mesh.triangle_ids[key(mesh)])
 
 
 def test_the_namespace_holds_metrica_only():
@@ -476,3 +490,76 @@ def test_a_box_is_the_commands_cube(tmp_path):
             metrica.box(bad)
     with pytest.raises(metrica.InputError, match="box: need lo < hi"):
         metrica.box(2, lo=(1, 0, 0), hi=(0, 1, 1))
+
+
+def test_vtu_and_su2_read_back_with_their_ids_and_vtu_point_data(tmp_path):
+    mesh = metrica.read(cube(tmp_path))
+    metric = metrica.analytic_metric(mesh, "linear")
+    u = mesh.points[:, 0]
+    metrica.write(mesh, tmp_path / "m.vtu", metric=metric, fields={"u": u, "p": mesh.points})
+    for suffix in (".vtu", ".su2"):
+        if suffix == ".su2":
+            metrica.write(mesh, tmp_path / "m.su2")
+        back = metrica.read(tmp_path / ("m" + suffix))
+        assert np.array_equal(back.points, mesh.points) and np.array_equal(back.tets, mesh.tets), suffix
+        key = lambda m: np.lexsort(np.sort(m.triangles, axis=1).T)
+        assert np.array_equal(back.triangle_ids[key(back)], mesh.triangle_ids[key(mesh)]), suffix
+    meshio = pytest.importorskip("meshio")
+    m = meshio.read(tmp_path / "m.vtu")
+    assert np.array_equal(m.point_data["u"].ravel(), u) and np.array_equal(m.point_data["p"], mesh.points)
+    # The metric in VTK's order (xx yy zz xy yz xz), which ParaView reads.
+    assert np.array_equal(m.point_data["metric"], metric[:, [0, 2, 5, 1, 4, 3]])
+    with pytest.raises(metrica.InputError, match="fields= go into a .vtu"):
+        metrica.write(mesh, tmp_path / "m.meshb", fields={"u": u})
+    with pytest.raises(metrica.InputError, match="field 'u'"):
+        metrica.write(mesh, tmp_path / "m.vtu", fields={"u": u[:-1]})
+
+
+def test_error_against_a_python_function_hessian_and_hessian_metric(tmp_path):
+    mesh = metrica.read(cube(tmp_path, 6))
+    u = metrica.analytic_field(mesh, "tanh3")
+
+    def tanh3(p):
+        return np.tanh((p[:, 0] + 1.3) ** 20 * (p[:, 1] - 0.3) ** 9 * p[:, 2])
+
+    assert metrica.error(mesh, u, exact=tanh3) == pytest.approx(metrica.error(mesh, u, exact="tanh3"), rel=1e-12)
+    with pytest.raises(metrica.InputError, match="must return"):
+        metrica.error(mesh, u, exact=lambda p: p)
+    with pytest.raises(metrica.InputError, match="analytic field's name or a function"):
+        metrica.error(mesh, u, exact=3)
+    # A quadratic field's Hessian, exact at interior vertices of the Kuhn box.
+    q = mesh.points[:, 0] ** 2 + mesh.points[:, 0] * mesh.points[:, 1]
+    h = metrica.hessian(mesh, q)
+    inner = np.all((mesh.points > 0.2) & (mesh.points < 0.8), axis=1)
+    assert np.allclose(h[inner], [2, 1, 0, 0, 0, 0], atol=1e-9)
+    # The metric of a Hessian as the multiscale metric of the field makes it.
+    from_h = metrica.hessian_metric(mesh, metrica.hessian(mesh, u), complexity=500)
+    assert metrica.complexity(mesh, from_h) == pytest.approx(500, rel=0.01)
+    with pytest.raises(metrica.InputError, match="hessian_metric: complexity"):
+        metrica.hessian_metric(mesh, h, complexity=-1)
+
+
+def test_messages_number_vertices_and_tets_from_0():
+    points, tets = two_tets()
+    with pytest.raises(metrica.InputError, match=r"tet 0 \(vertices 0 2 1 3\) is inverted"):
+        metrica.Mesh(points, np.array([[0, 2, 1, 3], [1, 2, 3, 4]]))
+    mesh = metrica.Mesh(points, tets)
+    bad = np.tile([1.0, 0, 1, 0, 0, 1], (5, 1))
+    bad[3] = [-1, 0, 1, 0, 0, 1]
+    with pytest.raises(metrica.InputError, match="metric at vertex 3 is not positive definite"):
+        metrica.complexity(mesh, bad)
+
+
+def test_the_type_stubs_name_what_the_extension_holds():
+    import ast
+    from pathlib import Path
+
+    import metrica._metrica as ext
+
+    stub = Path(ext.__file__).with_name("_metrica.pyi")
+    tree = ast.parse(stub.read_text())
+    named = {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    public = {name for name in dir(ext) if not name.startswith("__")}
+    assert public - {"__version__"} <= named | {"__version__"}, public - named
+    assert named <= public | {"_Path"}, named - public
+    assert (stub.parent / "py.typed").exists()
