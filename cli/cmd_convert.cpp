@@ -15,8 +15,8 @@ namespace metrica::cli {
 
 int run_convert(const std::vector<std::string>& args) {
   Options o("convert", "[-i] INPUT [-o] OUTPUT",
-            "Converts a mesh between .mesh / .meshb (any libMeshb version) and .vtu / .su2, or a solution\n"
-            "between .sol and .solb. Every keyword Metrica knows is carried over unchanged. A mesh is\n"
+            "Converts a mesh between .mesh / .meshb (any libMeshb version), .msh, .vtu and .su2, or a\n"
+            "solution between .sol and .solb. Every keyword Metrica knows is carried over unchanged. A mesh is\n"
             "checked first (as `metrica check`) unless --no-check; an invalid one is not written.\n\n"
             "Examples: metrica convert cube.mesh cube.meshb\n"
             "          metrica convert cube.meshb cube.vtu\n"
@@ -41,8 +41,9 @@ int run_convert(const std::vector<std::string>& args) {
     throw UsageError(
         fmt::format("convert: cannot convert {} to {} (a solution converts to a solution, a mesh to a mesh)",
                     io::to_string(in_format), io::to_string(out_format)));
-  if (in_format == io::FileFormat::unknown || in_format == io::FileFormat::vtu || in_format == io::FileFormat::su2)
-    throw UsageError(fmt::format("convert: cannot read {} (Metrica reads .mesh, .meshb, .msh, .sol and .solb)", input));
+  if (in_format == io::FileFormat::unknown)
+    throw UsageError(
+        fmt::format("convert: cannot read {} (Metrica reads .mesh, .meshb, .msh, .vtu, .su2, .sol and .solb)", input));
   if (in_sol) {
     const auto sol = io::read_sol(input);
     if (o.dry_run()) return kOk;

@@ -87,6 +87,13 @@ TEST_SUITE("regression") {
     CHECK(metrica_cli("convert " + (dir / "c3.meshb") + " " + (dir / "c.vtu")).code == 0);
     CHECK(metrica_cli("convert " + (dir / "c3.meshb") + " " + (dir / "c.su2")).code == 0);
     CHECK(metrica_cli("check " + (dir / "c3.meshb")).code == 0);
+    // .vtu and .su2 read back: the same points and tets.
+    for (const char* back : {"c.vtu", "c.su2"}) {
+      CHECK(metrica_cli("convert " + (dir / back) + " " + (dir / "back.meshb")).code == 0);
+      const auto x = io::read_meshb(dir / "c3.meshb"), y = io::read_meshb(dir / "back.meshb");
+      CHECK(x.vertices == y.vertices);
+      CHECK(x.tets == y.tets);
+    }
     auto a = io::read_meshb(dir / "c.meshb"), b = io::read_meshb(dir / "c3.meshb");
     CHECK(b.version == 3);
     b.version = a.version;

@@ -7,8 +7,9 @@ meshes, with meshes and metrics as numpy arrays.
     metrica.write(adapted, "linear.meshb")
 
 Every function checks its input as the `metrica` command does and raises
-`metrica.InputError` (a ValueError) with the command's message. See
-docs/python.md.
+`metrica.InputError` (a ValueError) with the command's message; messages
+number vertices and tets from 0, as the arrays' rows. metrica.fem.dolfinx
+(imported on its own) puts FEniCSx in the loop. See docs/python.md.
 """
 
 import logging as _logging
