@@ -50,7 +50,7 @@ namespace {
 // lines skipped; numbers read off a line one by one.
 class Su2Lines {
  public:
-  Su2Lines(std::string path) : path_(std::move(path)), text_(read_file_bytes(path_)) {}
+  Su2Lines(std::string text, std::string path) : path_(std::move(path)), text_(std::move(text)) {}
 
   // The next line that holds something, or false at the end.
   bool next() {
@@ -102,8 +102,10 @@ constexpr std::size_t kMaxSu2Count = std::size_t(1) << 34;
 
 }  // namespace
 
-MeshData read_su2(const std::string& path) {
-  Su2Lines in(path);
+MeshData read_su2(const std::string& path) { return parse_su2(read_file_bytes(path), path); }
+
+MeshData parse_su2(std::string text, const std::string& path) {
+  Su2Lines in(std::move(text), path);
   MeshData d;
   std::size_t nv = 0;
   bool have_points = false;
@@ -129,14 +131,14 @@ MeshData read_su2(const std::string& path) {
     } else if (auto points = in.value_of("NPOIN"); !points.empty()) {
       nv = in.number<std::size_t>(points, "the point count");
       if (nv > kMaxSu2Count) in.fail("NPOIN= {} is not a count", nv);
-      d.vertices.resize(nv);
+      d.vertices.clear();
       for (std::size_t p = 0; p < nv; ++p) {
         in.need_line("the last point");
         std::string_view rest = in.line();
         Point x;
         for (int c = 0; c < 3; ++c) x[c] = in.number<double>(rest, "a coordinate");
         if (!x.allFinite()) in.fail("point {} has a coordinate that is not finite", numbered(p));
-        d.vertices[p] = x;
+        d.vertices.push_back(x);
       }
       have_points = true;
     } else if (auto marks = in.value_of("NMARK"); !marks.empty()) {

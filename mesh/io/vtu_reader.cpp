@@ -10,7 +10,9 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -70,7 +72,7 @@ double decode(const std::string& type, const char* p) {
 
 class VtuFile {
  public:
-  VtuFile(std::string path) : path_(std::move(path)), bytes_(read_file_bytes(path_)) {
+  VtuFile(std::string bytes, std::string path) : path_(std::move(path)), bytes_(std::move(bytes)) {
     const std::string_view all(bytes_);
     const std::string root = tag_at(all.find("<VTKFile"));
     if (attribute(root, "type") != "UnstructuredGrid")
@@ -120,7 +122,6 @@ class VtuFile {
     const std::size_t size = type_size(a.type);
     if (size == 0) fail("array '{}' has type {}", a.name, a.type);
     std::vector<double> out;
-    out.reserve(expected);
     if (a.format == "appended") {
       if (block_ == 0) fail("array '{}' is appended but the file has no appended block", a.name);
       const std::uint64_t at = block_ + a.offset;
@@ -130,11 +131,13 @@ class VtuFile {
       if (count != expected * size)
         fail("array '{}' holds {} bytes where {} values of {} bytes are expected", a.name, count, expected, size);
       if (at + header_bytes_ + count > bytes_.size()) fail("array '{}' runs past the end of the file", a.name);
+      out.reserve(expected);
       for (std::uint64_t i = 0; i < expected; ++i)
         out.push_back(decode(a.type, bytes_.data() + at + header_bytes_ + i * size));
     } else if (a.format == "ascii") {
       const char* p = a.text.data();
       const char* end = p + a.text.size();
+      out.reserve(std::min<std::uint64_t>(expected, a.text.size() / 2 + 1));  // a value takes 2 characters or more
       while (out.size() < expected) {
         while (p < end && (*p == ' ' || *p == '\n' || *p == '\r' || *p == '\t')) ++p;
         double x = 0;
@@ -226,7 +229,11 @@ VtuField vtu_tensor_field(std::string name, const std::vector<double>& m) {
 }
 
 MeshData read_vtu(const std::string& path, std::vector<VtuField>* point_fields) {
-  const VtuFile file(path);
+  return parse_vtu(read_file_bytes(path), path, point_fields);
+}
+
+MeshData parse_vtu(std::string bytes, const std::string& path, std::vector<VtuField>* point_fields) {
+  const VtuFile file(std::move(bytes), path);
   const std::uint64_t nv = file.points(), nc = file.cells();
   const Array* points = nullptr;
   for (const auto& a : file.arrays())

@@ -16,5 +16,7 @@ void write_su2(const std::string& path, const MeshData& mesh);
 // id from 1001 on, in file order (logged). Regions are 0 (.su2 has none).
 // IoError for other element types or a malformed file.
 MeshData read_su2(const std::string& path);
+// The same from the file's text (`path` names it in messages).
+MeshData parse_su2(std::string text, const std::string& path);
 
 }  // namespace metrica::io

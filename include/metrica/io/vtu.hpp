@@ -85,5 +85,7 @@ VtuField vtu_tensor_field(std::string name, const std::vector<double>& meshb_ord
 // out with a warning. The point fields go to `point_fields` when given.
 // IoError for compressed data, other encodings or a malformed file.
 MeshData read_vtu(const std::string& path, std::vector<VtuField>* point_fields = nullptr);
+// The same from the file's bytes (`path` names it in messages).
+MeshData parse_vtu(std::string bytes, const std::string& path, std::vector<VtuField>* point_fields = nullptr);
 
 }  // namespace metrica::io
