@@ -86,6 +86,15 @@ TEST_SUITE("unit") {
     CHECK(fields[0].values[5] == 3.0);
     CHECK(fields[1].values == std::vector<double>(d.vertices.size(), 2.5));
     CHECK(read_mesh_file(dir / "a.vtu") == back);
+    // A count past any file (2^64 - 1 bytes, once a float-to-integer
+    // overflow the fuzzer found) is an error, as a wrong one is.
+    std::string bytes = format_vtu(d, {}, {});
+    const VtuLayout layout(d.vertices.size(), d.tets.size(), {}, {}, d.triangles.size());
+    for (const std::uint64_t count : {~std::uint64_t{0}, std::uint64_t{8}}) {
+      std::string bad = bytes;
+      std::memcpy(bad.data() + layout.count_at(VtuLayout::kPoints), &count, 8);
+      CHECK_THROWS_WITH_AS(parse_vtu(bad, "bad.vtu"), doctest::Contains("bytes where"), IoError);
+    }
   }
 
   TEST_CASE("vtu: an ASCII file of another tool is read - compressed or malformed ones are refused") {

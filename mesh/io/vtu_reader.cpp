@@ -51,10 +51,15 @@ std::size_t type_size(const std::string& type) {
 }
 
 template <class T>
-double as_double(const char* p) {
+T read_as(const char* p) {
   T x;
   std::memcpy(&x, p, sizeof x);
-  return static_cast<double>(x);
+  return x;
+}
+
+template <class T>
+double as_double(const char* p) {
+  return static_cast<double>(read_as<T>(p));
 }
 
 double decode(const std::string& type, const char* p) {
@@ -126,8 +131,8 @@ class VtuFile {
       if (block_ == 0) fail("array '{}' is appended but the file has no appended block", a.name);
       const std::uint64_t at = block_ + a.offset;
       if (at + header_bytes_ > bytes_.size()) fail("array '{}' starts past the end of the file", a.name);
-      const std::uint64_t count = header_bytes_ == 8 ? std::uint64_t(as_double<std::uint64_t>(bytes_.data() + at))
-                                                     : std::uint64_t(as_double<std::uint32_t>(bytes_.data() + at));
+      const std::uint64_t count =
+          header_bytes_ == 8 ? read_as<std::uint64_t>(bytes_.data() + at) : read_as<std::uint32_t>(bytes_.data() + at);
       if (count != expected * size)
         fail("array '{}' holds {} bytes where {} values of {} bytes are expected", a.name, count, expected, size);
       if (at + header_bytes_ + count > bytes_.size()) fail("array '{}' runs past the end of the file", a.name);
@@ -157,6 +162,12 @@ class VtuFile {
   template <class... Args>
   [[noreturn]] void fail(fmt::format_string<Args...> f, Args&&... args) const {
     throw IoError(fmt::format("{}: {}", path_, fmt::format(f, std::forward<Args>(args)...)));
+  }
+
+  // x as an int when it is a whole number in int's range.
+  int whole(double x, const char* what) const {
+    if (!(std::abs(x) < 2147483647.0) || x != std::floor(x)) fail("{} is {} (a whole number is expected)", what, x);
+    return int(x);
   }
 
  private:
@@ -259,7 +270,7 @@ MeshData parse_vtu(std::string bytes, const std::string& path, std::vector<VtuFi
   double start = 0;
   for (std::uint64_t c = 0; c < nc; start = offsets[c], ++c) {
     const double size = offsets[c] - start;
-    const int type = int(types[c]);
+    const int type = file.whole(types[c], "a cell type");
     const int need = type == kVtkTetra ? 4 : type == kVtkTriangle ? 3 : -1;
     if (need < 0) {
       ++left_out;
@@ -270,10 +281,11 @@ MeshData parse_vtu(std::string bytes, const std::string& path, std::vector<VtuFi
     std::array<VertexId, 4> v{};
     for (int i = 0; i < need; ++i) {
       const double x = connectivity[std::size_t(start) + std::size_t(i)];
-      if (!(x >= 0 && x < double(nv))) file.fail("cell {} names vertex {} (the file has {})", numbered(c), x, nv);
+      if (!(x >= 0 && x < double(nv)) || x != std::floor(x))
+        file.fail("cell {} names vertex {} (the file has {})", numbered(c), x, nv);
       v[std::size_t(i)] = VertexId(x);
     }
-    const int id = int(ids[c]);
+    const int id = file.whole(ids[c], "a cell's id");
     if (type == kVtkTetra) {
       data.tets.push_back({v[0], v[1], v[2], v[3]});
       data.tet_refs.push_back(id);
