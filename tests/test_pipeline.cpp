@@ -60,7 +60,10 @@ TEST_SUITE("invariant") {
     CHECK(r.ops.get("split").applied > 0);
     CHECK(r.ops.get("smooth").tried > 0);  // the standard quality phase
     CHECK(r.cycles.front().ops.begin()->first == "split");
-    CHECK(r.cycles.back().min_quality > 0.1);
+    // Under ThreadSanitizer the run is cut to two cycles and one repair
+    // round (shorten_when_slow), and on 8 threads its worst tet depends on
+    // the schedule (0.066 once): valid is what such a run promises.
+    CHECK(r.cycles.back().min_quality > (kUnderThreadSanitizer ? 0.0 : 0.1));
     CHECK(adapter.since("delaunay-cycle") > 0);
   }
 
