@@ -307,7 +307,7 @@ RoundSettings round_settings(const Comm& comm, const DistributedAdapt& run, cons
   // tets on 2 ranks the round took 7.7 s with four of them and the parts'
   // settings, 6.4 s without).
   s.first = settings;
-  s.first.options = run.options;
+  s.first.options = PartRoundRules{}.applied_to_first(run.options);
   s.first.options.repair_rounds = 0;
   return s;
 }

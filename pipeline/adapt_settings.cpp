@@ -16,7 +16,7 @@ constexpr double kMaxLengthSetting = 1e6;
 // The pipeline's rules first (pipeline_rule_settings), then the standard
 // stages' settings.
 constexpr std::size_t kRules = 7;
-constexpr std::array<AdaptSetting, 12> kAdaptSettings{{
+constexpr std::array<AdaptSetting, 13> kAdaptSettings{{
     {"cycles", "N", 0, 1000, false, true, "most adaptation cycles per adaptation",
      [](const AdaptOptions& o) { return double(o.max_cycles); },
      [](AdaptOptions& o, double x) { o.max_cycles = static_cast<int>(x); }},
@@ -56,6 +56,10 @@ constexpr std::array<AdaptSetting, 12> kAdaptSettings{{
      "a collapse may not make a tet worse than Q (unless the ball was already worse)",
      [](const AdaptOptions& o) { return o.collapse.shape_floor; },
      [](AdaptOptions& o, double x) { o.collapse.shape_floor = x; }},
+    {"split-floor", "Q", 0, 1, false, false,
+     "a split may not make a tet worse than Q (unless its shell was already worse); under mpirun at least 0.01",
+     [](const AdaptOptions& o) { return o.refine.shape_floor; },
+     [](AdaptOptions& o, double x) { o.refine.shape_floor = x; }},
     {"smooth-below", "Q", 0, 1, false, false, "smooth the vertices of tets with mean ratio below Q during the cycles",
      [](const AdaptOptions& o) { return o.smooth.below; }, [](AdaptOptions& o, double x) { o.smooth.below = x; }},
 }};

@@ -28,12 +28,27 @@ inline constexpr SurfaceId kPartFaceId = kMaxSurfaceId - 1;
 // them again, so more flip sweeps a quality pass and cycles down to a
 // smaller gain in the unit band take fewer rounds. The settings given are
 // raised to these, never lowered.
+//
+// And in every round, the first included: beside a kept face whose edges
+// are long in the metric the round splits the free edges toward its
+// vertices again and again, and with no floor (the single process's
+// default) the children thin to needles (mean ratio 1e-11, flat to the
+// orientation test's rounding) that no later round can split or flip: a
+// split may not make a tet below min_split_floor unless its shell had a
+// worse one.
 struct PartRoundRules {
   int min_polish_sweeps = 4;
   double max_min_conformity_gain = 0.005;
+  double min_split_floor = 0.01;
   AdaptOptions applied_to(AdaptOptions o) const {
     o.polish_sweeps = std::max(o.polish_sweeps, min_polish_sweeps);
     o.min_conformity_gain = std::min(o.min_conformity_gain, max_min_conformity_gain);
+    o.refine.shape_floor = std::max(o.refine.shape_floor, min_split_floor);
+    return o;
+  }
+  // What the first round takes of these.
+  AdaptOptions applied_to_first(AdaptOptions o) const {
+    o.refine.shape_floor = std::max(o.refine.shape_floor, min_split_floor);
     return o;
   }
 };

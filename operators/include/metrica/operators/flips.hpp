@@ -204,6 +204,34 @@ inline bool closing_edge_is_new(const Mesh& mesh, FlipScratch& s) {
   return true;
 }
 
+// Whether a tet of `ball` (the ball of u, v or w) holds u, v and w: the
+// triangle uvw is a face of the mesh already.
+inline bool triangle_in_ball(const Mesh& mesh, const TetList& ball, VertexId u, VertexId v, VertexId w) {
+  for (TetId t : ball) {
+    const TetVertices& tv = mesh.tet(t);
+    if (local_index(tv, u) >= 0 && local_index(tv, v) >= 0 && local_index(tv, w) >= 0) return true;
+  }
+  return false;
+}
+
+// The new inner faces of an edge removal are the triangles of the chosen
+// ring triangulation (s.best: tets (p, q, r, apex) two by two). One whose
+// vertices are all on the boundary may already be a face outside the
+// shell: a boundary vertex whose umbrella is three triangles (a spike)
+// folded against the shell, where the removal would put that face on
+// three tets.
+inline bool ring_faces_are_new(const Mesh& mesh, FlipScratch& s) {
+  for (std::size_t c = 0; c < s.best.size(); c += 2) {
+    const VertexId p = s.best[c][0], q = s.best[c][1], r = s.best[c][2];
+    if (mesh.vertex_class(p) == VertexClass::interior || mesh.vertex_class(q) == VertexClass::interior ||
+        mesh.vertex_class(r) == VertexClass::interior)
+      continue;
+    vertex_ball(mesh, p, s.ball);
+    if (triangle_in_ball(mesh, s.ball, p, q, r)) return false;
+  }
+  return true;
+}
+
 }  // namespace detail
 
 // Decide the removal of ab; its shell is in s.shell (edge_shell). Each fan
@@ -292,6 +320,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
   }
   if (!found) return Refusal::rejected;
   if (!shell.closed && !detail::closing_edge_is_new(mesh, s)) return Refusal::rejected;
+  if (!detail::ring_faces_are_new(mesh, s)) return Refusal::rejected;
   if (!plan_cavity(mesh, view(shell.tets), view(s.best), s.plan, kNoId, kNoId, surface)) return Refusal::rejected;
   return EdgeRemovalPlan{a, b, ref};
 }
@@ -326,6 +355,13 @@ Decision<Flip23Plan> decide_flip23(const Mesh& mesh, TetId t, int face, FlipScra
     s.candidate.emplace_back(TetVertices{p, q, a, b});
   }
   if (!all_positive(mesh, view(s.candidate))) return Refusal::rejected;
+  // The new edge ab may exist already between two boundary vertices (a
+  // spike folded against the two tets): the flip would double it.
+  if (mesh.vertex_class(a) != VertexClass::interior && mesh.vertex_class(b) != VertexClass::interior) {
+    vertex_ball(mesh, a, s.ball);
+    for (TetId u : s.ball)
+      if (local_index(mesh.tet(u), b) >= 0) return Refusal::rejected;
+  }
   const std::array<TetId, 2> old{t, nb.tet()};
   const Acceptance<S, Criterion> accept(o.shape_floor);
   s.best_scores.clear();
