@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace metrica::cli {
@@ -36,6 +37,14 @@ void print_operator_stats(const AdaptReport& r, bool serial, int threads) {
     }
     fmt::print("{} | {:.2f} s\n", text, s.seconds);
   }
+  // Where the adaptation's time went: the operators' passes (parallel
+  // under a speculative policy), the cycles' ends (compaction, the heap
+  // handed back, the measures) and the rest (each pass's set-up).
+  double passes = 0;
+  for (const auto& [name, s] : r.ops) passes += s.seconds;
+  const double closing = r.closing_seconds();
+  fmt::print("  time: passes {:.2f} s, cycle ends (compaction, measures) {:.2f} s, the rest {:.2f} s, of {:.2f} s\n",
+             passes, closing, std::max(0.0, r.seconds - passes - closing), r.seconds);
 }
 
 void print_cycle(const CycleReport& c) {

@@ -24,6 +24,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <optional>
 #ifdef METRICA_HAS_MPI
@@ -198,6 +199,8 @@ struct Adapted {
   Mesh mesh;
   std::unique_ptr<CadModel> model;
   int input_version = 0;
+  // Seconds of the steps around the adaptation (adapt -v's account).
+  double load_seconds = 0, metric_seconds = 0, adapt_seconds = 0, check_seconds = 0;
 };
 Adapted adapt_input(const Options& o, const AdaptOptions& ao, const PolicyChoice& policies,
                     const std::optional<AnalyticMetric>& analytic, const MetricBounds& bounds, int iterations) {
@@ -206,6 +209,7 @@ Adapted adapt_input(const Options& o, const AdaptOptions& ao, const PolicyChoice
   AdaptInputs inputs;
   const std::string interpolate_from = o.get<std::string>("interpolate-from");
   Adapted out;
+  Stopwatch step;
   auto loaded = load_mesh(input, Valid::required, ridge_angle(o));
   Mesh& mesh = out.mesh;
   mesh = std::move(loaded.mesh);
@@ -234,7 +238,9 @@ Adapted adapt_input(const Options& o, const AdaptOptions& ao, const PolicyChoice
   }
   const bool talk = log::level() >= log::Level::normal;
   if (talk) inputs.on_cycle = print_cycle;
+  out.load_seconds = step.seconds();
   for (int it = 0; it < iterations; ++it) {
+    step = Stopwatch();
     const std::vector<Sym6> field = metric_at_vertices(o, mesh, analytic, bounds, input_vertices);
     if (it == 0) {
       // The size is predicted once, before any work. An analytic metric is
@@ -262,7 +268,9 @@ Adapted adapt_input(const Options& o, const AdaptOptions& ao, const PolicyChoice
                  : log::level() >= log::Level::verbose
                      ? Speculative::describe()
                      : fmt::format("speculative, {} thread{}", thread_count(), thread_count() == 1 ? "" : "s"));
+    out.metric_seconds += step.seconds();
     const auto report = adapt_by_name(mesh, ao, policies, inputs);
+    out.adapt_seconds += report.seconds;
     if (talk)
       fmt::print("  {:.2f} s: {} collapses, {} splits, {} flips, {} moves\n", report.seconds,
                  count_text(report.ops.get("collapse").applied + report.ops.get("lift").applied),
@@ -271,6 +279,7 @@ Adapted adapt_input(const Options& o, const AdaptOptions& ao, const PolicyChoice
                  count_text(report.ops.get("smooth").applied));
     if (talk && (!serial || log::level() >= log::Level::verbose)) print_operator_stats(report, serial, thread_count());
   }
+  step = Stopwatch();
   const PartRunner sweeps = sweep_runner(mesh.tet_capacity(), serial);
   if (background) {
     // The report and --metric-out in the field the user gave: the
@@ -282,6 +291,7 @@ Adapted adapt_input(const Options& o, const AdaptOptions& ao, const PolicyChoice
     background.reset();  // not beside the writers' copy of the mesh
   }
   check_adapted(mesh, model.get(), volume, adapted_volume_tolerance(iterations, ao.volume_budget), sweeps, talk);
+  out.check_seconds = step.seconds();
   return out;
 }
 
@@ -294,7 +304,9 @@ int run_adapt(const std::vector<std::string>& args) {
             "phase of flips and smoothing, and repair rounds around any tet still below --repair-below.\n"
             "Prints one line per cycle, pass and round (vertices, tets, applied/tried per operator with\n"
             "its time, share of edges in [1/sqrt2, sqrt2], worst mean ratio) and ends with the UGAWG\n"
-            "quality report. With --analytic, new vertices take the exact metric, and\n"
+            "quality report; -v adds each operator's counts and where the time went (the passes, the\n"
+            "cycles' ends, the steps around the adaptation). With --analytic, new vertices take the\n"
+            "exact metric, and\n"
             "--iterations N repeats the adaptation N times, re-evaluating the metric on the new mesh each\n"
             "time (the UGAWG loop). The output is checked with validate() before it is written; if a\n"
             "run on threads ends with a check that fails, the run is made again from the input under\n"
@@ -355,14 +367,29 @@ int run_adapt(const std::vector<std::string>& args) {
   const auto& model = adapted.model;
   const int input_version = adapted.input_version;
   const PartRunner sweeps = sweep_runner(mesh.tet_capacity(), serial);
+  Stopwatch step;
   write_outputs(o, mesh, model.get(), output, input_version, sweeps);
+  const double write_seconds = step.seconds();
   if (talk) {
     // quality_report throws on a non-finite value: the run then fails and
     // its staged outputs are dropped (so the report comes before "wrote").
     // The quality cache holds the mean ratios of this space: adapt kept it
     // (a background's assign cleared it, and the report fills it again).
+    step = Stopwatch();
     const QualityReport report = quality_report(mesh, policies.space, {.run = sweeps, .cached_quality = true});
-    fmt::print("wrote {} ({:.2f} s in all)\n", output, clock.seconds());
+    const double report_seconds = step.seconds(), all = clock.seconds();
+    fmt::print("wrote {} ({:.2f} s in all)\n", output, all);
+    if (log::level() >= log::Level::verbose) {
+      // The steps around the adaptation run on one thread but the checks'
+      // and the report's sweeps.
+      const double around = adapted.load_seconds + adapted.metric_seconds + adapted.check_seconds + write_seconds +
+                            report_seconds;
+      fmt::print(
+          "time: read and build {:.2f} s, metric {:.2f} s, adaptation {:.2f} s, checks {:.2f} s, write {:.2f} s, "
+          "report {:.2f} s; around the adaptation {:.2f} s ({:.1f}% of {:.2f} s)\n",
+          adapted.load_seconds, adapted.metric_seconds, adapted.adapt_seconds, adapted.check_seconds, write_seconds,
+          report_seconds, around, 100.0 * around / std::max(all, 1e-9), all);
+    }
     fmt::print("{}", format_report(report));
   }
   return kOk;
