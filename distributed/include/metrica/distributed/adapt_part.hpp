@@ -41,9 +41,9 @@ struct PartRoundRules {
   double max_min_conformity_gain = 0.005;
   double min_split_floor = 0.01;
   AdaptOptions applied_to(AdaptOptions o) const {
+    o = applied_to_first(o);
     o.polish_sweeps = std::max(o.polish_sweeps, min_polish_sweeps);
     o.min_conformity_gain = std::min(o.min_conformity_gain, max_min_conformity_gain);
-    o.refine.shape_floor = std::max(o.refine.shape_floor, min_split_floor);
     return o;
   }
   // What the first round takes of these.

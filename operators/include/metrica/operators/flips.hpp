@@ -198,20 +198,7 @@ bool boundary_fan_fits(const Mesh& mesh, VertexId a, VertexId b, const FlipScrat
 // (it can only on a surface folded by round-off, but then the flip would
 // double a face).
 inline bool closing_edge_is_new(const Mesh& mesh, FlipScratch& s) {
-  vertex_ball(mesh, s.ring.front(), s.ball);
-  for (TetId t : s.ball)
-    if (local_index(mesh.tet(t), s.ring.back()) >= 0) return false;
-  return true;
-}
-
-// Whether a tet of `ball` (the ball of u, v or w) holds u, v and w: the
-// triangle uvw is a face of the mesh already.
-inline bool triangle_in_ball(const Mesh& mesh, const TetList& ball, VertexId u, VertexId v, VertexId w) {
-  for (TetId t : ball) {
-    const TetVertices& tv = mesh.tet(t);
-    if (local_index(tv, u) >= 0 && local_index(tv, v) >= 0 && local_index(tv, w) >= 0) return true;
-  }
-  return false;
+  return tet_with_edge(mesh, s.ring.front(), s.ring.back(), s.ball) == kNoId;
 }
 
 // The new inner faces of an edge removal are the triangles of the chosen
@@ -226,8 +213,8 @@ inline bool ring_faces_are_new(const Mesh& mesh, FlipScratch& s) {
     if (mesh.vertex_class(p) == VertexClass::interior || mesh.vertex_class(q) == VertexClass::interior ||
         mesh.vertex_class(r) == VertexClass::interior)
       continue;
-    vertex_ball(mesh, p, s.ball);
-    if (triangle_in_ball(mesh, s.ball, p, q, r)) return false;
+    const auto holds_qr = [&](TetId t) { return local_index(mesh.tet(t), q) >= 0 && local_index(mesh.tet(t), r) >= 0; };
+    if (walk_vertex_ball(mesh, p, s.ball, holds_qr) != kNoId) return false;
   }
   return true;
 }
@@ -357,11 +344,9 @@ Decision<Flip23Plan> decide_flip23(const Mesh& mesh, TetId t, int face, FlipScra
   if (!all_positive(mesh, view(s.candidate))) return Refusal::rejected;
   // The new edge ab may exist already between two boundary vertices (a
   // spike folded against the two tets): the flip would double it.
-  if (mesh.vertex_class(a) != VertexClass::interior && mesh.vertex_class(b) != VertexClass::interior) {
-    vertex_ball(mesh, a, s.ball);
-    for (TetId u : s.ball)
-      if (local_index(mesh.tet(u), b) >= 0) return Refusal::rejected;
-  }
+  if (mesh.vertex_class(a) != VertexClass::interior && mesh.vertex_class(b) != VertexClass::interior &&
+      tet_with_edge(mesh, a, b, s.ball) != kNoId)
+    return Refusal::rejected;
   const std::array<TetId, 2> old{t, nb.tet()};
   const Acceptance<S, Criterion> accept(o.shape_floor);
   s.best_scores.clear();
