@@ -10,6 +10,7 @@
 #include <doctest/doctest.h>
 
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -240,6 +241,36 @@ TEST_SUITE("regression") {
     CHECK(c.code == 0);
     CHECK(has(c, "centroid points"));
     CHECK(metrica_cli("check " + (dir / "q.meshb")).code == 0);
+  }
+
+  TEST_CASE("adapt -v accounts for the time: each pass in and outside its loops, the parts adding up") {
+    test::TempDir dir;
+    REQUIRE(metrica_cli("cube --n 2 -o " + (dir / "c.meshb")).code == 0);
+    for (const char* threads : {"1", "2"}) {
+      const auto r = metrica_cli("adapt " + (dir / "c.meshb") + " --analytic linear --cycles 3 --quality-passes 1 -v " +
+                                 "--threads " + threads + " -o " + (dir / "a.meshb"));
+      INFO(r.output);
+      REQUIRE(r.code == 0);
+      // Each operator's line ends with its seconds and those outside its loops.
+      double split = -1, split_outside = -1;
+      const auto at = r.output.find("  split    tried");
+      REQUIRE(at != std::string::npos);
+      const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+      REQUIRE(std::sscanf(line.c_str() + line.rfind('|'), "| %lf s, outside loops %lf s", &split, &split_outside) == 2);
+      CHECK(split_outside >= 0.0);
+      CHECK(split_outside <= split);
+      // The summary: passes = in their loops + outside, and the parts within the whole.
+      double passes = 0, in_loops = 0, outside = 0, ends = 0, rest = 0, whole = 0;
+      const auto t = r.output.find("  time: passes");
+      REQUIRE(t != std::string::npos);
+      REQUIRE(std::sscanf(r.output.c_str() + t,
+                          "  time: passes %lf s (in their loops %lf s, outside %lf s), cycle ends (compaction, "
+                          "measures) %lf s, the rest %lf s, of %lf s",
+                          &passes, &in_loops, &outside, &ends, &rest, &whole) == 6);
+      CHECK(std::abs(in_loops + outside - passes) <= 0.011);  // each printed to 0.01 s
+      CHECK(passes + ends + rest <= whole + 0.02);
+      CHECK(passes > 0.0);
+    }
   }
 
   TEST_CASE("pipeline runs the stages composed on the command line - the same mesh on every serial run") {
