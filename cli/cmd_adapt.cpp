@@ -284,7 +284,7 @@ Adapted adapt_input(const Options& o, const AdaptOptions& ao, const PolicyChoice
   if (background) {
     // The report and --metric-out in the field the user gave: the
     // background at every output vertex.
-    const std::size_t outside = background->assign(mesh);
+    const std::size_t outside = background->assign(mesh, sweeps);
     if (talk && outside > 0)
       fmt::print("{} of {} output vertices outside the input mesh: the nearest input tet's metric, clamped\n",
                  count_text(outside), count_text(mesh.num_vertices()));
@@ -382,8 +382,8 @@ int run_adapt(const std::vector<std::string>& args) {
     if (log::level() >= log::Level::verbose) {
       // The steps around the adaptation run on one thread but the checks'
       // and the report's sweeps.
-      const double around = adapted.load_seconds + adapted.metric_seconds + adapted.check_seconds + write_seconds +
-                            report_seconds;
+      const double around =
+          adapted.load_seconds + adapted.metric_seconds + adapted.check_seconds + write_seconds + report_seconds;
       fmt::print(
           "time: read and build {:.2f} s, metric {:.2f} s, adaptation {:.2f} s, checks {:.2f} s, write {:.2f} s, "
           "report {:.2f} s; around the adaptation {:.2f} s ({:.1f}% of {:.2f} s)\n",

@@ -5,6 +5,9 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <vector>
+
 namespace metrica {
 
 namespace {
@@ -62,20 +65,33 @@ void BackgroundMetric::attach(Mesh& mesh) const {
   }
 }
 
-std::size_t BackgroundMetric::assign(Mesh& mesh) const {
+std::size_t BackgroundMetric::assign(Mesh& mesh, const PartRunner& run) const {
   mesh.enable_background_tets();
-  std::size_t outside = 0;
-  TetId previous = kNoId;
-  for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
-    if (!mesh.vertex_alive(v)) continue;
-    const TetId own = mesh.background_tet(v);
-    const Sample s = at(mesh.point(v), own != kNoId ? own : previous);
-    set_vertex_metric(mesh, v, s.metric);
-    previous = s.metric.background;
-    outside += !s.inside;
-  }
+  // Each vertex writes only its own entries (the walks read the
+  // background), once the mesh has its metric's attribute: the first
+  // set_metric adds it, alone.
+  const std::size_t parts = mesh.has_metric() ? std::max<std::size_t>(run.parts, 1) : 1, n = mesh.vertex_capacity();
+  struct alignas(64) Outside {
+    std::size_t count = 0;
+  };
+  std::vector<Outside> outside(parts);
+  run(parts, [&](std::size_t p) {
+    const auto [first, last] = part_slice(n, parts, p);
+    TetId previous = kNoId;
+    for (std::size_t i = first; i < last; ++i) {
+      const auto v = static_cast<VertexId>(i);
+      if (!mesh.vertex_alive(v)) continue;
+      const TetId own = mesh.background_tet(v);
+      const Sample s = at(mesh.point(v), own != kNoId ? own : previous);
+      set_vertex_metric(mesh, v, s.metric);
+      previous = s.metric.background;
+      outside[p].count += !s.inside;
+    }
+  });
   mesh.clear_quality_cache();
-  return outside;
+  std::size_t all = 0;
+  for (const auto& o : outside) all += o.count;
+  return all;
 }
 
 }  // namespace metrica

@@ -16,6 +16,7 @@
 
 #include <metrica/mesh.hpp>
 #include <metrica/metrics/space.hpp>
+#include <metrica/part_runner.hpp>
 #include <metrica/point_location.hpp>
 
 #include <cstddef>
@@ -51,9 +52,11 @@ class BackgroundMetric {
 
   // Every live vertex of `mesh` takes the background's metric at its
   // position (its own background tet starting the walk, else the previous
-  // vertex's); the mesh's background tets are enabled and set. Returns the
-  // number of vertices outside the background. Outside parallel passes.
-  std::size_t assign(Mesh& mesh) const;
+  // vertex's of its part); the mesh's background tets are enabled and set.
+  // The vertices are cut into run.parts parts, located concurrently.
+  // Returns the number of vertices outside the background. Outside
+  // parallel passes.
+  std::size_t assign(Mesh& mesh, const PartRunner& run = {}) const;
 
   const Mesh& mesh() const { return mesh_; }
 
