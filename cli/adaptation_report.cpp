@@ -35,8 +35,9 @@ void print_operator_stats(const AdaptReport& r, bool serial, int threads) {
                           s.tried > 0 ? 100.0 * double(s.conflicts) / double(s.tried + s.conflicts) : 0.0,
                           count_text(s.replays), count_text(s.serial_tail), busy);
     }
-    // Of the pass's time, what ran outside the policy's loops: the
-    // candidates gathered and ordered, the tails, the hand-back (serial).
+    // Of the pass's time, what ran outside the policy's loops over its
+    // items: the candidates gathered and ordered, the scratch set up
+    // (sweeps of their own, parallel or not).
     fmt::print("{} | {:.2f} s, outside loops {:.2f} s\n", text, s.seconds, std::max(0.0, s.seconds - s.loop_seconds));
   }
   // Where the adaptation's time went: the operators' passes (in their
