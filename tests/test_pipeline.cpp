@@ -3,13 +3,15 @@
 //     name, and a stage's name is the key of its passes' epoch;
 //   - the cycles stop for the stated reason (the mesh's own vertex
 //     changes), whatever the stages are called;
-//   - Adapter::run binds the adapter's metric and geometry.
+//   - Adapter::run binds the adapter's metric and geometry;
+//   - only the last quality pass compacts and measures the mesh.
 #include "operator_test_support.hpp"
 
 #include <metrica/pipeline/adapt.hpp>
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -103,6 +105,42 @@ TEST_SUITE("invariant") {
     const AdaptReport& r = run_pipeline(second, p);
     CHECK(r.cycles.size() > 1);
     CHECK(mesh.vertex_changes() - before >= r.ops.get("refine").applied);
+  }
+
+  TEST_CASE("the quality passes before the phase's last are not measured; the last one's figures are the mesh's") {
+    using A = Adapter<LogEuclidean, Serial>;
+    const MetricFunction metric = small_linear;
+    Mesh mesh = small_linear_box();
+    A adapter(mesh, &metric);
+    AdaptOptions o;
+    o.quality_passes = 3;
+    o.repair_rounds = 0;
+    const AdaptReport& r = run_pipeline(adapter, standard_pipeline<A>(o));
+    std::vector<const CycleReport*> passes;
+    for (const CycleReport& c : r.cycles) {
+      if (c.quality_phase) {
+        passes.push_back(&c);
+      } else {
+        CHECK(c.measured);
+        CHECK(c.conformity > 0.0);
+      }
+    }
+    REQUIRE(passes.size() == 3);
+    for (int k = 0; k < 2; ++k) {
+      CHECK_FALSE(passes[k]->measured);
+      CHECK(std::isnan(passes[k]->conformity));
+      CHECK(std::isnan(passes[k]->min_quality));
+      CHECK(passes[k]->tets > 0);
+    }
+    // The last pass closes the run: compacted and measured.
+    const CycleReport& last = *passes[2];
+    CHECK(last.measured);
+    CHECK(mesh.num_tets() == mesh.tet_capacity());
+    CHECK(last.tets == mesh.num_tets());
+    double worst = 0.0;
+    CHECK(last.conformity == doctest::Approx(conformity<LogEuclidean>(mesh, &worst)));
+    CHECK(last.min_quality == doctest::Approx(worst));
+    require_valid(mesh, 1.0);
   }
 
   TEST_CASE("stages of one name share their epoch; another name starts from everything") {

@@ -23,6 +23,7 @@
 #include <metrica/operators/smooth.hpp>
 
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <string_view>
@@ -72,6 +73,10 @@ struct CycleReport {
   OperatorReport ops;     // by operator name ("collapse", "split", "flip", "smooth", ...)
   double conformity = 0;  // share of edges in the unit band
   double min_quality = 0;
+  // False for a quality pass before the phase's last: its end neither
+  // compacts nor measures (conformity and min_quality are NaN), as those
+  // figures decide nothing there and cost a full sweep of the mesh.
+  bool measured = true;
   double seconds = 0;  // of this cycle
   // Of those, the cycle's end: compaction, the heap handed back, the
   // conformity and worst tet measured.
@@ -314,15 +319,21 @@ class Adapter {
   }
 
   // Closes a cycle: compaction, counts, conformity and worst tet, the
-  // report and the progress callback.
-  void finish(CycleReport& c, const Stopwatch& clock) {
+  // report and the progress callback. Without `measure`, the counts only
+  // (CycleReport::measured).
+  void finish(CycleReport& c, const Stopwatch& clock, bool measure = true) {
     const Stopwatch closing;
-    mesh_.compact(part_runner<C>(mesh_.tet_capacity()));
-    release_freed_memory();
+    c.measured = measure;
+    if (measure) {
+      mesh_.compact(part_runner<C>(mesh_.tet_capacity()));
+      release_freed_memory();
+      c.conformity = conformity<S, C>(mesh_, &c.min_quality, true, &out_of_band_.edges);
+      out_of_band_.taken(mesh_);
+    } else {
+      c.conformity = c.min_quality = std::numeric_limits<double>::quiet_NaN();
+    }
     c.vertices = mesh_.num_vertices();
     c.tets = mesh_.num_tets();
-    c.conformity = conformity<S, C>(mesh_, &c.min_quality, true, &out_of_band_.edges);
-    out_of_band_.taken(mesh_);
     c.closing_seconds = closing.seconds();
     c.seconds = clock.seconds();
     report_.ops += c.ops;
