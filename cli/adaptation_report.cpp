@@ -62,15 +62,14 @@ void print_cycle(const CycleReport& c) {
   // model, a projection with every vertex on the model) is left out.
   for (const auto& [name, s] : c.ops)
     if (s.tried > 0 || s.candidates > 0) ops += " | " + stats_text(name.c_str(), s);
-  // A quality pass before the phase's last is not measured (CycleReport::measured).
-  const std::string figures = c.measured ? fmt::format("in range {:5.1f}% min Q {:.3f}", 100.0 * c.conformity,
-                                                       c.min_quality)
-                                         : std::string("in range    -   min Q   -  ");
-  fmt::print("  {} {:>2}: {:>9} vertices {:>10} tets{} | {} | {:.2f} s\n",
+  // A quality pass before the phase's last does not measure the share in
+  // range (CycleReport::conformity_measured).
+  const std::string in_range = c.conformity_measured ? fmt::format("{:5.1f}%", 100.0 * c.conformity) : "    - ";
+  fmt::print("  {} {:>2}: {:>9} vertices {:>10} tets{} | in range {} min Q {:.3f} | {:.2f} s\n",
              c.repair          ? "repair"
              : c.quality_phase ? "polish"
                                : "cycle ",
-             c.cycle, count_text(c.vertices), count_text(c.tets), ops, figures, c.seconds);
+             c.cycle, count_text(c.vertices), count_text(c.tets), ops, in_range, c.min_quality, c.seconds);
   std::fflush(stdout);
 }
 

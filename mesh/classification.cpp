@@ -25,23 +25,33 @@ std::uint64_t surface_pair(SurfaceId lo, SurfaceId hi) {
 
 }  // namespace
 
-Classification compute_classification(const Mesh& mesh) {
+Classification compute_classification(const Mesh& mesh, const PartRunner& run) {
   Classification c;
   c.vertex_class.assign(mesh.vertex_capacity(), VertexClass::interior);
+
+  // The surface faces, found in the run's parts (the one sweep over every
+  // tet), then taken in tet order.
+  const std::size_t parts = std::max<std::size_t>(run.parts, 1);
+  std::vector<std::vector<std::pair<TetId, int>>> found(parts);
+  run(parts, [&](std::size_t p) {
+    const auto [first, last] = part_slice(mesh.tet_capacity(), parts, p);
+    for_each_surface_face_in(mesh, first, last, [&](TetId t, int f) { found[p].emplace_back(t, f); });
+  });
 
   // Every surface face contributes its three edges with its surface id.
   if (mesh.has_internal_surfaces()) c.on_internal_surface.assign(mesh.vertex_capacity(), 0);
   std::vector<EdgeSide> sides;
-  for_each_surface_face(mesh, [&](TetId t, int f) {
-    const auto tri = face_vertices(mesh.tet(t), f);
-    const SurfaceId s = mesh.face_surface_id(t, f);
-    const bool internal = mesh.neighbour(t, f).valid();
-    for (int i = 0; i < 3; ++i) {
-      sides.push_back({edge_key(tri[i], tri[(i + 1) % 3]), s});
-      c.vertex_class[tri[i]] = VertexClass::surface;
-      if (internal) c.on_internal_surface[tri[i]] = 1;
+  for (const auto& part : found)
+    for (const auto& [t, f] : part) {
+      const auto tri = face_vertices(mesh.tet(t), f);
+      const SurfaceId s = mesh.face_surface_id(t, f);
+      const bool internal = mesh.neighbour(t, f).valid();
+      for (int i = 0; i < 3; ++i) {
+        sides.push_back({edge_key(tri[i], tri[(i + 1) % 3]), s});
+        c.vertex_class[tri[i]] = VertexClass::surface;
+        if (internal) c.on_internal_surface[tri[i]] = 1;
+      }
     }
-  });
   std::sort(sides.begin(), sides.end());
 
   // Per vertex: number of ridge edges, and the surface pair of the first.

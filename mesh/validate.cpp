@@ -1,3 +1,4 @@
+#include <metrica/bucket_cursors.hpp>
 #include <metrica/classification.hpp>
 #include <metrica/geometry.hpp>
 #include <metrica/numbering.hpp>
@@ -155,31 +156,46 @@ class Checker {
   // third tet on it (tets that overlap, their adjacency consistent pair by
   // pair) is a mesh the other checks pass and no file can hold. The faces
   // once each (boundary faces, interior ones from the smaller tet id),
-  // bucketed by their smallest vertex; equal triangles meet in a bucket.
+  // bucketed by their smallest vertex (a counting sort in the run's parts,
+  // bucket_cursors); equal triangles meet in a bucket, the buckets checked
+  // in parts of vertices whose reports join in vertex order.
   void check_faces_once() {
-    const std::size_t nv = m_.vertex_capacity();
-    std::vector<std::uint32_t> start(nv + 1, 0);
-    auto each_face = [&](auto&& f) {
-      for (TetId t = 0; t < m_.tet_capacity(); ++t) {
-        if (!m_.tet_alive(t)) continue;
-        for (int i = 0; i < 4; ++i) {
-          const FaceRef n = m_.neighbour(t, i);
-          if (!n.valid() || t < n.tet()) f(sorted(face_vertices(m_.tet(t), i)));
-        }
+    const std::size_t nv = m_.vertex_capacity(), nt = m_.tet_capacity();
+    const std::size_t parts = std::max<std::size_t>(opt_.run.parts, 1);
+    auto each_face = [&](std::size_t t, auto&& f) {
+      if (!m_.tet_alive(static_cast<TetId>(t))) return;
+      for (int i = 0; i < 4; ++i) {
+        const FaceRef n = m_.neighbour(static_cast<TetId>(t), i);
+        if (!n.valid() || t < n.tet()) f(sorted(face_vertices(m_.tet(static_cast<TetId>(t)), i)));
       }
     };
-    each_face([&](const TriangleVertices& k) { ++start[k[0] + 1]; });
-    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-    std::vector<std::pair<VertexId, VertexId>> rest(start[nv]);
-    std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
-    each_face([&](const TriangleVertices& k) { rest[at[k[0]]++] = {k[1], k[2]}; });
-    for (std::size_t v = 0; v < nv; ++v) {
-      const auto first = rest.begin() + start[v], last = rest.begin() + start[v + 1];
-      std::sort(first, last);
-      for (auto it = std::adjacent_find(first, last); it != last; it = std::adjacent_find(it + 1, last))
-        fail("faces", "triangle ({} {} {}) is a face of more than two tets, or of two that are not neighbours",
-             numbered(v), numbered(it->first), numbered(it->second));
-    }
+    MeshArray<std::uint32_t> cursor, start;
+    const std::size_t faces = bucket_cursors(
+        nt, nv, parts, [&](std::size_t t, auto&& add) { each_face(t, [&](const TriangleVertices& k) { add(k[0]); }); },
+        opt_.run, cursor, start);
+    MeshArray<std::pair<VertexId, VertexId>> rest;
+    rest.resize(faces);
+    opt_.run(parts, [&](std::size_t p) {
+      std::uint32_t* next = cursor.data() + p * nv;
+      const auto [first, last] = part_slice(nt, parts, p);
+      for (std::size_t t = first; t < last; ++t)
+        each_face(t, [&](const TriangleVertices& k) { rest[next[k[0]]++] = {k[1], k[2]}; });
+    });
+    cursor = {};
+    std::vector<ValidationReport> reports(parts);
+    opt_.run(parts, [&](std::size_t p) {
+      const auto [first, last] = part_slice(nv, parts, p);
+      for (std::size_t v = first; v < last; ++v) {
+        const auto bucket_begin = rest.begin() + start[v], bucket_end = rest.begin() + start[v + 1];
+        std::sort(bucket_begin, bucket_end);
+        for (auto it = std::adjacent_find(bucket_begin, bucket_end); it != bucket_end;
+             it = std::adjacent_find(it + 1, bucket_end))
+          fail_in(reports[p], "faces",
+                  "triangle ({} {} {}) is a face of more than two tets, or of two that are not neighbours",
+                  numbered(static_cast<VertexId>(v)), numbered(it->first), numbered(it->second));
+      }
+    });
+    for (const ValidationReport& r : reports) report_.append(r, opt_.max_messages_per_check);
   }
 
   // Each boundary edge on exactly two boundary faces, and around each
@@ -264,7 +280,7 @@ class Checker {
   }
 
   void check_classification() {
-    const auto c = compute_classification(m_);
+    const auto c = compute_classification(m_, opt_.run);
     for (VertexId v = 0; v < m_.vertex_capacity(); ++v) {
       if (!m_.vertex_alive(v)) continue;
       if (c.vertex_class[v] != m_.vertex_class(v))

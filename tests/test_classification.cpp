@@ -58,6 +58,17 @@ TEST_SUITE("unit") {
     CHECK(b.corners == a.corners);
   }
 
+  TEST_CASE("in parts the classification is the same (cube-cylinder)") {
+    const Mesh mesh = build_mesh(io::read_meshb(test::ugawg("cube-cylinder.meshb")));
+    const Classification one = compute_classification(mesh);
+    for (std::size_t parts : {2, 3, 5}) {
+      const Classification c = compute_classification(mesh, PartRunner{parts, {}});
+      CHECK(c.vertex_class == one.vertex_class);
+      CHECK(c.ridges == one.ridges);
+      CHECK(c.on_internal_surface == one.on_internal_surface);
+    }
+  }
+
   TEST_CASE("a vertex's class from the triangles around it alone is the mesh's (cube-cylinder, a box)") {
     for (const auto& d :
          {io::read_meshb(test::ugawg("cube-cylinder.mesh")), box_mesh_data({.nx = 3, .ny = 2, .nz = 2})}) {

@@ -116,6 +116,12 @@ TEST_SUITE("invariant") {
     const auto r = mesh.validate();
     CHECK(r.count("faces") == 1);
     CHECK(r.to_string().find("triangle (1 2 3) is a face of more than two tets") != std::string::npos);
+    // In parts, as adapt's checks run it: the same report.
+    for (std::size_t parts : {2, 3, 7}) {
+      ValidateOptions o;
+      o.run = PartRunner{parts, {}};
+      CHECK(mesh.validate(o).to_string() == r.to_string());
+    }
   }
 
   TEST_CASE("classification: a surface id changed without reclassifying") {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <metrica/mesh.hpp>
+#include <metrica/part_runner.hpp>
 
 #include <cstdint>
 #include <span>
@@ -28,8 +29,10 @@ struct Classification {
 
 // Computes the classification from surface ids, feature edges and required
 // vertices, without changing the mesh (validate() compares it with the
-// stored one; Mesh::classify() stores it).
-Classification compute_classification(const Mesh& mesh);
+// stored one; Mesh::classify() stores it). The sweep over the tets for
+// their surface faces runs on `run`'s parts; the result is the same for
+// any number of parts.
+Classification compute_classification(const Mesh& mesh, const PartRunner& run = {});
 
 // One boundary vertex's class from the surface faces around it, for a
 // vertex of a mesh held in pieces (no feature edges, not required): each

@@ -496,20 +496,22 @@ void for_each_boundary_face(const Mesh& mesh, F&& f) {
 
 // Calls f(tet, face) for every surface face once: the boundary faces, and
 // each internal-surface face from the side of the smaller tet id (its
-// vertices in that tet's outward order).
+// vertices in that tet's outward order). Over the tets [first, last) only:
+// a part of a sweep.
 template <class F>
-void for_each_surface_face(const Mesh& mesh, F&& f) {
-  if (!mesh.has_internal_surfaces()) {
-    for_each_boundary_face(mesh, f);
-    return;
-  }
-  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
+void for_each_surface_face_in(const Mesh& mesh, std::size_t first, std::size_t last, F&& f) {
+  const bool internal = mesh.has_internal_surfaces();
+  for (auto t = static_cast<TetId>(first); t < last; ++t) {
     if (!mesh.tet_alive(t)) continue;
     for (int face = 0; face < 4; ++face) {
       const FaceRef n = mesh.neighbour(t, face);
-      if (!n.valid() || (mesh.internal_surface_id(t, face) != 0 && t < n.tet())) f(t, face);
+      if (!n.valid() || (internal && mesh.internal_surface_id(t, face) != 0 && t < n.tet())) f(t, face);
     }
   }
+}
+template <class F>
+void for_each_surface_face(const Mesh& mesh, F&& f) {
+  for_each_surface_face_in(mesh, 0, mesh.tet_capacity(), f);
 }
 
 }  // namespace metrica

@@ -84,15 +84,12 @@ def _log_cycle(cycle):
     ops = " | ".join(
         f"{name} {s['applied']}/{s['tried']}" for name, s in cycle["ops"].items() if s["tried"] or s["candidates"]
     )
-    # A quality pass before the phase's last is not measured (None).
-    figures = (
-        f"in range {100.0 * cycle['in_range']:5.1f}% min Q {cycle['min_quality']:.3f}"
-        if cycle["in_range"] is not None
-        else "in range    -   min Q   -  "
-    )
+    # A quality pass before the phase's last does not measure the share in range (None).
+    in_range = f"{100.0 * cycle['in_range']:5.1f}%" if cycle["in_range"] is not None else "    - "
     _log.info(
-        "%s %2d: %9d vertices %10d tets | %s | %s | %.2f s",
-        cycle["kind"], cycle["cycle"], cycle["vertices"], cycle["tets"], ops, figures, cycle["seconds"],
+        "%s %2d: %9d vertices %10d tets | %s | in range %s min Q %.3f | %.2f s",
+        cycle["kind"], cycle["cycle"], cycle["vertices"], cycle["tets"], ops, in_range,
+        cycle["min_quality"], cycle["seconds"],
     )
 
 

@@ -67,15 +67,6 @@ inline double ridge_length(const Mesh& mesh) {
   return l;
 }
 
-// The smallest mean ratio of the live tets in S.
-template <MetricSpace S>
-double worst_quality(const Mesh& mesh) {
-  double q = 1.0;
-  for (TetId t = 0; t < mesh.tet_capacity(); ++t)
-    if (mesh.tet_alive(t)) q = std::min(q, S::mean_ratio(mesh, mesh.tet(t)));
-  return q;
-}
-
 // A hash of everything but the quality cache: live entities, points,
 // metrics, vertex classes, tets, neighbours and surface ids, change stamps
 // and the epoch. What decide may not change (operation.hpp).

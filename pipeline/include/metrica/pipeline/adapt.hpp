@@ -185,13 +185,13 @@ struct Pipeline : PipelineRules {
 };
 
 // One round of a pipeline: its stages, then the adapter closes it (counts,
-// conformity, worst tet, report, progress; without `measure`, the counts
-// only). `number` is its index in the report; quality-phase rounds follow
-// the cycles.
+// conformity unless `measure_conformity` is false, worst tet, report,
+// progress). `number` is its index in the report; quality-phase rounds
+// follow the cycles.
 enum class RoundKind { cycle, quality_pass, repair, closing };
 template <class A>
 const CycleReport& run_round(A& a, const Stages<A>& stages, RoundKind kind, int number, const Stages<A>& first = {},
-                             bool measure = true) {
+                             bool measure_conformity = true) {
   Stopwatch clock;
   CycleReport c;
   c.cycle = number;
@@ -199,7 +199,7 @@ const CycleReport& run_round(A& a, const Stages<A>& stages, RoundKind kind, int 
   c.repair = kind == RoundKind::repair;
   run_stages(a, first, c);
   run_stages(a, stages, c);
-  a.finish(c, clock, measure);
+  a.finish(c, clock, measure_conformity);
   return a.report().cycles.back();
 }
 
@@ -220,8 +220,9 @@ const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
     previous_conformity = conformity;
   }
   if (p.before_polish) p.before_polish(a);
-  // The quality passes' figures decide nothing until the last: the repair
-  // rounds start from its worst tet.
+  // The quality passes' share in range decides nothing (the cycles' stops
+  // are behind; the repair rounds start from the worst tet): the last
+  // pass's only is measured.
   for (int pass = 0; pass < p.quality_passes; ++pass)
     run_round(a, p.polish, RoundKind::quality_pass, next(), {}, pass + 1 == p.quality_passes);
   int idle_rounds = 0;  // in a row, without a gain in the worst tet

@@ -73,10 +73,11 @@ struct CycleReport {
   OperatorReport ops;     // by operator name ("collapse", "split", "flip", "smooth", ...)
   double conformity = 0;  // share of edges in the unit band
   double min_quality = 0;
-  // False for a quality pass before the phase's last: its end neither
-  // compacts nor measures (conformity and min_quality are NaN), as those
-  // figures decide nothing there and cost a full sweep of the mesh.
-  bool measured = true;
+  // False for a quality pass before the phase's last: the share in range
+  // is not measured there (conformity is NaN), as it decides nothing and
+  // costs a listing of every edge. The worst tet is: its sweep fills the
+  // quality cache the next pass's seeds read.
+  bool conformity_measured = true;
   double seconds = 0;  // of this cycle
   // Of those, the cycle's end: compaction, the heap handed back, the
   // conformity and worst tet measured.
@@ -95,6 +96,22 @@ struct AdaptReport {
   }
 };
 
+// The smallest mean ratio of the live tets (1 with none), through the
+// quality cache when `cached` (as conformity's), in blocks of 64 tets on
+// C's threads.
+template <MetricSpace S, class C = Serial>
+double worst_quality(const Mesh& mesh, bool cached = false) {
+  constexpr std::size_t kBlock = 64;
+  const std::size_t nt = mesh.tet_capacity();
+  const auto mins = C::template collect<double>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<double>& part) {
+    double q = 1.0;
+    for (auto t = static_cast<TetId>(b * kBlock); t < std::min(nt, (b + 1) * kBlock); ++t)
+      if (mesh.tet_alive(t)) q = std::min(q, cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t)));
+    part.push_back(q);
+  });
+  return mins.empty() ? 1.0 : *std::min_element(mins.begin(), mins.end());
+}
+
 // The share of edges in the unit band and, when asked, the smallest mean
 // ratio (through the quality cache when `cached`: only while the cache is
 // known to hold S's values, as inside an Adapter) and, when asked, the
@@ -102,9 +119,7 @@ struct AdaptReport {
 template <MetricSpace S, class C = Serial>
 double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached = false,
                   std::vector<std::pair<VertexId, VertexId>>* out_of_band = nullptr) {
-  // Edges in range and in all, per part of the edge buckets; the minimum
-  // in blocks of 64 tets; on C's threads.
-  constexpr std::size_t kBlock = 64;
+  // Edges in range and in all, per part of the edge buckets, on C's threads.
   const std::size_t parts = sweep_parts<C>(mesh.tet_capacity());
   struct alignas(64) Count {
     std::size_t in = 0, all = 0;
@@ -131,18 +146,7 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
     in += c.in;
     all += c.all;
   }
-  if (min_quality != nullptr) {
-    const std::size_t nt = mesh.tet_capacity();
-    const auto mins =
-        C::template collect<double>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<double>& part) {
-          double q = 1.0;
-          for (auto t = static_cast<TetId>(b * kBlock); t < std::min(nt, (b + 1) * kBlock); ++t)
-            if (mesh.tet_alive(t))
-              q = std::min(q, cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t)));
-          part.push_back(q);
-        });
-    *min_quality = mins.empty() ? 1.0 : *std::min_element(mins.begin(), mins.end());
-  }
+  if (min_quality != nullptr) *min_quality = worst_quality<S, C>(mesh, cached);
   return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
 }
 
@@ -319,21 +323,22 @@ class Adapter {
   }
 
   // Closes a cycle: compaction, counts, conformity and worst tet, the
-  // report and the progress callback. Without `measure`, the counts only
-  // (CycleReport::measured).
-  void finish(CycleReport& c, const Stopwatch& clock, bool measure = true) {
+  // report and the progress callback. Without `measure_conformity`, the
+  // worst tet only (CycleReport::conformity_measured).
+  void finish(CycleReport& c, const Stopwatch& clock, bool measure_conformity = true) {
     const Stopwatch closing;
-    c.measured = measure;
-    if (measure) {
-      mesh_.compact(part_runner<C>(mesh_.tet_capacity()));
-      release_freed_memory();
+    mesh_.compact(part_runner<C>(mesh_.tet_capacity()));
+    release_freed_memory();
+    c.vertices = mesh_.num_vertices();
+    c.tets = mesh_.num_tets();
+    c.conformity_measured = measure_conformity;
+    if (measure_conformity) {
       c.conformity = conformity<S, C>(mesh_, &c.min_quality, true, &out_of_band_.edges);
       out_of_band_.taken(mesh_);
     } else {
-      c.conformity = c.min_quality = std::numeric_limits<double>::quiet_NaN();
+      c.conformity = std::numeric_limits<double>::quiet_NaN();
+      c.min_quality = worst_quality<S, C>(mesh_, true);
     }
-    c.vertices = mesh_.num_vertices();
-    c.tets = mesh_.num_tets();
     c.closing_seconds = closing.seconds();
     c.seconds = clock.seconds();
     report_.ops += c.ops;
