@@ -107,7 +107,7 @@ TEST_SUITE("invariant") {
     CHECK(mesh.vertex_changes() - before >= r.ops.get("refine").applied);
   }
 
-  TEST_CASE("the quality passes before the phase's last do not measure the share in range; the figures are the mesh's") {
+  TEST_CASE("quality passes before the last do not measure the share in range; the figures are the mesh's") {
     using A = Adapter<LogEuclidean, Serial>;
     const MetricFunction metric = small_linear;
     Mesh mesh = small_linear_box();

@@ -51,8 +51,8 @@ py::dict cycle_dict(const CycleReport& c) {
                                                       : "cycle",
                   py::arg("cycle") = c.cycle, py::arg("vertices") = c.vertices, py::arg("tets") = c.tets,
                   py::arg("in_range") = c.conformity_measured ? py::object(py::float_(c.conformity)) : py::none(),
-                  py::arg("min_quality") = c.min_quality,
-                  py::arg("seconds") = c.seconds, py::arg("ops") = ops_dict(c.ops));
+                  py::arg("min_quality") = c.min_quality, py::arg("seconds") = c.seconds,
+                  py::arg("ops") = ops_dict(c.ops));
 }
 
 py::dict sample_dict(const SampleStats& s) {

@@ -103,12 +103,14 @@ template <MetricSpace S, class C = Serial>
 double worst_quality(const Mesh& mesh, bool cached = false) {
   constexpr std::size_t kBlock = 64;
   const std::size_t nt = mesh.tet_capacity();
-  const auto mins = C::template collect<double>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<double>& part) {
-    double q = 1.0;
-    for (auto t = static_cast<TetId>(b * kBlock); t < std::min(nt, (b + 1) * kBlock); ++t)
-      if (mesh.tet_alive(t)) q = std::min(q, cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t)));
-    part.push_back(q);
-  });
+  const auto mins =
+      C::template collect<double>((nt + kBlock - 1) / kBlock, [&](std::size_t b, std::vector<double>& part) {
+        double q = 1.0;
+        for (auto t = static_cast<TetId>(b * kBlock); t < std::min(nt, (b + 1) * kBlock); ++t)
+          if (mesh.tet_alive(t))
+            q = std::min(q, cached ? cached_mean_ratio<S>(mesh, t) : S::mean_ratio(mesh, mesh.tet(t)));
+        part.push_back(q);
+      });
   return mins.empty() ? 1.0 : *std::min_element(mins.begin(), mins.end());
 }
 
