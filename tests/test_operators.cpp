@@ -251,6 +251,38 @@ TEST_SUITE("invariant") {
     valid(mesh);
   }
 
+  // The same fixture, every edge removed in turn from the start under a
+  // criterion that takes any positive fan: the removal of file edge 60-63
+  // triangulates its ring with a diagonal that, joined to the edge's end,
+  // is the spike's base (a face of three tets); it is refused.
+  TEST_CASE("no edge removal beside a boundary spike doubles a face with a diagonal of its ring") {
+    const auto data = io::read_meshb(std::string(METRICA_TEST_DATA_DIR) + "/boundary_spike.meshb");
+    Mesh start = build_mesh(data);
+    set_metric_function(start, [](const Point& p) { return evaluate(AnalyticMetric::polar1, p); });
+    ValidateOptions o;
+    o.expected_volume = start.volume();
+    o.volume_tolerance = 1e-5;
+    std::size_t applied = 0;
+    bool spike_base_refused = false;
+    for (const auto& [a, b] : unique_edges(start)) {
+      Mesh mesh = start;
+      FlipScratch s;
+      vertex_ball(mesh, a, s.ball);
+      if (!edge_shell(mesh, a, b, s.ball, s.shell)) continue;
+      const FlipResult r = remove_edge<LogEuclidean, AlwaysFlip>(mesh, a, b, s, FlipOptions{});
+      if (a == 59 && b == 62) spike_base_refused = r == FlipResult::rejected;
+      if (r != FlipResult::applied) continue;
+      ++applied;
+      CAPTURE(a);
+      CAPTURE(b);
+      const auto report = mesh.validate(o);
+      INFO(report.to_string());
+      CHECK(report.ok());
+    }
+    CHECK(spike_base_refused);
+    CHECK(applied > 100);
+  }
+
   TEST_CASE("face flips are tried only where a tet of the face is below face_flip_below") {
     Mesh start = jittered_box(3, 0.35, 2);
     std::vector<Sym6> f(start.vertex_capacity());
