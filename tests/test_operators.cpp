@@ -264,7 +264,8 @@ TEST_SUITE("invariant") {
     o.volume_tolerance = 1e-5;
     std::size_t applied = 0;
     bool spike_base_refused = false;
-    for (const auto& [a, b] : unique_edges(start)) {
+    for (const auto& e : unique_edges(start)) {
+      const VertexId a = e[0], b = e[1];  // not a structured binding: CAPTURE is a lambda for clang
       Mesh mesh = start;
       FlipScratch s;
       vertex_ball(mesh, a, s.ball);
