@@ -215,32 +215,25 @@ inline bool ring_neighbours(const VertexList& ring, VertexId x, VertexId y) {
 // vertices are all on the boundary may already be a face outside the
 // shell: a boundary vertex whose umbrella is three triangles (a spike)
 // folded against the shell, its base a ring triangle or a diagonal with a
-// or b, where the removal would put that face on three tets.
-inline bool ring_faces_are_new(const Mesh& mesh, VertexId a, VertexId b, FlipScratch& s) {
+// or b, where the removal would put that face on three tets. No shell tet
+// holds either kind (a shell tet holds two ring vertices next on the ring),
+// so any tet holding one is outside.
+inline bool ring_faces_are_new(const Mesh& mesh, FlipScratch& s) {
   const auto on_boundary = [&](VertexId v) { return mesh.vertex_class(v) != VertexClass::interior; };
   for (std::size_t c = 0; c < s.best.size(); ++c) {
     const TetVertices t = s.best[c];
-    if (c % 2 == 0 && on_boundary(t[0]) && on_boundary(t[1]) && on_boundary(t[2])) {
-      // The ring triangle, once for its two tets: no shell tet holds it.
-      const VertexId q = t[1], r = t[2];
-      const auto holds_qr = [&](TetId u) {
-        return local_index(mesh.tet(u), q) >= 0 && local_index(mesh.tet(u), r) >= 0;
-      };
-      if (walk_vertex_ball(mesh, t[0], s.ball, holds_qr) != kNoId) return false;
-    }
+    // The ring triangle, once for its two tets.
+    if (c % 2 == 0 && on_boundary(t[0]) && on_boundary(t[1]) && on_boundary(t[2]) &&
+        tet_with_face(mesh, t[0], t[1], t[2], s.ball) != kNoId)
+      return false;
     // A diagonal (two ring vertices not next on the ring; the open ring's
-    // closing edge is new, checked before) with the apex: a tet holding
-    // them and not the other end is outside the shell.
-    const VertexId apex = t[3], other = apex == a ? b : a;
+    // closing edge is new, checked before) with the apex.
+    const VertexId apex = t[3];
     if (!on_boundary(apex)) continue;
     for (int i = 0; i < 3; ++i) {
       const VertexId x = t[i], y = t[(i + 1) % 3];
       if (!on_boundary(x) || !on_boundary(y) || ring_neighbours(s.ring, x, y)) continue;
-      const auto outside_holds_xy = [&](TetId u) {
-        const TetVertices v = mesh.tet(u);
-        return local_index(v, x) >= 0 && local_index(v, y) >= 0 && local_index(v, other) < 0;
-      };
-      if (walk_vertex_ball(mesh, apex, s.ball, outside_holds_xy) != kNoId) return false;
+      if (tet_with_face(mesh, apex, x, y, s.ball) != kNoId) return false;
     }
   }
   return true;
@@ -334,7 +327,7 @@ Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, Vert
   }
   if (!found) return Refusal::rejected;
   if (!shell.closed && !detail::closing_edge_is_new(mesh, s)) return Refusal::rejected;
-  if (!detail::ring_faces_are_new(mesh, a, b, s)) return Refusal::rejected;
+  if (!detail::ring_faces_are_new(mesh, s)) return Refusal::rejected;
   if (!plan_cavity(mesh, view(shell.tets), view(s.best), s.plan, kNoId, kNoId, surface)) return Refusal::rejected;
   return EdgeRemovalPlan{a, b, ref};
 }

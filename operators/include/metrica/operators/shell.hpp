@@ -100,6 +100,15 @@ inline TetId tet_with_edge(const Mesh& mesh, VertexId a, VertexId b, TetList& wa
   return walk_vertex_ball(mesh, a, walk, [&](TetId t) { return local_index(mesh.tet(t), b) >= 0; });
 }
 
+// A live tet holding face pqr (kNoId when none): p's walk stopped at the
+// first tet that also holds q and r. `walk` is scratch.
+inline TetId tet_with_face(const Mesh& mesh, VertexId p, VertexId q, VertexId r, TetList& walk) {
+  return walk_vertex_ball(mesh, p, walk, [&](TetId t) {
+    const TetVertices v = mesh.tet(t);
+    return local_index(v, q) >= 0 && local_index(v, r) >= 0;
+  });
+}
+
 // Appends to `list` the vertices of `tets` it does not hold yet (the
 // vertex set of a cavity, to lock).
 template <class Tets>
