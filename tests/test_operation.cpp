@@ -75,6 +75,7 @@ struct PreferNew {
   static double tet_score_of(const Mesh&, TetId) {
     return 0.0;
   }
+  static double score_in(const TetPoints&, const Sym6&) { return 1.0; }
   static double bar(double reference) { return reference; }
 };
 

@@ -88,6 +88,16 @@ class Acceptance {
     bool admits(const TetVertices& metric_of, const TetPoints& x) {
       return shape_admits(metric_of, x) && beats(metric_of, x);
     }
+    // The same for a new tet measured in the metric m (one with a new
+    // vertex whose metric is known: S::tet_metric_with).
+    bool admits_in(const Sym6& m, const TetPoints& x) {
+      if (floor_ != -std::numeric_limits<double>::infinity() && !shape_admits(metrica::mean_ratio(x, m))) return false;
+      if constexpr (Traits::indifferent) {
+        return true;
+      } else {
+        return Criterion::score_in(x, m) > bar();
+      }
+    }
 
     double worst_old() {
       if (std::isnan(worst_)) {

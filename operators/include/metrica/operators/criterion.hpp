@@ -6,6 +6,8 @@
 //
 //   static double tet_score<S>(mesh, tet vertices);              at the mesh's points
 //   static double tet_score_at<S>(mesh, tet vertices, points);   with moved points
+//   static double score_in(points, metric);   in a given metric (a tet
+//                                   with a new vertex, its metric known)
 //   static double tet_score_of<S>(mesh, live tet id);            may be cached
 //   static double bar(double reference);   a candidate's smallest score must exceed it
 //
@@ -63,6 +65,7 @@ concept ScoredCriterion = requires(const Mesh& mesh, const TetVertices& tet, con
   { C::template tet_score<Isotropic>(mesh, tet) } -> std::same_as<double>;
   { C::template tet_score_at<Isotropic>(mesh, tet, points) } -> std::same_as<double>;
   { C::template tet_score_of<Isotropic>(mesh, id) } -> std::same_as<double>;
+  { C::score_in(points, Sym6{}) } -> std::same_as<double>;
   { C::bar(0.0) } -> std::same_as<double>;
 };
 
@@ -115,9 +118,10 @@ struct MinQuality {
   static double tet_score(const Mesh& mesh, const TetVertices& t) {
     return S::mean_ratio_cubed(mesh, t);
   }
+  static double score_in(const TetPoints& p, const Sym6& m) { return metrica::mean_ratio_cubed(p, m); }
   template <MetricSpace S>
   static double tet_score_at(const Mesh& mesh, const TetVertices& t, const TetPoints& p) {
-    return metrica::mean_ratio_cubed(p, S::tet_metric(mesh, t));
+    return score_in(p, S::tet_metric(mesh, t));
   }
   template <MetricSpace S>
   static double tet_score_of(const Mesh& mesh, TetId t) {
@@ -131,9 +135,10 @@ struct MinQuality {
 
 struct MaxMinEdgeWeight {
   static constexpr std::string_view name = "edge-weight";
+  static double score_in(const TetPoints& p, const Sym6& m) { return min_edge_weight(p, m); }
   template <MetricSpace S>
   static double tet_score_at(const Mesh& mesh, const TetVertices& t, const TetPoints& p) {
-    return min_edge_weight(p, S::tet_metric(mesh, t));
+    return score_in(p, S::tet_metric(mesh, t));
   }
   template <MetricSpace S>
   static double tet_score(const Mesh& mesh, const TetVertices& t) {
@@ -161,6 +166,7 @@ struct ShapeOnly {
   static double tet_score_of(const Mesh&, TetId) {
     return 0.0;
   }
+  static double score_in(const TetPoints&, const Sym6&) { return 0.0; }
   static double bar(double) { return -std::numeric_limits<double>::infinity(); }
 };
 

@@ -216,8 +216,9 @@ struct CentroidInsertion {
     const BoundaryPoint at = place_boundary_vertex(
         geometry, param, c.p, [&](const Point& q) { return cell_split_is_valid(mesh, c.tet, c.face, q); });
     if (!cell_split_is_valid(mesh, c.tet, c.face, at.p)) return Refusal::rejected;
-    if (!cell_split_accepted(mesh, c.tet, c.face, at.p, acceptance())) return Refusal::rejected;
-    return Plan{new_vertex_metric<S>(mesh, options.scope.metric, parents, weights, at.p), at.p, at.geo};
+    const VertexMetric m = new_vertex_metric<S>(mesh, options.scope.metric, parents, weights, at.p);
+    if (!cell_split_accepted(mesh, c.tet, c.face, at.p, m, acceptance())) return Refusal::rejected;
+    return Plan{m, at.p, at.geo};
   }
   void apply(Mesh& mesh, const Item& c, const Plan& plan, Scratch& x) const {
     const VertexId n = c.a != kNoId ? split_edge(mesh, x.shell, c.a, c.b, plan.p, plan.metric)

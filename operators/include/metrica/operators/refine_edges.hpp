@@ -69,10 +69,11 @@ Decision<EdgeSplitPlan> decide_edge_point(const Mesh& mesh, const Shell& shell, 
   // nor collapse it away as the last resort does on the outer boundary.
   if (shell.closed && at.geo.valid() && at.p != geometry.point(at.geo)) return Refusal::rejected;
   if (!split_is_valid(mesh, shell, a, b, at.p)) return Refusal::rejected;
-  if (!split_accepted(mesh, shell, a, b, at.p, accept)) return Refusal::rejected;
   const std::array<VertexId, 2> ends{a, b};
   const std::array<double, 2> w{1.0 - t, t};
-  return EdgeSplitPlan{at.p, new_vertex_metric<S>(mesh, options.scope.metric, ends, w, at.p), at.geo};
+  const VertexMetric m = new_vertex_metric<S>(mesh, options.scope.metric, ends, w, at.p);
+  if (!split_accepted(mesh, shell, a, b, at.p, m, accept)) return Refusal::rejected;
+  return EdgeSplitPlan{at.p, m, at.geo};
 }
 
 struct EdgeSplitScratch : ScratchGeneration {

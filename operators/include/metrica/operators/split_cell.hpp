@@ -66,14 +66,17 @@ inline void preview_cell_split(const Mesh& mesh, TetId t, int face, const Point&
 }
 
 // Decide, criterion half: the children are accepted (the shape floor and
-// the criterion against t), measured in t's metric.
+// the criterion against t), each measured in the metric it will have, the
+// new vertex's `m` included (as split_accepted).
 template <MetricSpace S, class Criterion>
-bool cell_split_accepted(const Mesh& mesh, TetId t, int face, const Point& p, const Acceptance<S, Criterion>& accept) {
+bool cell_split_accepted(const Mesh& mesh, TetId t, int face, const Point& p, const VertexMetric& m,
+                         const Acceptance<S, Criterion>& accept) {
   if (!accept.decides()) return true;
   const std::array<TetId, 1> parent{t};
   auto r = accept.replacing(mesh, parent);
-  return all_cell_children(mesh, t, face, p,
-                           [&](const TetVertices&, const TetPoints& x) { return r.admits(mesh.tet(t), x); });
+  return all_cell_children(mesh, t, face, p, [&](const TetVertices& c, const TetPoints& x) {
+    return r.admits_in(S::tet_metric_with(mesh, c, kNoId, m), x);
+  });
 }
 
 struct CellSplitScratch {

@@ -54,14 +54,18 @@ inline void preview_split(const Mesh& mesh, const Shell& shell, VertexId a, Vert
 }
 
 // Decide, criterion half: the children are accepted (the shape floor and
-// the criterion against the shell), measured in their parent's metric.
+// the criterion against the shell), each measured in the metric it will
+// have, the new vertex's `m` included: measured in its parent's metric, a
+// child could pass a floor that the new vertex's own metric then breaks,
+// and repeated splits would ratchet below it.
 template <MetricSpace S, class Criterion>
 bool split_accepted(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p,
-                    const Acceptance<S, Criterion>& accept) {
+                    const VertexMetric& m, const Acceptance<S, Criterion>& accept) {
   if (!accept.decides()) return true;
   auto r = accept.replacing(mesh, view(shell.tets));
-  return all_split_children(mesh, shell, a, b, p,
-                            [&](TetId t, const TetVertices&, const TetPoints& x) { return r.admits(mesh.tet(t), x); });
+  return all_split_children(mesh, shell, a, b, p, [&](TetId, const TetVertices& c, const TetPoints& x) {
+    return r.admits_in(S::tet_metric_with(mesh, c, kNoId, m), x);
+  });
 }
 
 // Apply: inserts the vertex at p with metric `m` on edge ab (shell from
