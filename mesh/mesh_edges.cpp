@@ -1,34 +1,76 @@
+#include <metrica/bucket_cursors.hpp>
 #include <metrica/mesh_edges.hpp>
 #include <metrica/tet_topology.hpp>
 
 #include <algorithm>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
 
 namespace metrica {
 
-void count_edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& start) {
-  const std::size_t nv = mesh.vertex_capacity();
-  start.assign(nv + 1, 0);
-  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
-    if (!mesh.tet_alive(t)) continue;
-    const auto& v = mesh.tet(t);
-    for (const auto& e : kEdgeVertex) ++start[std::min(v[e[0]], v[e[1]]) + 1];
-  }
-  for (std::size_t i = 0; i < nv; ++i) start[i + 1] += start[i];
+void count_edges_by_lower_vertex(const Mesh& mesh, const PartRunner& run, LowerEdgeCounts& counts) {
+  const std::size_t nv = mesh.vertex_capacity(), nt = mesh.tet_capacity();
+  counts.parts = std::clamp<std::size_t>(run.parts, 1, LowerEdgeCounts::kMaxParts);
+  count_keys(
+      nt, nv, counts.parts,
+      [&](std::size_t i, auto&& add) {
+        const auto t = static_cast<TetId>(i);
+        if (!mesh.tet_alive(t)) return;
+        const auto& v = mesh.tet(t);
+        for (const auto& e : kEdgeVertex) add(std::min(v[e[0]], v[e[1]]));
+      },
+      run, counts.count);
+  // The buckets' starts over all parts: each part of the runner sums a
+  // slice of the vertices, the slices' bases by a short prefix sum.
+  counts.start.assign(nv + 1, 0);
+  const std::size_t slices = std::max<std::size_t>(run.parts, 1);
+  std::vector<std::uint64_t> base(slices + 1, 0);
+  auto entries = [&](std::size_t a) {
+    std::uint32_t n = 0;
+    for (std::size_t p = 0; p < counts.parts; ++p) n += counts.count[p * nv + a];
+    return n;
+  };
+  run(slices, [&](std::size_t q) {
+    const auto [first, last] = part_slice(nv, slices, q);
+    std::uint64_t sum = 0;
+    for (std::size_t a = first; a < last; ++a) sum += entries(a);
+    base[q + 1] = sum;
+  });
+  for (std::size_t q = 0; q < slices; ++q) base[q + 1] += base[q];
+  if (base[slices] > std::uint64_t{0xfffffffe})
+    throw std::length_error("for_each_unique_edge: more than 2^32 - 2 edge entries");
+  run(slices, [&](std::size_t q) {
+    const auto [first, last] = part_slice(nv, slices, q);
+    auto at = static_cast<std::uint32_t>(base[q]);
+    for (std::size_t a = first; a < last; ++a) {
+      counts.start[a] = at;
+      at += entries(a);
+    }
+  });
+  counts.start[nv] = static_cast<std::uint32_t>(base[slices]);
 }
 
-void edges_by_lower_vertex(const Mesh& mesh, const std::vector<std::uint32_t>& start, VertexId lo, VertexId hi,
+void edges_by_lower_vertex(const Mesh& mesh, LowerEdgeCounts& counts, VertexId lo, VertexId hi, const PartRunner& run,
                            std::vector<VertexId>& upper) {
-  upper.resize(start[hi] - start[lo]);
-  std::vector<std::uint32_t> cursor(start.begin() + lo, start.begin() + hi);
-  for (TetId t = 0; t < mesh.tet_capacity(); ++t) {
-    if (!mesh.tet_alive(t)) continue;
-    const auto& v = mesh.tet(t);
-    for (const auto& e : kEdgeVertex) {
-      const VertexId a = std::min(v[e[0]], v[e[1]]);
-      if (a < lo || a >= hi) continue;
-      upper[cursor[a - lo]++ - start[lo]] = std::max(v[e[0]], v[e[1]]);
+  const std::size_t nv = mesh.vertex_capacity(), nt = mesh.tet_capacity(), parts = counts.parts;
+  MeshArray<std::uint32_t> range_start;
+  cursors_of_counts(nv, lo, hi, parts, run, counts.count, range_start);
+  upper.resize(counts.start[hi] - counts.start[lo]);
+  run(parts, [&](std::size_t p) {
+    std::uint32_t* cursor = counts.count.data() + p * nv;
+    const auto [first, last] = part_slice(nt, parts, p);
+    for (std::size_t i = first; i < last; ++i) {
+      const auto t = static_cast<TetId>(i);
+      if (!mesh.tet_alive(t)) continue;
+      const auto& v = mesh.tet(t);
+      for (const auto& e : kEdgeVertex) {
+        const VertexId a = std::min(v[e[0]], v[e[1]]);
+        if (a < lo || a >= hi) continue;
+        upper[cursor[a]++] = std::max(v[e[0]], v[e[1]]);
+      }
     }
-  }
+  });
 }
 
 std::size_t edge_ranges(std::size_t entries, std::size_t max_ranges) {

@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <functional>
 #include <random>
 #include <set>
 
@@ -70,6 +71,24 @@ TEST_SUITE("property") {
           },
           {}, ranges);
       CHECK(got == sorted);
+    }
+    // The tets counted and the buckets filled in parts, run in order and
+    // in reverse: each edge once, whatever the parts.
+    for (std::size_t parts : {2u, 3u, 8u, 11u}) {
+      for (const bool reversed : {false, true}) {
+        CAPTURE(parts);
+        CAPTURE(reversed);
+        PartRunner run{parts, nullptr};
+        if (reversed)
+          run.run = [](std::size_t n, const std::function<void(std::size_t)>& f) {
+            for (std::size_t p = n; p-- > 0;) f(p);
+          };
+        std::vector<std::pair<VertexId, VertexId>> got;
+        for_each_unique_edge(
+            mesh, [&](VertexId a, VertexId b) { got.push_back({a, b}); }, run, 3);
+        std::sort(got.begin(), got.end());
+        CHECK(got == sorted);
+      }
     }
     CHECK(unique_edge_ranges(0) == 1);
     CHECK(unique_edge_ranges(std::size_t{1} << 20) == 1);  // 4 MiB of entries

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <metrica/mesh.hpp>
+#include <metrica/mesh_array.hpp>
 #include <metrica/part_runner.hpp>
 
 #include <algorithm>
@@ -11,13 +12,28 @@
 
 namespace metrica {
 
-// Bucket offsets of the tets' edges by lower end (with repeats): bucket a
-// is [start[a], start[a + 1]), start[vertex_capacity] edges in all.
-void count_edges_by_lower_vertex(const Mesh& mesh, std::vector<std::uint32_t>& start);
+// The tets' edges bucketed by lower end (with repeats), counted in parts:
+// the tets cut into `parts` slices (part_slice), count[p * vertex_capacity
+// + a] of part p's edges with lower end a; bucket a is [start[a],
+// start[a + 1]) of all parts' entries, start[vertex_capacity] in all.
+// Counted once, filled a range of lower ends at a time (each part scans
+// its own slice of the tets), so the fills run on the sweep's threads.
+struct LowerEdgeCounts {
+  // The parts of the fills, at most this many: each holds a counter per
+  // vertex id.
+  static constexpr std::size_t kMaxParts = 8;
+  std::size_t parts = 1;
+  MeshArray<std::uint32_t> count;
+  std::vector<std::uint32_t> start;
+};
+void count_edges_by_lower_vertex(const Mesh& mesh, const PartRunner& run, LowerEdgeCounts& counts);
 
 // The higher ends of the edges whose lower end is in [lo, hi), bucketed:
-// bucket a is upper[start[a] - start[lo] .. start[a + 1] - start[lo]).
-void edges_by_lower_vertex(const Mesh& mesh, const std::vector<std::uint32_t>& start, VertexId lo, VertexId hi,
+// bucket a is upper[start[a] - start[lo] .. start[a + 1] - start[lo]), in
+// an order within the bucket that depends on the parts (the callers sort
+// each bucket). Each range once per count: it turns the range's counts
+// into cursors.
+void edges_by_lower_vertex(const Mesh& mesh, LowerEdgeCounts& counts, VertexId lo, VertexId hi, const PartRunner& run,
                            std::vector<VertexId>& upper);
 
 // How many ranges of lower ends a listing of `entries` edge bucket
@@ -44,8 +60,9 @@ inline constexpr std::size_t kEdgeBlockVertices = 4096;
 // same sums for any runner. `ranges` > 0 sets their number (tests).
 template <class F>
 void for_each_unique_edge(const Mesh& mesh, F&& f, const PartRunner& run = {}, std::size_t ranges = 0) {
-  std::vector<std::uint32_t> start;
-  count_edges_by_lower_vertex(mesh, start);
+  LowerEdgeCounts counts;
+  count_edges_by_lower_vertex(mesh, run, counts);
+  const std::vector<std::uint32_t>& start = counts.start;
   const auto nv = static_cast<VertexId>(mesh.vertex_capacity());
   const std::size_t total = start[nv];
   if (ranges == 0) ranges = unique_edge_ranges(total);
@@ -59,7 +76,7 @@ void for_each_unique_edge(const Mesh& mesh, F&& f, const PartRunner& run = {}, s
                         : static_cast<VertexId>(std::max<std::ptrdiff_t>(
                               lo, std::lower_bound(start.begin() + lo, start.begin() + nv, target) - start.begin()));
     if (hi == lo) continue;
-    edges_by_lower_vertex(mesh, start, lo, hi, upper);
+    edges_by_lower_vertex(mesh, counts, lo, hi, run, upper);
     const std::size_t first_block = lo / kEdgeBlockVertices;
     const std::size_t blocks = (hi - 1) / kEdgeBlockVertices + 1 - first_block;
     const std::size_t parts = std::clamp<std::size_t>(run.parts, 1, blocks);
