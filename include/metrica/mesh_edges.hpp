@@ -29,10 +29,10 @@ struct LowerEdgeCounts {
 void count_edges_by_lower_vertex(const Mesh& mesh, const PartRunner& run, LowerEdgeCounts& counts);
 
 // The higher ends of the edges whose lower end is in [lo, hi), bucketed:
-// bucket a is upper[start[a] - start[lo] .. start[a + 1] - start[lo]), in
-// an order within the bucket that depends on the parts (the callers sort
-// each bucket). Each range once per count: it turns the range's counts
-// into cursors.
+// bucket a is upper[start[a] - start[lo] .. start[a + 1] - start[lo]),
+// each bucket in the order of the tets for any number of parts (part p's
+// entries after part p - 1's). Each range once per count: it turns the
+// range's counts into cursors.
 void edges_by_lower_vertex(const Mesh& mesh, LowerEdgeCounts& counts, VertexId lo, VertexId hi, const PartRunner& run,
                            std::vector<VertexId>& upper);
 
