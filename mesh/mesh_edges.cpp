@@ -21,42 +21,23 @@ void count_edges_by_lower_vertex(const Mesh& mesh, const PartRunner& run, LowerE
         for (const auto& e : kEdgeVertex) add(std::min(v[e[0]], v[e[1]]));
       },
       run, counts.count);
-  // The buckets' starts over all parts: each part of the runner sums a
-  // slice of the vertices, the slices' bases by a short prefix sum.
+  // The buckets' starts over all parts: one pass over the vertices, on
+  // this thread (the scans of the tets are what the parts share).
   counts.start.assign(nv + 1, 0);
-  const std::size_t slices = std::max<std::size_t>(run.parts, 1);
-  std::vector<std::uint64_t> base(slices + 1, 0);
-  auto entries = [&](std::size_t a) {
-    std::uint32_t n = 0;
-    for (std::size_t p = 0; p < counts.parts; ++p) n += counts.count[p * nv + a];
-    return n;
-  };
-  run(slices, [&](std::size_t q) {
-    const auto [first, last] = part_slice(nv, slices, q);
-    std::uint64_t sum = 0;
-    for (std::size_t a = first; a < last; ++a) sum += entries(a);
-    base[q + 1] = sum;
-  });
-  for (std::size_t q = 0; q < slices; ++q) base[q + 1] += base[q];
-  if (base[slices] > std::uint64_t{0xfffffffe})
-    throw std::length_error("for_each_unique_edge: more than 2^32 - 2 edge entries");
-  run(slices, [&](std::size_t q) {
-    const auto [first, last] = part_slice(nv, slices, q);
-    auto at = static_cast<std::uint32_t>(base[q]);
-    for (std::size_t a = first; a < last; ++a) {
-      counts.start[a] = at;
-      at += entries(a);
-    }
-  });
-  counts.start[nv] = static_cast<std::uint32_t>(base[slices]);
+  std::uint64_t at = 0;
+  for (std::size_t a = 0; a < nv; ++a) {
+    counts.start[a] = static_cast<std::uint32_t>(at);
+    for (std::size_t p = 0; p < counts.parts; ++p) at += counts.count[p * nv + a];
+    if (at > std::uint64_t{0xfffffffe}) throw std::length_error("for_each_unique_edge: more than 2^32 - 2 edge entries");
+  }
+  counts.start[nv] = static_cast<std::uint32_t>(at);
 }
 
 void edges_by_lower_vertex(const Mesh& mesh, LowerEdgeCounts& counts, VertexId lo, VertexId hi, const PartRunner& run,
                            std::vector<VertexId>& upper) {
   const std::size_t nv = mesh.vertex_capacity(), nt = mesh.tet_capacity(), parts = counts.parts;
   MeshArray<std::uint32_t> range_start;
-  cursors_of_counts(nv, lo, hi, parts, run, counts.count, range_start);
-  upper.resize(counts.start[hi] - counts.start[lo]);
+  upper.resize(cursors_of_counts(nv, lo, hi, parts, run, counts.count, range_start));
   run(parts, [&](std::size_t p) {
     std::uint32_t* cursor = counts.count.data() + p * nv;
     const auto [first, last] = part_slice(nt, parts, p);

@@ -85,12 +85,9 @@ class Acceptance {
         return Criterion::template tet_score_at<S>(mesh_, metric_of, x) > bar();
       }
     }
-    bool admits(const TetVertices& metric_of, const TetPoints& x) {
-      return shape_admits(metric_of, x) && beats(metric_of, x);
-    }
-    // The same for a new tet measured in the metric m (one with a new
-    // vertex whose metric is known: S::tet_metric_with).
-    bool admits_in(const Sym6& m, const TetPoints& x) {
+    // Both, for a new tet measured in the metric m (the metric it will
+    // have, e.g. with a new vertex's: S::tet_metric_with).
+    bool admits(const Sym6& m, const TetPoints& x) {
       if (floor_ != -std::numeric_limits<double>::infinity() && !shape_admits(metrica::mean_ratio(x, m))) return false;
       if constexpr (Traits::indifferent) {
         return true;

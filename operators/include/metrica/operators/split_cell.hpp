@@ -75,7 +75,7 @@ bool cell_split_accepted(const Mesh& mesh, TetId t, int face, const Point& p, co
   const std::array<TetId, 1> parent{t};
   auto r = accept.replacing(mesh, parent);
   return all_cell_children(mesh, t, face, p, [&](const TetVertices& c, const TetPoints& x) {
-    return r.admits_in(S::tet_metric_with(mesh, c, kNoId, m), x);
+    return r.admits(S::tet_metric_with(mesh, c, kNoId, m), x);
   });
 }
 

@@ -64,7 +64,7 @@ bool split_accepted(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b
   if (!accept.decides()) return true;
   auto r = accept.replacing(mesh, view(shell.tets));
   return all_split_children(mesh, shell, a, b, p, [&](TetId, const TetVertices& c, const TetPoints& x) {
-    return r.admits_in(S::tet_metric_with(mesh, c, kNoId, m), x);
+    return r.admits(S::tet_metric_with(mesh, c, kNoId, m), x);
   });
 }
 
