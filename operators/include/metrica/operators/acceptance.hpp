@@ -6,7 +6,8 @@
 //   replacing(mesh, old tets)   a Replacement: for each new tet, does it
 //                               pass the shape floor (shape_admits) and
 //                               beat the old configuration's bar under the
-//                               criterion (beats; admits: both)?
+//                               criterion (beats; a split's child:
+//                               admits_child)?
 //   keeps_shape(mesh, old, new) the floor over new tets at the mesh's points
 //   after_apply(mesh, created, scores)   the quality cache gets what the
 //                               scores already measured
@@ -85,10 +86,20 @@ class Acceptance {
         return Criterion::template tet_score_at<S>(mesh_, metric_of, x) > bar();
       }
     }
-    // Both, for a new tet measured in the metric m (the metric it will
-    // have, e.g. with a new vertex's: S::tet_metric_with).
-    bool admits(const Sym6& m, const TetPoints& x) {
-      if (floor_ != -std::numeric_limits<double>::infinity() && !shape_admits(metrica::mean_ratio(x, m))) return false;
+    // A split's child of `parent` (live, not yet replaced): the floor in
+    // the parent's metric, against the parent's own shape there; the
+    // criterion in the metric m the child will have. A needle is thin in
+    // its parent's metric; a child poor only in a new vertex's much finer
+    // metric is a step toward a thin layer that the next splits refine
+    // (measured there, the floor refused those steps: UGAWG linear from a
+    // coarse mesh). Against the parent alone, not the shell's worst tet:
+    // no child thinner than its parent below the floor, so splits do not
+    // go lower one after another beside the worst tet.
+    bool admits_child(TetId parent, const TetPoints& x, const Sym6& m) {
+      if (floor_ != -std::numeric_limits<double>::infinity()) {
+        const double q = S::mean_ratio(mesh_, mesh_.tet(parent), x);
+        if (q < floor_ && q < cached_mean_ratio<S>(mesh_, parent)) return false;
+      }
       if constexpr (Traits::indifferent) {
         return true;
       } else {

@@ -65,9 +65,9 @@ inline void preview_cell_split(const Mesh& mesh, TetId t, int face, const Point&
   });
 }
 
-// Decide, criterion half: the children are accepted (the shape floor and
-// the criterion against t), each measured in the metric it will have, the
-// new vertex's `m` included (as split_accepted).
+// Decide, criterion half: the children are accepted (the shape floor
+// against t in t's metric, the criterion in the metric each child will
+// have, the new vertex's `m` included: as split_accepted).
 template <MetricSpace S, class Criterion>
 bool cell_split_accepted(const Mesh& mesh, TetId t, int face, const Point& p, const VertexMetric& m,
                          const Acceptance<S, Criterion>& accept) {
@@ -75,7 +75,7 @@ bool cell_split_accepted(const Mesh& mesh, TetId t, int face, const Point& p, co
   const std::array<TetId, 1> parent{t};
   auto r = accept.replacing(mesh, parent);
   return all_cell_children(mesh, t, face, p, [&](const TetVertices& c, const TetPoints& x) {
-    return r.admits(S::tet_metric_with(mesh, c, kNoId, m), x);
+    return r.admits_child(t, x, S::tet_metric_with(mesh, c, kNoId, m));
   });
 }
 

@@ -53,18 +53,17 @@ inline void preview_split(const Mesh& mesh, const Shell& shell, VertexId a, Vert
   });
 }
 
-// Decide, criterion half: the children are accepted (the shape floor and
-// the criterion against the shell), each measured in the metric it will
-// have, the new vertex's `m` included: measured in its parent's metric, a
-// child could pass a floor that the new vertex's own metric then breaks,
-// and repeated splits would ratchet below it.
+// Decide, criterion half: the children are accepted (the shape floor
+// against each child's parent, in the parent's metric; the criterion
+// against the shell, in the metric each child will have, the new vertex's
+// `m` included: Acceptance::admits_child).
 template <MetricSpace S, class Criterion>
 bool split_accepted(const Mesh& mesh, const Shell& shell, VertexId a, VertexId b, const Point& p,
                     const VertexMetric& m, const Acceptance<S, Criterion>& accept) {
   if (!accept.decides()) return true;
   auto r = accept.replacing(mesh, view(shell.tets));
-  return all_split_children(mesh, shell, a, b, p, [&](TetId, const TetVertices& c, const TetPoints& x) {
-    return r.admits(S::tet_metric_with(mesh, c, kNoId, m), x);
+  return all_split_children(mesh, shell, a, b, p, [&](TetId t, const TetVertices& c, const TetPoints& x) {
+    return r.admits_child(t, x, S::tet_metric_with(mesh, c, kNoId, m));
   });
 }
 
