@@ -57,7 +57,8 @@ constexpr std::array<AdaptSetting, 13> kAdaptSettings{{
      [](const AdaptOptions& o) { return o.collapse.shape_floor; },
      [](AdaptOptions& o, double x) { o.collapse.shape_floor = x; }},
     {"split-floor", "Q", 0, 1, false, false,
-     "a split may not make a tet worse than Q (unless its shell was already worse); under mpirun at least 0.01",
+     "a split beside a vertex no operation moves (required, on a kept surface, on a part's kept faces under "
+     "mpirun) may not make a tet worse than Q (unless its parent was already worse); under mpirun at least 0.01",
      [](const AdaptOptions& o) { return o.refine.shape_floor; },
      [](AdaptOptions& o, double x) { o.refine.shape_floor = x; }},
     {"smooth-below", "Q", 0, 1, false, false, "smooth the vertices of tets with mean ratio below Q during the cycles",
