@@ -98,10 +98,8 @@ TEST_SUITE("invariant") {
   // UGAWG linear given on the 8^3 cube (sizes 0.001 on z = 0.5, 0.026 at
   // the grid's next plane): a split toward the layer leaves children poor
   // in the new vertex's metric, which the next splits refine. A floor
-  // measured in that metric refused them (75% of the edges in range, min
-  // Q at the floor); one that asked everywhere kept tets at the floor that
-  // flips and smoothing would have lifted. It asks beside fixed vertices
-  // only, in the parents' metric: 98.5%, min Q 0.56.
+  // measured in that metric refused them; one that asked everywhere kept
+  // tets at the floor that flips and smoothing would have lifted.
   TEST_CASE("a split floor does not keep an adaptation from a coarse mesh off a thin layer of the field") {
     Mesh mesh = make_box({.nx = 8, .ny = 8, .nz = 8});
     set_metric_function(mesh, [](const Point& p) { return evaluate(AnalyticMetric::linear, p); });

@@ -86,20 +86,16 @@ class Acceptance {
         return Criterion::template tet_score_at<S>(mesh_, metric_of, x) > bar();
       }
     }
-    // A split's child of `parent` (live, not yet replaced): the floor,
-    // beside a vertex no operation moves (a required or kept surface's,
-    // a part's kept faces under mpirun) only, in the parent's metric and
-    // against the parent's own shape there; the criterion in the metric m
-    // the child will have. Beside such a vertex a needle stays, since
-    // flips, collapses and smoothing cannot reach it; elsewhere they lift
-    // what a split leaves, and a floor kept poorer tets than they leave
-    // (UGAWG linear from a coarse cube: min Q 0.0096 with it, 0.55
-    // without). A needle is thin in its parent's metric; a child poor only
-    // in a new vertex's much finer metric is a step toward a thin layer
-    // that the next splits refine (measured there, the floor refused those
-    // steps). Against the parent alone, not the shell's worst tet: no
-    // child thinner than its parent below the floor, so splits do not go
-    // lower one after another beside the worst tet.
+    // A split's child of `parent` (live, not yet replaced): the criterion
+    // in the metric m the child will have; the floor only beside a vertex
+    // no operation moves (required, kept surface, a part's kept faces),
+    // where a needle stays: elsewhere flips and smoothing lift what a
+    // split leaves, and a floor would keep tets at it. The floor is
+    // measured in the parent's metric, against the parent alone: a needle
+    // is thin there, while a child poor only in a new vertex's much finer
+    // metric is a step toward a thin layer that the next splits refine;
+    // and no child thinner than its parent below the floor keeps splits
+    // from going lower one after another.
     bool admits_child(TetId parent, const TetPoints& x, const Sym6& m) {
       const TetVertices& pv = mesh_.tet(parent);
       if (floor_ != -std::numeric_limits<double>::infinity() &&
