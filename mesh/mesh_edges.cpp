@@ -28,7 +28,8 @@ void count_edges_by_lower_vertex(const Mesh& mesh, const PartRunner& run, LowerE
   for (std::size_t a = 0; a < nv; ++a) {
     counts.start[a] = static_cast<std::uint32_t>(at);
     for (std::size_t p = 0; p < counts.parts; ++p) at += counts.count[p * nv + a];
-    if (at > std::uint64_t{0xfffffffe}) throw std::length_error("for_each_unique_edge: more than 2^32 - 2 edge entries");
+    if (at > std::uint64_t{0xfffffffe})
+      throw std::length_error("for_each_unique_edge: more than 2^32 - 2 edge entries");
   }
   counts.start[nv] = static_cast<std::uint32_t>(at);
 }

@@ -385,10 +385,7 @@ TEST_SUITE("unit") {
       const std::string one = report_csv(quality_report(mesh, s));
       for (std::size_t parts : {2u, 3u, 7u, 1000u}) {
         CAPTURE(parts);
-        PartRunner backwards{parts, [](std::size_t n, const std::function<void(std::size_t)>& f) {
-                               for (std::size_t p = n; p-- > 0;) f(p);
-                             }};
-        CHECK(report_csv(quality_report(mesh, s, {.run = backwards})) == one);
+        CHECK(report_csv(quality_report(mesh, s, {.run = test::reversed_parts(parts)})) == one);
       }
     }
   }

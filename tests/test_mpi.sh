@@ -65,13 +65,13 @@ if [ "$only" = all ] || [ "$only" = adapt ]; then
   # The metric written is the field given (the input's metric on the input
   # mesh) at the output's vertices: both measure the output alike.
   own=$("$metrica" quality "$dir/m3.meshb" -m "$dir/m3.solb" | grep 'edges in \[')
-  given=$("$metrica" quality "$dir/m3.meshb" -m "$dir/m.solb" --metric-mesh "$dir/cube.meshb" | grep 'edges in \[')
+  report=$("$metrica" quality "$dir/m3.meshb" -m "$dir/m.solb" --metric-mesh "$dir/cube.meshb")
+  given=$(grep 'edges in \[' <<<"$report")
   [ "$own" = "$given" ] || fail "a metric file on 3 ranks: the metric written is not the field given ($own / $given)"
   # As the single process: the rounds' split floor (0.01) neither keeps the
   # coarse cube off the field's layer at z = 0.5 nor leaves tets at it.
-  share=$(sed -n 's/.*edges in \[1\/sqrt2, sqrt2\] *\([0-9.]*\)%.*/\1/p' <<<"$given")
-  minq=$("$metrica" quality "$dir/m3.meshb" -m "$dir/m.solb" --metric-mesh "$dir/cube.meshb" |
-    sed -n 's/.*mean ratio *min \([0-9.]*\).*/\1/p')
+  share=$(sed -n 's/.*edges in \[1\/sqrt2, sqrt2\] *\([0-9.]*\)%.*/\1/p' <<<"$report")
+  minq=$(sed -n 's/.*mean ratio *min \([0-9.]*\).*/\1/p' <<<"$report")
   awk -v s="$share" -v q="$minq" 'BEGIN { exit !(s >= 95 && q >= 0.2) }' ||
     { cat "$dir/m3.txt"; fail "a metric file on 3 ranks: $share% of the edges in range, min Q $minq (want >= 95%, >= 0.2)"; }
 fi

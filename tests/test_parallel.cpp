@@ -126,14 +126,6 @@ Adapted adapt_linear_serial() {
   }
 }
 
-// `parts` parts run in reverse order on the calling thread: a result that
-// depends on the order of the parts shows.
-PartRunner reversed_parts(std::size_t parts) {
-  return PartRunner{parts, [](std::size_t n, const std::function<void(std::size_t)>& f) {
-                      for (std::size_t p = n; p-- > 0;) f(p);
-                    }};
-}
-
 }  // namespace
 
 TEST_SUITE("parallel") {

@@ -7,12 +7,14 @@
 #include <metrica/io/mesh_data.hpp>
 #include <metrica/log.hpp>
 #include <metrica/metrics/sym_tensor.hpp>
+#include <metrica/part_runner.hpp>
 
 #include <Eigen/Geometry>
 
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <random>
 #include <string>
 #include <unistd.h>
@@ -33,6 +35,14 @@ inline std::uint64_t seed() {
 
 inline std::mt19937_64 rng(std::uint64_t stream = 0) {
   return std::mt19937_64(seed() + stream * 0x9e3779b97f4a7c15ull);
+}
+
+// `parts` parts run in reverse order on the calling thread: a result that
+// depends on the order of the parts shows.
+inline PartRunner reversed_parts(std::size_t parts) {
+  return PartRunner{parts, [](std::size_t n, const std::function<void(std::size_t)>& f) {
+                      for (std::size_t p = n; p-- > 0;) f(p);
+                    }};
 }
 
 // A point of three draws in a fixed order, last coordinate first: the order

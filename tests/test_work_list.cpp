@@ -9,7 +9,6 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <functional>
 #include <random>
 #include <set>
 
@@ -78,11 +77,7 @@ TEST_SUITE("property") {
       for (const bool reversed : {false, true}) {
         CAPTURE(parts);
         CAPTURE(reversed);
-        PartRunner run{parts, nullptr};
-        if (reversed)
-          run.run = [](std::size_t n, const std::function<void(std::size_t)>& f) {
-            for (std::size_t p = n; p-- > 0;) f(p);
-          };
+        const PartRunner run = reversed ? test::reversed_parts(parts) : PartRunner{parts, nullptr};
         std::vector<std::pair<VertexId, VertexId>> got;
         for_each_unique_edge(
             mesh, [&](VertexId a, VertexId b) { got.push_back({a, b}); }, run, 3);
