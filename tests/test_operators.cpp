@@ -137,7 +137,9 @@ TEST_SUITE("invariant") {
       o.scope.metric = &layer;
       const double start = worst(mesh);
       double lowest = start;
-      for (int pass = 0; pass < 12; ++pass) {
+      // With the floor the lowest settles within 6 passes; without it, it
+      // falls below 1e-4 within 7 (12 in the isotropic space).
+      for (int pass = 0; pass < (floor > 0 ? 8 : 12) && !(floor == 0 && lowest < 1e-4); ++pass) {
         refine_edges<S, typename T::Concurrency>(mesh, o);
         require_valid(mesh, 1.0);
         lowest = std::min(lowest, worst(mesh));
