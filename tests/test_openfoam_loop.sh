@@ -3,7 +3,8 @@
 # laminar delta wing, one rhoSimpleFoam solve on the graded first mesh, two
 # adaptations on the CAD model to the Mach number (complexity 2,500 then
 # 5,000), each solve started from the mapped solution, OpenFOAM on 2
-# processes (decomposePar, reconstructPar). Checks that the loop runs, that
+# processes (decomposePar, reconstructPar). Checks that options out of range
+# stop the loop before any work, that the loop runs, that
 # each mesh is valid and on the model (the loop's own metrica check
 # --geometry, 1e-8), that OpenFOAM's points are the mesh's vertices
 # (foam_case.py mach), and that the larger of the CD and CL errors against
@@ -23,6 +24,13 @@ fail() {
   echo "test_openfoam_loop: $*" >&2
   exit 1
 }
+
+# Options out of range stop the loop before any work.
+for bad in "--norm 0.5" "--max-anisotropy 0.9" "--complexity -1"; do
+  # shellcheck disable=SC2086
+  if "$example/run" $bad --output-dir "$dir/bad" --metrica "$metrica" 2>"$dir/bad.err"; then fail "run $bad succeeded"; fi
+  grep -q "examples/openfoam/run: --" "$dir/bad.err" && [ ! -e "$dir/bad" ] || fail "run $bad: $(cat "$dir/bad.err")"
+done
 
 "$example/run" --iterations 2 --complexity 2500 --steps 1 --solver-iterations 300 --threads 2 --solver-processes 2 \
   --output-dir "$dir" --metrica "$metrica"
