@@ -4,6 +4,8 @@
 # (pipeline/CMakeLists.txt); the generated header's static_asserts check
 # the reading against the C++ lists.
 function(metrica_policy_list_size header name out)
+  # A changed list configures again (its units and instantiations with it).
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${header}")
   file(READ "${header}" text)
   string(REGEX MATCH "using ${name} = PolicyList<([^;]*)>;" found "${text}")
   if(NOT found)

@@ -50,8 +50,7 @@ AdaptReport adapt_by_name(Mesh& mesh, const AdaptOptions& options, const PolicyC
       } else if constexpr (METRICA_SPECULATIVE_ONLY && !std::is_same_v<C, Concurrencies::at<0>>) {
         throw InputError(not_compiled_message("concurrency", C::name, Concurrencies::at<0>::name));
       } else {
-        if (inputs.model != nullptr) return adapt_instance<S, C, CadGeometry>(mesh, options, inputs, p.precision);
-        return adapt_instance<S, C, NoGeometry>(mesh, options, inputs, p.precision);
+        return adapt_instance<S, C, ModelOrFacets>(mesh, options, inputs, p.precision);
       }
     });
   });

@@ -1,7 +1,8 @@
 // The geometry policy: the CAD model through gmsh, the association of
 // boundary vertices, placement on the model (interpolation across a seam,
 // backtracking), and the operators that create, move or remove boundary
-// vertices under CadGeometry, under each Concurrency policy.
+// vertices on a model (ModelOrFacets, the pipeline's Geometry, on it), under
+// each Concurrency policy.
 #include "operator_test_support.hpp"
 
 #include <metrica/classification.hpp>
@@ -10,6 +11,7 @@
 #include <metrica/geometry/bootstrap.hpp>
 #include <metrica/geometry/cad_geometry.hpp>
 #include <metrica/geometry/curvature_metric.hpp>
+#include <metrica/geometry/model_or_facets.hpp>
 #include <metrica/io/meshb.hpp>
 #include <metrica/mesh_build.hpp>
 #include <metrica/mesh_summary.hpp>
@@ -64,7 +66,7 @@ double largest_radius_error(const Mesh& mesh) {
 // What the test models below share: on a model, every facet fits it,
 // every vertex is placed by it.
 struct TestModel {
-  static constexpr bool on_model = true;
+  static constexpr bool on_model() { return true; }
   bool facet_fits(const Mesh&, VertexId, VertexId, VertexId, SurfaceId, const Eigen::Vector3d&, double) const {
     return true;
   }
@@ -430,12 +432,12 @@ TEST_SUITE("invariant") {
     using S = typename T::Space;
     using C = typename T::Concurrency;
     CubeCylinder c;
-    const CadGeometry g{&c.model};
+    const ModelOrFacets g(&c.model);
     const double exact = 1.0 - kPi / 16;
     const double faceted = c.mesh.volume();
     test::set_uniform_metric(c.mesh, 0.08);
     for (int pass = 0; pass < 3; ++pass) {
-      refine_edges<S, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+      refine_edges<S, C>(c.mesh, {}, g);
       project_to_model<S, C>(c.mesh, {}, g);
       const auto report = c.mesh.validate();
       INFO(report.to_string());
@@ -470,8 +472,8 @@ TEST_SUITE("invariant") {
     test::set_metric_function(mesh, metric);
     AdaptOptions o;
     o.max_cycles = 4;
-    const AdaptReport adapted = adapt<S, typename T::Precision, typename T::Concurrency, CadGeometry>(
-        mesh, o, {.metric = &metric, .model = &model});
+    const AdaptReport adapted =
+        adapt<S, typename T::Precision, typename T::Concurrency>(mesh, o, {.metric = &metric, .model = &model});
     const auto report = mesh.validate();
     INFO(report.to_string());
     REQUIRE(report.ok());
@@ -507,10 +509,10 @@ TEST_SUITE("invariant") {
     using S = typename T::Space;
     using C = typename T::Concurrency;
     CubeCylinder c;
-    const CadGeometry g{&c.model};
+    const ModelOrFacets g(&c.model);
     test::set_uniform_metric(c.mesh, 0.1);
     for (int pass = 0; pass < 2; ++pass) {
-      refine_centroids<S, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+      refine_centroids<S, C>(c.mesh, {}, g);
       project_to_model<S, C>(c.mesh, {}, g);
       const auto report = c.mesh.validate();
       INFO(report.to_string());
@@ -566,20 +568,20 @@ TEST_SUITE("invariant") {
     using S = typename T::Space;
     using C = typename T::Concurrency;
     CubeCylinder c;
-    const CadGeometry g{&c.model};
+    const ModelOrFacets g(&c.model);
     test::set_uniform_metric(c.mesh, 0.06);
-    refine_edges<S, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+    refine_edges<S, C>(c.mesh, {}, g);
     project_to_model<S, C>(c.mesh, {}, g);
     test::set_uniform_metric(c.mesh, 0.15);  // now most edges are short
     const std::size_t before = c.mesh.num_vertices();
-    collapse_edges<S, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+    collapse_edges<S, C>(c.mesh, {}, g);
     CHECK(c.mesh.num_vertices() < before);
-    const OperatorStats flips = reconnect<S, C, MinQuality, CadGeometry>(c.mesh, {}, g);
+    const OperatorStats flips = reconnect<S, C, MinQuality>(c.mesh, {}, g);
     CHECK(flips.applied > 0);
     // Boundary vertices move too, on the model.
     std::vector<Point> was(c.mesh.vertex_capacity());
     for (VertexId v = 0; v < c.mesh.vertex_capacity(); ++v) was[v] = c.mesh.point(v);
-    smooth_vertices<S, C, MinQuality, CadGeometry>(c.mesh, {.below = 1.0}, g);
+    smooth_vertices<S, C>(c.mesh, {.below = 1.0}, g);
     std::size_t moved_on_boundary = 0;
     for (VertexId v = 0; v < c.mesh.vertex_capacity(); ++v)
       moved_on_boundary += c.mesh.vertex_alive(v) && c.mesh.geo_param(v).valid() && c.mesh.point(v) != was[v];
@@ -599,9 +601,9 @@ TEST_SUITE("invariant") {
     using S = typename T::Space;
     using C = typename T::Concurrency;
     CubeCylinder c;
-    const CadGeometry g{&c.model};
+    const ModelOrFacets g(&c.model);
     test::set_uniform_metric(c.mesh, 0.07);
-    refine_edges<S, C, ShapeOnly, CadGeometry>(c.mesh, {}, g);
+    refine_edges<S, C>(c.mesh, {}, g);
     project_to_model<S, C>(c.mesh, {}, g);
     auto deviation = [&] {
       double sum = 0.0;
@@ -619,7 +621,66 @@ TEST_SUITE("invariant") {
     INFO(report.to_string());
     REQUIRE(report.ok());
     // Without a model nothing deviates: nothing is swapped.
-    CHECK(swap_toward_model<S, C>(c.mesh, {}, NoGeometry{}).applied == 0);
+    CHECK(swap_toward_model<S, C>(c.mesh, {}, ModelOrFacets{}).applied == 0);
+  }
+}
+
+TEST_SUITE("invariant") {
+  // The compiled pipeline's Geometry is ModelOrFacets: off a model it must
+  // be NoGeometry to the bit, on one CadGeometry.
+  TEST_CASE_TEMPLATE("without a model ModelOrFacets is NoGeometry: each standard operation leaves the same mesh", T,
+                     metrica::Policies<LogEuclidean, Filtered, Serial>,
+                     metrica::Policies<LogEuclidean, Filtered, Speculative, 1>,
+                     metrica::Policies<LogEuclidean, Filtered, Speculative, 2>) {
+    const ExecutorOf<T> executor;
+    using S = typename T::Space;
+    using C = typename T::Concurrency;
+    const MetricFunction layer = [](const Point& p) {
+      const double hx = 0.02 + 0.4 * std::abs(p.x() - 0.5);
+      return Sym6{1 / (hx * hx), 0, 1 / 0.04, 0, 0, 1 / 0.04};
+    };
+    auto run = [&]<class G>(const G& geometry) {
+      Mesh mesh = make_box({.nx = 4, .ny = 4, .nz = 4});
+      test::set_metric_function(mesh, layer);
+      RefineOptions r;
+      r.scope.metric = &layer;
+      CollapseOptions k;
+      k.scope.metric = &layer;
+      SmoothOptions m;
+      m.scope.metric = &layer;
+      std::vector<std::uint64_t> after;
+      for (int pass = 0; pass < 3; ++pass) {
+        refine_edges<S, C>(mesh, r, geometry);
+        after.push_back(mesh_fingerprint(mesh));
+        collapse_edges<S, C>(mesh, k, geometry);
+        after.push_back(mesh_fingerprint(mesh));
+        reconnect<S, C, MinQuality>(mesh, ReconnectOptions{}, geometry);
+        after.push_back(mesh_fingerprint(mesh));
+        smooth_vertices<S, C>(mesh, m, geometry);
+        after.push_back(mesh_fingerprint(mesh));
+        require_valid(mesh, 1.0);
+      }
+      return after;
+    };
+    const auto facets = run(NoGeometry{});
+    const auto chosen = run(ModelOrFacets{});
+    // Two threads' order differs from run to run: both valid is what holds.
+    if (T::threads <= 1) CHECK(facets == chosen);
+  }
+
+  TEST_CASE("a standard pipeline built off a model is refused for an adapter on one, and the other way") {
+    CubeCylinder c;
+    const MetricFunction metric = [](const Point&) { return isotropic_metric(0.2); };
+    test::set_metric_function(c.mesh, metric);
+    using A = Adapter<LogEuclidean, Serial>;
+    A on(c.mesh, &metric, ModelOrFacets(&c.model));
+    CHECK_FALSE(standard_pipeline<A>(AdaptOptions{}).for_model.value());
+    CHECK_THROWS_AS(run_pipeline(on, standard_pipeline<A>(AdaptOptions{})), std::invalid_argument);
+    Mesh copy = c.mesh;
+    A off(copy, &metric);
+    CHECK_THROWS_AS(run_pipeline(off, standard_pipeline<A>(AdaptOptions{}, true)), std::invalid_argument);
+    // Nothing ran: the meshes are as they were.
+    CHECK(mesh_fingerprint(c.mesh) == mesh_fingerprint(copy));
   }
 }
 
@@ -629,7 +690,7 @@ TEST_SUITE("regression") {
     const MetricFunction metric = [](const Point& p) { return evaluate(AnalyticMetric::polar2, p); };
     test::set_metric_function(c.mesh, metric);
     AdaptOptions o;
-    adapt<LogEuclidean, Filtered, Serial, CadGeometry>(c.mesh, o, {.metric = &metric, .model = &c.model});
+    adapt<LogEuclidean, Filtered, Serial>(c.mesh, o, {.metric = &metric, .model = &c.model});
     const auto report = c.mesh.validate();
     INFO(report.to_string());
     REQUIRE(report.ok());
@@ -665,7 +726,7 @@ TEST_SUITE("regression") {
     const MetricFunction metric = [](const Point&) { return isotropic_metric(0.03); };
     test::set_metric_function(mesh, metric);
     AdaptOptions o;
-    adapt<LogEuclidean, Filtered, Serial, CadGeometry>(mesh, o, {.metric = &metric, .model = &model});
+    adapt<LogEuclidean, Filtered, Serial>(mesh, o, {.metric = &metric, .model = &model});
     const auto report = mesh.validate();
     INFO(report.to_string());
     REQUIRE(report.ok());

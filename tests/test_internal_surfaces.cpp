@@ -195,7 +195,7 @@ TEST_SUITE("invariant") {
     }
     require_valid(mesh, 1.0);
     const double before = worst_quality<S>(mesh);
-    const OperatorStats stats = flip_interfaces<S, C>(mesh, {}, NoGeometry{});
+    const OperatorStats stats = flip_interfaces<S, C>(mesh, {}, ModelOrFacets{});
     require_valid(mesh, 1.0);
     CHECK(stats.applied > 0);
     CHECK(worst_quality<S>(mesh) >= before);

@@ -1,6 +1,6 @@
 // Curved boundaries without a model: a torus meshed by gmsh, and Mmg's
 // torus with the metric that comes with it, adapted with their facets
-// only (NoGeometry) under every policy. Each boundary collapse and each
+// only (no model) under every policy. Each boundary collapse and each
 // move of a boundary vertex takes its change of volume from the
 // adaptation's budget: the run ends valid, the volume within the budget,
 // and the budget's account equal to the volume's actual change.
@@ -43,9 +43,9 @@ TEST_SUITE("invariant") {
     o.max_cycles = 3;
     o.repair_rounds = 2;
     shorten_when_slow<P>(o);
-    Adapter<S, C, NoGeometry> a(mesh, &metric);
+    Adapter<S, C> a(mesh, &metric);
     a.set_volume_budget(o.volume_budget);
-    run_pipeline(a, standard_pipeline<Adapter<S, C, NoGeometry>>(o));
+    run_pipeline(a, standard_pipeline<Adapter<S, C>>(o));
     const auto report = mesh.validate();
     INFO(report.to_string());
     REQUIRE(report.ok());
@@ -72,7 +72,7 @@ TEST_SUITE("invariant") {
     assign_metric(mesh, metric);
     const double volume = mesh.volume();
     const BackgroundMetric background(mesh);
-    using A = Adapter<S, C, NoGeometry>;
+    using A = Adapter<S, C>;
     A a(mesh, &background);
     Pipeline<A> p = standard_pipeline<A>(AdaptOptions{});
     p.max_cycles = 6;

@@ -18,7 +18,7 @@
 namespace metrica {
 
 struct CadGeometry {
-  static constexpr bool on_model = true;
+  static constexpr bool on_model() { return true; }
   static constexpr std::string_view name = "cad";
   const CadModel* model = nullptr;
   // 1 - cos 8 degrees.

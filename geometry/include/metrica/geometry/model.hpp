@@ -20,14 +20,17 @@
 //   places(mesh, v)       is boundary vertex v's place the model's (its
 //                         moves follow the model, and it belongs on it)?
 //
-// `on_model` (a constant) is for pipelines, not operations: whether the
-// stages that only a model gives work to (projection, boundary swap)
-// belong in the pipeline.
+// `on_model()` is for pipelines, not operations: whether the stages that
+// only a model gives work to (projection, boundary swap) belong in the
+// pipeline; a constant of the type (NoGeometry, CadGeometry) or of the
+// object (ModelOrFacets).
 //
 // NoGeometry keeps the first faceting: new vertices stay where the
 // operation puts them, and a boundary facet must keep the plane of the
 // facets it replaces (normal deviation below `tolerance`). CadGeometry
-// (cad_geometry.hpp) evaluates a CAD model through gmsh.
+// (cad_geometry.hpp) evaluates a CAD model through gmsh. ModelOrFacets
+// (model_or_facets.hpp) is either, chosen at run time: the operations'
+// and the pipeline's default, the one the library compiles.
 #pragma once
 
 #include <metrica/mesh.hpp>
@@ -42,7 +45,7 @@ template <class G>
 concept Geometry = requires(const G& g, const Mesh& mesh, std::span<const VertexId> parents,
                             std::span<const double> weights, SurfaceId surface, const GeoParam& param,
                             const Eigen::Vector3d& normal) {
-  { G::on_model } -> std::convertible_to<bool>;
+  { g.on_model() } -> std::convertible_to<bool>;
   { g.boundary_vertex(mesh, parents, weights, surface) } -> std::same_as<GeoParam>;
   { g.point(param) } -> std::same_as<Point>;
   { g.facet_fits(mesh, VertexId{}, VertexId{}, VertexId{}, surface, normal, 0.0) } -> std::same_as<bool>;
@@ -51,7 +54,7 @@ concept Geometry = requires(const G& g, const Mesh& mesh, std::span<const Vertex
 };
 
 struct NoGeometry {
-  static constexpr bool on_model = false;
+  static constexpr bool on_model() { return false; }
   static constexpr std::string_view name = "none";
   GeoParam boundary_vertex(const Mesh&, std::span<const VertexId>, std::span<const double>, SurfaceId) const {
     return {};

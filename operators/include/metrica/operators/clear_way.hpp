@@ -34,7 +34,7 @@ template <MetricSpace S, Concurrency C, Geometry G>
 OperatorStats clear_way_for_splits(Mesh& mesh, const RefineOptions& o, const G& geometry) {
   Stopwatch clock;
   OperatorStats stats;
-  if constexpr (G::on_model) {
+  if (geometry.on_model()) {
     if (mesh.has_internal_surfaces() && mesh.has_geo_params()) {
       const auto todo = edges_beyond<S, C>(mesh, o.max_length, EdgeOrder::longest_first, o.scope.changed_since);
       TetList ball;

@@ -22,6 +22,7 @@
 // two interior ends merge at the edge's metric midpoint instead.
 #pragma once
 
+#include <metrica/geometry/model_or_facets.hpp>
 #include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/cavity.hpp>
@@ -175,7 +176,7 @@ struct CollapsePlan {
 // shorter edges than either end). s.ball, s.ball_b, s.neighbours and
 // s.neighbours_b hold the two balls and the vertices joined to each end
 // (the caller holds them).
-template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = ModelOrFacets>
 Decision<CollapsePlan> decide_collapse(const Mesh& mesh, VertexId a, VertexId b, CollapseScratch& s,
                                        const CollapseOptions& o, const Point* moved = nullptr,
                                        const VertexMetric* moved_metric = nullptr, const G& geometry = {}) {
@@ -314,7 +315,7 @@ inline void apply_collapse(Mesh& mesh, const CollapsePlan& plan, CollapseScratch
 // end of lower class (interior before surface before ridge), then the
 // other, then (two interior ends) to merge them at the edge's metric
 // midpoint.
-template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = ModelOrFacets>
 struct Collapse {
   using Item = EdgeCandidate;
   using Scratch = CollapseScratch;
@@ -390,7 +391,7 @@ struct Collapse {
 };
 
 // The collapse pass: edges shorter than min_length, shortest first.
-template <MetricSpace S, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, class Criterion = ShapeOnly, Geometry G = ModelOrFacets>
 OperatorStats collapse_edges(Mesh& mesh, const CollapseOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   const auto todo =

@@ -24,6 +24,7 @@
 
 #include <metrica/geometry.hpp>
 #include <metrica/geometry/model.hpp>
+#include <metrica/geometry/model_or_facets.hpp>
 #include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/cavity.hpp>
 #include <metrica/operators/operation.hpp>
@@ -245,7 +246,7 @@ inline bool ring_faces_are_new(const Mesh& mesh, FlipScratch& s) {
 // of the ring (the new tets joining a ring triangulation to a and b) is
 // weighed in turn: positive (P), on the boundary fitting the Geometry,
 // better than the best so far under the criterion, above the shape floor.
-template <MetricSpace S, class Criterion, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion, Geometry G = ModelOrFacets>
 Decision<EdgeRemovalPlan> decide_edge_removal(const Mesh& mesh, VertexId a, VertexId b, FlipScratch& s,
                                               const FlipOptions& o, const G& geometry = {}) {
   const Shell& shell = s.shell;
@@ -428,7 +429,7 @@ struct EdgeShellSteps {
 // The edge removal as an operation: items are edges with a tet that held
 // them when the work list was made (the shell walk starts there when the
 // tet still holds the edge, else from a's ball).
-template <MetricSpace S, class Criterion, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion, Geometry G = ModelOrFacets>
 struct EdgeRemoval {
   using Item = EdgeSeed;
   using Scratch = FlipScratch;
@@ -475,7 +476,7 @@ struct FaceFlipScratch : FlipScratch {
 // in order (those whose tets are both at or above face_flip_below are
 // skipped) until one flips. It flips inner faces only: the Geometry is
 // held like every operation's, and never asked.
-template <MetricSpace S, class Criterion, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion, Geometry G = ModelOrFacets>
 struct FaceFlip {
   using Item = TetId;
   using Scratch = FaceFlipScratch;

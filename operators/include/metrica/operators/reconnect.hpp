@@ -6,6 +6,7 @@
 // their faces for a 2-3 flip, all under one Criterion.
 #pragma once
 
+#include <metrica/geometry/model_or_facets.hpp>
 #include <metrica/operators/flips.hpp>
 #include <metrica/operators/operation.hpp>
 #include <metrica/operators/pass_scope.hpp>
@@ -37,7 +38,7 @@ struct ReconnectOptions {
   double face_flip_below = 1.0;
 };
 
-template <MetricSpace S, Concurrency C, class Criterion, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, class Criterion, Geometry G = ModelOrFacets>
 OperatorStats reconnect(Mesh& mesh, const ReconnectOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   OperatorStats stats;

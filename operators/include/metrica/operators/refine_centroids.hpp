@@ -24,6 +24,7 @@
 // which).
 #pragma once
 
+#include <metrica/geometry/model_or_facets.hpp>
 #include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
@@ -157,7 +158,7 @@ struct CentroidPlan {
 
 // The insertion of a candidate of the centroid rule, as an operation: its
 // tet must be as it was when the candidate was made (Mesh epochs).
-template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = ModelOrFacets>
 struct CentroidInsertion {
   using Item = PointCandidate;
   using Scratch = CentroidScratch;
@@ -233,7 +234,7 @@ struct CentroidInsertion {
   }
 };
 
-template <MetricSpace S, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, class Criterion = ShapeOnly, Geometry G = ModelOrFacets>
 OperatorStats refine_centroids(Mesh& mesh, const RefineOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   std::vector<std::uint32_t> candidate_of_tet;

@@ -6,6 +6,7 @@
 // shell, the unit of work a thread owns under Speculative.
 #pragma once
 
+#include <metrica/geometry/model_or_facets.hpp>
 #include <metrica/operators/boundary_placement.hpp>
 #include <metrica/operators/edge_queue.hpp>
 #include <metrica/operators/metric_source.hpp>
@@ -86,7 +87,7 @@ struct EdgeSplitScratch : ScratchGeneration {
 // criterion (ShapeOnly: none) and shape floor (0: none) may refuse splits
 // that make poor tets. On a boundary edge the Geometry places the new
 // vertex (boundary_placement.hpp).
-template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = ShapeOnly, Geometry G = ModelOrFacets>
 struct EdgeSplit {
   using Item = EdgeCandidate;
   using Scratch = EdgeSplitScratch;
@@ -141,7 +142,7 @@ struct EdgeSplit {
   }
 };
 
-template <MetricSpace S, Concurrency C, class Criterion = ShapeOnly, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, class Criterion = ShapeOnly, Geometry G = ModelOrFacets>
 OperatorStats refine_edges(Mesh& mesh, const RefineOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   const auto todo =

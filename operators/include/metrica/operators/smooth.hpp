@@ -25,6 +25,7 @@
 #pragma once
 
 #include <metrica/geometry/model.hpp>
+#include <metrica/geometry/model_or_facets.hpp>
 #include <metrica/operators/acceptance.hpp>
 #include <metrica/operators/metric_source.hpp>
 #include <metrica/operators/operation.hpp>
@@ -411,7 +412,7 @@ Decision<SmoothPlan> best_trial_by_criterion(const Mesh& mesh, VertexId v, const
 // conformity on polar-1). Under a criterion whose score is the mean ratio
 // cubed (MinQuality) trials are scored from the ball terms; under any
 // other, from its scores at the trial position, with the shape floor.
-template <MetricSpace S, class Criterion = MinQuality, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = MinQuality, Geometry G = ModelOrFacets>
 Decision<SmoothPlan> decide_smoothing(const Mesh& mesh, VertexId v, SmoothScratch& s, const SmoothOptions& o,
                                       const G& geometry = {}) {
   const VertexClass cls = mesh.vertex_class(v);
@@ -575,7 +576,7 @@ struct VertexMoveSteps {
 };
 
 // Vertex smoothing as an operation.
-template <MetricSpace S, class Criterion = MinQuality, Geometry G = NoGeometry>
+template <MetricSpace S, class Criterion = MinQuality, Geometry G = ModelOrFacets>
 struct Smoothing : VertexMoveSteps {
   static constexpr std::string_view name = "smooth";
   SmoothOptions options;
@@ -588,7 +589,7 @@ struct Smoothing : VertexMoveSteps {
 };
 
 // The smoothing pass over the vertices of tets below o.below.
-template <MetricSpace S, Concurrency C, class Criterion = MinQuality, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, class Criterion = MinQuality, Geometry G = ModelOrFacets>
 OperatorStats smooth_vertices(Mesh& mesh, const SmoothOptions& o = {}, const G& geometry = {}) {
   Stopwatch clock;
   const std::vector<std::uint8_t> changed = changed_vertices<C>(mesh, o.scope.changed_since);

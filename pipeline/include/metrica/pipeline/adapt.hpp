@@ -11,14 +11,20 @@
 #pragma once
 
 #include <metrica/geometry/cad_geometry.hpp>
+#include <metrica/geometry/model_or_facets.hpp>
 #include <metrica/operators/edge_buckets.hpp>
 #include <metrica/pipeline/adapter.hpp>
 #include <metrica/pipeline/standard_stages.hpp>
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <span>
+#include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 namespace metrica {
@@ -115,16 +121,16 @@ struct AdaptInputs {
   // interpolates the vertices' metrics.
   const BackgroundMetric* background = nullptr;
   MetricSource source() const { return metric != nullptr && *metric ? MetricSource(metric) : background; }
-  // When set, boundary vertices are placed on this model (CadGeometry:
-  // adapt_by_name chooses it); the mesh must be associated with it
-  // (geometry/association.hpp).
+  // When set, boundary vertices are placed on this model (the Geometry
+  // made from it: ModelOrFacets, adapt_by_name's, or CadGeometry); the
+  // mesh must be associated with it (geometry/association.hpp).
   const CadModel* model = nullptr;
   // Called after every cycle, pass and round (progress output).
   std::function<void(const CycleReport&)> on_cycle;
 };
 
 // The Geometry policy object of `inputs`: G{inputs.model} when G is made
-// from a model (CadGeometry), else G{}.
+// from a model (CadGeometry, ModelOrFacets), else G{}.
 template <Geometry G>
 G geometry_of(const AdaptInputs& inputs) {
   if constexpr (requires { G{inputs.model}; })
@@ -182,6 +188,9 @@ struct Pipeline : PipelineRules {
   Stages<A> repair;
   // Run once at the end (e.g. the last vertices onto the model).
   Stages<A> closing;
+  // Set by standard_pipeline: whether its stages are those on a model or
+  // off one. run_pipeline refuses an adapter whose geometry says the other.
+  std::optional<bool> for_model;
 };
 
 // One round of a pipeline: its stages, then the adapter closes it (counts,
@@ -206,6 +215,11 @@ const CycleReport& run_round(A& a, const Stages<A>& stages, RoundKind kind, int 
 // Runs a pipeline: cycles, the quality phase, repair rounds, the closing.
 template <class A>
 const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
+  if (p.for_model && *p.for_model != a.geometry().on_model())
+    throw std::invalid_argument(
+        fmt::format("run_pipeline: a standard pipeline built for an adaptation {} a model, on an adapter {} one "
+                    "(standard_pipeline's on_model: the adapter's geometry().on_model())",
+                    *p.for_model ? "on" : "off", *p.for_model ? "off" : "on"));
   Stopwatch total;
   const auto next = [&a] { return static_cast<int>(a.report().cycles.size()); };
   double previous_conformity = 0.0;
@@ -254,8 +268,19 @@ const AdaptReport& run_pipeline(A& a, const Pipeline<A>& p) {
 // On a model every cycle, pass and round also projects onto it the
 // vertices whose placement had to backtrack, and cycles and passes flip
 // boundary edges whose facets then follow the model better (swap).
+//
+// `on_model`: the stages on a model or off one. By default the Geometry
+// type's when the type says (NoGeometry, CadGeometry), else off a model:
+// under ModelOrFacets, pass the adapter's geometry().on_model().
+template <Geometry G>
+constexpr bool on_model_of_type() {
+  if constexpr (requires { std::bool_constant<G::on_model()>{}; })
+    return G::on_model();
+  else
+    return false;
+}
 template <class A, Precision P = Precisions::at<0>>
-Pipeline<A> standard_pipeline(const AdaptOptions& o) {
+Pipeline<A> standard_pipeline(const AdaptOptions& o, bool on_model = on_model_of_type<typename A::Geometry>()) {
   using S = typename A::Space;
   using C = typename A::Concurrency;
   Pipeline<A> p;
@@ -275,16 +300,16 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   SmoothOptions polish_smooth = o.smooth;
   polish_smooth.below = o.quality_phase_smooth_below;
 
-  constexpr bool on_model = A::Geometry::on_model;
+  p.for_model = on_model;
   // The input's boundary vertices off the model (association reports
   // them) onto it before anything is decided around them.
-  if constexpr (on_model) p.opening.push_back({"project", [](A& a) { return a.project(); }});
+  if (on_model) p.opening.push_back({"project", [](A& a) { return a.project(); }});
   p.cycle.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   if (o.points == PointRule::edge) {
     p.cycle.push_back({"split", [=](A& a) { return a.split(refine); }});
     // On a model, an internal surface's split whose model point an inner
     // vertex stands in front of waits; that vertex goes, for the next pass.
-    if constexpr (on_model) p.cycle.push_back({"clear", [=](A& a) { return a.clear_way(refine); }});
+    if (on_model) p.cycle.push_back({"clear", [=](A& a) { return a.clear_way(refine); }});
   } else {
     p.cycle.push_back({"centroids", [=](A& a) { return a.insert_centroids(refine); }});
     // A centroid leaves its tet's long edge in place; metric Delaunay flips
@@ -294,14 +319,9 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   p.cycle.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(flips); }});
   // On a model: the vertices a split left off it (their tets would have
   // inverted) try again after the reconnection around them.
-  if constexpr (on_model) p.cycle.push_back({"project", [](A& a) { return a.project(); }});
+  if (on_model) p.cycle.push_back({"project", [](A& a) { return a.project(); }});
   // The 2-2 flips toward the model (on one) and of internal surfaces.
-  const auto swap = [](A& a) {
-    if constexpr (on_model)
-      return a.swap();
-    else
-      return a.swap_interfaces();
-  };
+  const auto swap = [on_model](A& a) { return on_model ? a.swap() : a.swap_interfaces(); };
   p.cycle.push_back({"swap", swap});
   p.cycle.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   p.cycle.push_back({"smooth", [=](A& a) { return a.smooth(smooth); }});
@@ -314,7 +334,7 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
     if (o.quality_phase_smooth_below > smooth.below) a.forget("smooth");
   };
   p.polish.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips); }});
-  if constexpr (on_model) p.polish.push_back({"project", [](A& a) { return a.project(); }});
+  if (on_model) p.polish.push_back({"project", [](A& a) { return a.project(); }});
   p.polish.push_back({"swap", swap});
   p.polish.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
 
@@ -348,14 +368,14 @@ Pipeline<A> standard_pipeline(const AdaptOptions& o) {
   p.repair.push_back({"collapse", [=](A& a) { return a.collapse(collapse); }});
   p.repair.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
   p.repair.push_back({"flip", [=](A& a) { return a.template flips<MinQuality>(polish_flips); }});
-  if constexpr (on_model) p.repair.push_back({"project", [](A& a) { return a.project(); }});
+  if (on_model) p.repair.push_back({"project", [](A& a) { return a.project(); }});
   p.repair.push_back({"smooth", [=](A& a) { return a.smooth(polish_smooth); }});
   // On a model, the vertices still off it (their ball would invert) go
   // onto it after flips and smoothing around them, a few times; flips and
   // smoothing follow each projection (it moves vertices for the model,
   // not for quality). Those the last round leaves are collapsed onto a
   // boundary neighbour.
-  if constexpr (on_model)
+  if (on_model)
     p.closing.push_back({"project", [=, rounds = o.closing_rounds](A& a) {
                            OperatorStats stats;
                            ReconnectOptions around = polish_flips;
@@ -389,9 +409,9 @@ AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& in
   Adapter<S, C, G> a(mesh, inputs.source(), geometry);
   a.set_volume_budget(options.volume_budget);
   a.on_cycle = inputs.on_cycle;
-  return run_pipeline(a, standard_pipeline<Adapter<S, C, G>, P>(options));
+  return run_pipeline(a, standard_pipeline<Adapter<S, C, G>, P>(options, geometry.on_model()));
 }
-template <MetricSpace S, Precision P, Concurrency C, Geometry G = NoGeometry>
+template <MetricSpace S, Precision P, Concurrency C, Geometry G = ModelOrFacets>
 AdaptReport adapt(Mesh& mesh, const AdaptOptions& options, const AdaptInputs& inputs = {}) {
   return adapt<S, P, C, G>(mesh, options, inputs, geometry_of<G>(inputs));
 }

@@ -1,10 +1,10 @@
 // Runtime choice of the policies (the CLI's --space, --precision and
 // --concurrency) by name, from the policy lists (Spaces, Precisions,
-// Concurrencies), and of the Geometry by AdaptInputs::model (a model:
-// CadGeometry; none: NoGeometry). The pipeline is compiled once per
-// (space, concurrency, geometry) triple, in its own unit (adapt_unit.cpp,
-// built once per triple by CMake), so that a build on several cores
-// compiles them side by side.
+// Concurrencies); the Geometry is ModelOrFacets, on AdaptInputs::model
+// when one is given. The pipeline is compiled once per (space,
+// concurrency, geometry) triple of the lists, in its own unit
+// (adapt_unit.cpp, built once per triple by CMake), so that a build on
+// several cores compiles them side by side.
 #pragma once
 
 #include <metrica/metrics/quality_report.hpp>
@@ -21,8 +21,8 @@ PointRule point_rule_from_name(std::string_view name);
 const char* to_string(PointRule r);
 
 // The standard adaptation with its policies chosen by name (the CLI's
-// --space, --precision, --concurrency; inputs.model chooses the
-// Geometry): adapt<S, P, C, G> for the named policies.
+// --space, --precision, --concurrency; inputs.model, when set, the
+// model): adapt<S, P, C, ModelOrFacets> for the named policies.
 AdaptReport adapt_by_name(Mesh& mesh, const AdaptOptions& options, const PolicyChoice& policies = {},
                           const AdaptInputs& inputs = {});
 

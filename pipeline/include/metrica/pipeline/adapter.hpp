@@ -10,6 +10,7 @@
 #pragma once
 
 #include <metrica/allocator.hpp>
+#include <metrica/geometry/model_or_facets.hpp>
 #include <metrica/operators/boundary_swap.hpp>
 #include <metrica/operators/clear_way.hpp>
 #include <metrica/operators/collapse.hpp>
@@ -152,7 +153,7 @@ double conformity(const Mesh& mesh, double* min_quality = nullptr, bool cached =
   return all == 0 ? 0.0 : static_cast<double>(in) / static_cast<double>(all);
 }
 
-template <MetricSpace S, Concurrency C, Geometry G = NoGeometry>
+template <MetricSpace S, Concurrency C, Geometry G = ModelOrFacets>
 class Adapter {
  public:
   using Space = S;
@@ -175,7 +176,7 @@ class Adapter {
   // domain's volume by at most `relative` of its volume now, in all
   // (volume_budget.hpp). On a model the volume follows the model.
   void set_volume_budget(double relative) {
-    if constexpr (!G::on_model) volume_budget_ = VolumeBudget(relative * std::abs(mesh_.volume()));
+    if (!geometry_.on_model()) volume_budget_ = VolumeBudget(relative * std::abs(mesh_.volume()));
   }
   const VolumeBudget& volume_budget() const { return volume_budget_; }
 
@@ -269,7 +270,7 @@ class Adapter {
   template <class Criterion = ShapeOnly>
   OperatorStats collapse(CollapseOptions o, std::string_view key = {}) {
     o.scope.metric = metric_;
-    if constexpr (!G::on_model) o.volume_budget = &volume_budget_;
+    if (!geometry_.on_model()) o.volume_budget = &volume_budget_;
     o.scope.known = &out_of_band_;
     return incremental(key_or(key, "collapse"), o, [this](Mesh& m, const CollapseOptions& x) {
       return collapse_edges<S, C, Criterion>(m, x, geometry_);
@@ -295,7 +296,7 @@ class Adapter {
   template <class Criterion = MinQuality>
   OperatorStats smooth(SmoothOptions o, std::string_view key = {}) {
     o.scope.metric = metric_;
-    if constexpr (!G::on_model) o.volume_budget = &volume_budget_;
+    if (!geometry_.on_model()) o.volume_budget = &volume_budget_;
     return incremental(key_or(key, "smooth"), o, [this](Mesh& m, const SmoothOptions& x) {
       return smooth_vertices<S, C, Criterion>(m, x, geometry_);
     });

@@ -11,7 +11,7 @@
 // compiled where it is used, as any template.
 #pragma once
 
-#include <metrica/geometry/cad_geometry.hpp>
+#include <metrica/geometry/model_or_facets.hpp>
 #include <metrica/metrics/space.hpp>
 #include <metrica/pipeline/compiled_policies.hpp>
 #include <metrica/policies/speculative.hpp>
@@ -31,8 +31,9 @@
 
 namespace metrica {
 
-// Where boundary vertices go: the start mesh's facets, or a CAD model.
-using Geometries = PolicyList<NoGeometry, CadGeometry>;
+// Where boundary vertices go: a CAD model's when one is given, else the
+// start mesh's facets, chosen at run time (one instantiation for both).
+using Geometries = PolicyList<ModelOrFacets>;
 
 }  // namespace metrica
 
@@ -54,7 +55,7 @@ using Geometries = PolicyList<NoGeometry, CadGeometry>;
 // centroid rule's), the standard pipeline that runs them, adapt.
 #define METRICA_STANDARD_STAGES_OF_PRECISION(kind, S, P, C, G)                                                   \
   kind template OperatorStats reconnect<S, C, MetricDelaunay<P>, G>(Mesh&, const ReconnectOptions&, const G&); \
-  kind template Pipeline<Adapter<S, C, G>> standard_pipeline<Adapter<S, C, G>, P>(const AdaptOptions&);        \
+  kind template Pipeline<Adapter<S, C, G>> standard_pipeline<Adapter<S, C, G>, P>(const AdaptOptions&, bool);  \
   kind template AdaptReport adapt<S, P, C, G>(Mesh&, const AdaptOptions&, const AdaptInputs&, const G&);
 
 // The triple at indices (space, concurrency, geometry) of the lists, with
