@@ -5,8 +5,9 @@
 // (Geometry::facet_deviation, 1 - |cos| of the facet's and the model's
 // normals at the facet's centroid) is at most half the old facets'. The
 // new tets must be positive (Precision) and keep their shape (no new tet
-// below the floor unless the old ones were worse). Under NoGeometry
-// nothing deviates and nothing is swapped.
+// below the floor unless the old ones were worse). Off a model
+// (NoGeometry, ModelOrFacets without one) nothing deviates and nothing is
+// swapped.
 #pragma once
 
 #include <metrica/geometry/model.hpp>
