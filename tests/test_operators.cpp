@@ -137,8 +137,8 @@ TEST_SUITE("invariant") {
       o.scope.metric = &layer;
       const double start = worst(mesh);
       double lowest = start;
-      // With the floor the lowest settles within 6 passes; without it, it
-      // falls below 1e-4 within 7 (12 in the isotropic space).
+      // With the floor the lowest changes little after 6 passes; without
+      // it, it falls below 1e-4 within 7 (12 in the isotropic space).
       for (int pass = 0; pass < (floor > 0 ? 8 : 12) && !(floor == 0 && lowest < 1e-4); ++pass) {
         refine_edges<S, typename T::Concurrency>(mesh, o);
         require_valid(mesh, 1.0);
